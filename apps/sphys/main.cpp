@@ -1,0 +1,38 @@
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+#include "sphys/error.h"
+
+namespace {
+
+constexpr int kBadInput = 2;
+constexpr int kInternalError = 1;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"sphys: rigid-body collision handling with sphere-trees", "sphys"};
+  // At most one command; none is reported after parsing so that an unknown word is named.
+  app.require_subcommand(0, 1);
+  app.set_version_flag("--version", "sphys 0.1.0");
+  sphys::cli::add_mesh_info_command(app);
+
+  try {
+    app.parse(argc, argv);
+    if (app.get_subcommands().empty()) {
+      std::cerr << "sphys: error: no command given\n" << app.help();
+      return kBadInput;
+    }
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kBadInput;
+  } catch (const sphys::Error& e) {
+    std::cerr << "sphys: error: " << e.what() << '\n';
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "sphys: internal error: " << e.what() << '\n';
+    return kInternalError;
+  }
+  return 0;
+}

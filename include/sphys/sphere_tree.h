@@ -1,0 +1,80 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sphys/math.h"
+
+namespace sphys {
+
+struct Sphere {
+  Vec3 center = Vec3::Zero();  // unit: m, in the body frame
+  float radius = 0.0f;         // unit: m
+};
+
+// A node as a builder or a file reader hands it over: its sphere and its parent's index
+// (-1 for the root), in breadth-first order.
+struct SphereTreeNode {
+  Sphere sphere;
+  std::int32_t parent = -1;
+};
+
+// A hierarchy of spheres bounding one body, read every step by the narrow phase.
+//
+// Nodes are stored breadth-first in flat arrays: node 0 is the root, the children of a node are a
+// contiguous range, and level k (the root is level 0) is a contiguous range too. Depth is the
+// number of levels including the root: the paper's "depth 2" is a root and up to B leaves,
+// "depth 3" a root, up to B children and up to B² grandchildren. Trees need not be complete: a
+// node above the last level may have no children (it is then a leaf). A node's index is stable
+// and serves as the feature id of contacts made with it.
+class SphereTree {
+ public:
+  SphereTree() = default;
+
+  // Validates and packs nodes given in breadth-first order (every parent before its children,
+  // the children of one parent adjacent, parents in non-decreasing order). Throws sphys::Error
+  // for an empty list, a bad parent index, a non-finite centre, a non-positive or non-finite
+  // radius, more than `branching` children, or branching outside 2..8.
+  [[nodiscard]] static SphereTree from_nodes(std::span<const SphereTreeNode> nodes, int branching);
+
+  [[nodiscard]] std::size_t size() const { return spheres_.size(); }
+  [[nodiscard]] bool empty() const { return spheres_.empty(); }
+  [[nodiscard]] int branching() const { return branching_; }
+  // Number of levels including the root.
+  [[nodiscard]] int depth() const { return static_cast<int>(level_begin_.size()) - 1; }
+
+  [[nodiscard]] const Sphere& sphere(std::uint32_t node) const { return spheres_[node]; }
+  [[nodiscard]] const Sphere& root() const { return spheres_.front(); }
+  [[nodiscard]] std::span<const Sphere> spheres() const { return spheres_; }
+  [[nodiscard]] std::int32_t parent(std::uint32_t node) const { return parent_[node]; }
+  [[nodiscard]] std::uint32_t first_child(std::uint32_t node) const { return first_child_[node]; }
+  [[nodiscard]] std::uint32_t child_count(std::uint32_t node) const { return child_count_[node]; }
+  [[nodiscard]] bool is_leaf(std::uint32_t node) const { return child_count_[node] == 0; }
+  [[nodiscard]] int level(std::uint32_t node) const;
+
+  // Nodes of level k (0 = root) as the index range [begin, end).
+  [[nodiscard]] std::uint32_t level_begin(int level) const { return level_begin_[level]; }
+  [[nodiscard]] std::uint32_t level_end(int level) const { return level_begin_[level + 1]; }
+  [[nodiscard]] std::span<const Sphere> level_spheres(int level) const {
+    return std::span(spheres_).subspan(level_begin(level), level_end(level) - level_begin(level));
+  }
+  // Nodes that have no children, in index order.
+  [[nodiscard]] std::vector<std::uint32_t> leaves() const;
+
+  // The same tree cut to its first `depth` levels (the nodes of the last kept level become
+  // leaves). Throws sphys::Error unless 1 <= depth.
+  [[nodiscard]] SphereTree truncated(int depth) const;
+
+  friend bool operator==(const SphereTree& a, const SphereTree& b);
+
+ private:
+  std::vector<Sphere> spheres_;
+  std::vector<std::int32_t> parent_;
+  std::vector<std::uint32_t> first_child_;
+  std::vector<std::uint8_t> child_count_;
+  std::vector<std::uint32_t> level_begin_;  // depth() + 1 entries
+  int branching_ = 8;
+};
+
+}  // namespace sphys

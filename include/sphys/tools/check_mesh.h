@@ -1,0 +1,29 @@
+#pragma once
+
+#include <cstddef>
+
+#include "sphys/tools/triangle_mesh.h"
+
+namespace sphys::tools {
+
+// What check_mesh found. An edge is an unordered pair of vertex indices.
+struct MeshReport {
+  std::size_t triangles = 0;
+  std::size_t vertices = 0;
+  std::size_t degenerate_triangles = 0;  // a repeated vertex, or area below 1e-12 of bounds²
+  std::size_t non_finite_vertices = 0;   // NaN or infinite coordinates
+  std::size_t boundary_edges = 0;        // used by exactly one triangle: the mesh has holes
+  std::size_t non_manifold_edges = 0;    // used by three or more triangles
+  std::size_t misoriented_edges = 0;     // two triangles traverse it the same way
+  std::size_t unused_vertices = 0;
+
+  // Closed, manifold and consistently oriented: the volume it encloses is well defined.
+  [[nodiscard]] bool watertight() const {
+    return boundary_edges == 0 && non_manifold_edges == 0 && misoriented_edges == 0 &&
+           non_finite_vertices == 0 && triangles > 0;
+  }
+};
+
+[[nodiscard]] MeshReport check_mesh(const TriangleMesh& mesh);
+
+}  // namespace sphys::tools

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace sphys::tools {
+
+using Vec3d = Eigen::Vector3d;
+using Mat3d = Eigen::Matrix3d;
+using Box3d = Eigen::AlignedBox3d;
+using Triangle = std::array<std::uint32_t, 3>;
+
+// An indexed triangle mesh in double precision, the input of every offline tool. Vertices are
+// welded (no two share a position) when the mesh comes from load_mesh(); triangles are
+// counter-clockwise seen from outside, so normals point out.
+struct TriangleMesh {
+  std::vector<Vec3d> vertices;
+  std::vector<Triangle> triangles;
+  std::string name;  // where it came from (a file path or a model name), for messages
+
+  [[nodiscard]] Box3d bounds() const;
+  [[nodiscard]] Vec3d corner(std::size_t triangle, int k) const {
+    return vertices[triangles[triangle][static_cast<std::size_t>(k)]];
+  }
+  // Area-weighted (unnormalised) normal: (b - a) x (c - a), twice the triangle's area long.
+  [[nodiscard]] Vec3d area_normal(std::size_t triangle) const;
+};
+
+}  // namespace sphys::tools

@@ -1,0 +1,144 @@
+#include "sphys/tools/load_mesh.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <system_error>
+#include <unordered_map>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "read_off.h"
+#include "sphys/error.h"
+
+namespace sphys::tools {
+namespace {
+
+namespace fs = std::filesystem;
+
+void require_readable_file(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw Error::in_file(path, "no such file");
+  if (fs::is_directory(status)) throw Error::in_file(path, "is a directory, not a mesh file");
+  if (fs::file_size(path, ec) == 0 && !ec) throw Error::in_file(path, "file is empty");
+}
+
+// Assimp's own words, except where its validator speaks of its data structures rather than of
+// the file.
+std::string importer_message(const Assimp::Importer& importer) {
+  std::string message = importer.GetErrorString();
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  if (message.find("mNumMeshes is 0") != std::string::npos) {
+    return "no mesh found: not a mesh file, or a corrupt one";
+  }
+  if (message.find("contains no faces") != std::string::npos) return "the mesh has no triangles";
+  return message.empty() ? "the file could not be read as a mesh" : message;
+}
+
+bool has_extension(const fs::path& path, std::string_view extension) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == extension;
+}
+
+std::string format_point(const aiVector3D& v) {
+  std::ostringstream out;
+  out << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+  return out.str();
+}
+
+void append_triangles(const aiMesh& source, const fs::path& path, TriangleMesh& mesh) {
+  const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+  for (unsigned i = 0; i < source.mNumVertices; ++i) {
+    const aiVector3D& v = source.mVertices[i];
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+      throw Error::in_file(path, "a vertex has a non-finite coordinate " + format_point(v));
+    }
+    mesh.vertices.emplace_back(v.x, v.y, v.z);
+  }
+  for (unsigned f = 0; f < source.mNumFaces; ++f) {
+    const aiFace& face = source.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // points and lines carry no surface
+    Triangle t{};
+    for (unsigned k = 0; k < 3; ++k) {
+      if (face.mIndices[k] >= source.mNumVertices) {
+        throw Error::in_file(path, "face " + std::to_string(f + 1) + " refers to vertex " +
+                                       std::to_string(face.mIndices[k] + 1) + " of only " +
+                                       std::to_string(source.mNumVertices));
+      }
+      t[k] = base + face.mIndices[k];
+    }
+    mesh.triangles.push_back(t);
+  }
+}
+
+TriangleMesh read_with_assimp(const fs::path& path) {
+  Assimp::Importer importer;
+  // Keep only what a solid needs; ValidateDataStructure turns index errors into read errors.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                              aiComponent_NORMALS | aiComponent_TEXCOORDS | aiComponent_COLORS |
+                                  aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_MATERIALS);
+  const aiScene* scene = importer.ReadFile(
+      path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                         aiProcess_RemoveComponent | aiProcess_ValidateDataStructure);
+  if (scene == nullptr) throw Error::in_file(path, importer_message(importer));
+  if (scene->mNumMeshes == 0) {
+    throw Error::in_file(path, "no mesh found (not a mesh file, or an unreadable one)");
+  }
+
+  TriangleMesh mesh;
+  mesh.name = path.string();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) append_triangles(*scene->mMeshes[m], path, mesh);
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const fs::path& path) {
+  require_readable_file(path);
+  const TriangleMesh mesh = has_extension(path, ".off") ? read_off(path) : read_with_assimp(path);
+  if (mesh.triangles.empty()) throw Error::in_file(path, "the mesh has no triangles");
+  return weld_vertices(mesh);
+}
+
+TriangleMesh weld_vertices(const TriangleMesh& mesh) {
+  struct PositionHash {
+    std::size_t operator()(const Vec3d& p) const {
+      std::size_t h = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double c = p[k] + 0.0;  // -0.0 and +0.0 are one position
+        std::uint64_t bits = 0;
+        std::memcpy(&bits, &c, sizeof bits);
+        h = (h ^ bits) * 0x100000001b3ULL;
+      }
+      return h;
+    }
+  };
+  struct PositionEqual {
+    bool operator()(const Vec3d& a, const Vec3d& b) const { return a == b; }
+  };
+
+  TriangleMesh welded;
+  welded.name = mesh.name;
+  welded.triangles.reserve(mesh.triangles.size());
+  std::unordered_map<Vec3d, std::uint32_t, PositionHash, PositionEqual> index_of;
+  index_of.reserve(mesh.vertices.size());
+  for (const Triangle& t : mesh.triangles) {
+    Triangle w{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3d& p = mesh.vertices[t[k]];
+      const auto [it, inserted] =
+          index_of.try_emplace(p, static_cast<std::uint32_t>(welded.vertices.size()));
+      if (inserted) welded.vertices.push_back(p);
+      w[k] = it->second;
+    }
+    welded.triangles.push_back(w);
+  }
+  return welded;
+}
+
+}  // namespace sphys::tools
