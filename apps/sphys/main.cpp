@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "sphys 0.1.0");
   sphys::cli::add_mesh_info_command(app);
+  sphys::cli::add_build_tree_command(app);
+  sphys::cli::add_tree_info_command(app);
 
   try {
     app.parse(argc, argv);

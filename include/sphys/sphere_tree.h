@@ -51,6 +51,10 @@ class SphereTree {
   [[nodiscard]] std::uint32_t first_child(std::uint32_t node) const { return first_child_[node]; }
   [[nodiscard]] std::uint32_t child_count(std::uint32_t node) const { return child_count_[node]; }
   [[nodiscard]] bool is_leaf(std::uint32_t node) const { return child_count_[node] == 0; }
+  // Radius about the node's centre of a sphere holding the node's sphere and every sphere below
+  // it. Builders do not nest children inside parents (each level is fitted to the surface on its
+  // own), so culling a subtree must use this bound, not the node's own radius. unit: m
+  [[nodiscard]] float subtree_radius(std::uint32_t node) const { return subtree_radius_[node]; }
   [[nodiscard]] int level(std::uint32_t node) const;
 
   // Nodes of level k (0 = root) as the index range [begin, end).
@@ -73,6 +77,7 @@ class SphereTree {
   std::vector<std::int32_t> parent_;
   std::vector<std::uint32_t> first_child_;
   std::vector<std::uint8_t> child_count_;
+  std::vector<float> subtree_radius_;
   std::vector<std::uint32_t> level_begin_;  // depth() + 1 entries
   int branching_ = 8;
 };

@@ -57,6 +57,18 @@ SphereTree SphereTree::from_nodes(std::span<const SphereTreeNode> nodes, int bra
     tree.parent_.push_back(node.parent);
   }
 
+  // Children come after their parents, so one backward pass sees every child before its parent.
+  tree.subtree_radius_.resize(n);
+  for (std::size_t i = n; i-- > 0;) {
+    float bound = tree.spheres_[i].radius;
+    for (std::uint32_t c = tree.first_child_[i]; c < tree.first_child_[i] + tree.child_count_[i];
+         ++c) {
+      bound = std::max(bound, (tree.spheres_[c].center - tree.spheres_[i].center).norm() +
+                                  tree.subtree_radius_[c]);
+    }
+    tree.subtree_radius_[i] = bound;
+  }
+
   const int depth = level.back() + 1;
   tree.level_begin_.assign(static_cast<std::size_t>(depth) + 1, static_cast<std::uint32_t>(n));
   for (std::size_t i = n; i-- > 0;) tree.level_begin_[level[i]] = static_cast<std::uint32_t>(i);

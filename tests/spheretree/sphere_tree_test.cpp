@@ -45,6 +45,16 @@ TEST(SphereTree, PacksLevelsChildRangesAndLeaves) {
   EXPECT_EQ(tree.root().radius, 4.0f);
 }
 
+TEST(SphereTree, SubtreeRadiusHoldsEveryDescendant) {
+  auto nodes = uneven_tree();
+  nodes[5].sphere = sphere(3, 1.5f);  // sticks out of its parent (centre -2, radius 2)
+  const SphereTree tree = SphereTree::from_nodes(nodes, 8);
+  EXPECT_FLOAT_EQ(tree.subtree_radius(5), 1.5f);
+  EXPECT_FLOAT_EQ(tree.subtree_radius(2), 2.0f);  // a leaf: its own radius
+  EXPECT_FLOAT_EQ(tree.subtree_radius(1), 6.5f);  // |3 - (-2)| + 1.5
+  EXPECT_FLOAT_EQ(tree.subtree_radius(0), 8.5f);  // |-2 - 0| + 6.5
+}
+
 TEST(SphereTree, TruncatedKeepsTheFirstLevels) {
   const SphereTree tree = SphereTree::from_nodes(uneven_tree(), 8);
   const SphereTree two = tree.truncated(2);

@@ -26,4 +26,9 @@ struct MeshReport {
 
 [[nodiscard]] MeshReport check_mesh(const TriangleMesh& mesh);
 
+// What every computation on a mesh needs before it starts: at least one triangle, finite
+// vertices, and triangle indices in range. Throws sphys::Error naming the mesh and the first
+// problem found.
+void require_usable(const TriangleMesh& mesh);
+
 }  // namespace sphys::tools

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <unordered_map>
 #include <utility>
+
+#include "sphys/error.h"
 
 namespace sphys::tools {
 namespace {
@@ -61,6 +64,25 @@ MeshReport check_mesh(const TriangleMesh& mesh) {
   }
   report.unused_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
   return report;
+}
+
+void require_usable(const TriangleMesh& mesh) {
+  if (mesh.triangles.empty()) throw Error::in_file(mesh.name, "has no triangles");
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (!mesh.vertices[i].allFinite()) {
+      throw Error::in_file(mesh.name,
+                           "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    }
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (const std::uint32_t v : mesh.triangles[t]) {
+      if (v >= mesh.vertices.size()) {
+        throw Error::in_file(mesh.name, "triangle " + std::to_string(t) + " refers to vertex " +
+                                            std::to_string(v) + " of " +
+                                            std::to_string(mesh.vertices.size()));
+      }
+    }
+  }
 }
 
 }  // namespace sphys::tools

@@ -19,6 +19,7 @@
 #include <tbb/parallel_for.h>
 
 #include "sphys/error.h"
+#include "sphys/tools/check_mesh.h"
 #include "sphys/tools/winding_number.h"
 
 namespace sphys::tools {
@@ -61,24 +62,7 @@ void validate(const TriangleMesh& mesh, const MassPropertiesOptions& options) {
     throw Error::in_file(mesh.name, "columns must be between 1 and " + std::to_string(kMaxColumns) +
                                         ", got " + std::to_string(options.columns));
   }
-  if (mesh.triangles.empty()) {
-    throw Error::in_file(mesh.name, "has no triangles, so it encloses no volume");
-  }
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-    if (!mesh.vertices[i].allFinite()) {
-      throw Error::in_file(mesh.name,
-                           "vertex " + std::to_string(i) + " has a non-finite coordinate");
-    }
-  }
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (const std::uint32_t v : mesh.triangles[t]) {
-      if (v >= mesh.vertices.size()) {
-        throw Error::in_file(mesh.name, "triangle " + std::to_string(t) + " refers to vertex " +
-                                            std::to_string(v) + " of " +
-                                            std::to_string(mesh.vertices.size()));
-      }
-    }
-  }
+  require_usable(mesh);
 }
 
 struct DirectedEdge {

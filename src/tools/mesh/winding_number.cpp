@@ -5,14 +5,13 @@
 #include <numbers>
 
 namespace sphys::tools {
-namespace {
 
 // Signed solid angle that triangle (a, b, c), given relative to the viewpoint, subtends there, by
 // Van Oosterom & Strackee, "The Solid Angle of a Plane Triangle" (IEEE Trans. Biomed. Eng. 30,
 // 1983): tan(Ω/2) = a·(b×c) / (|a||b||c| + (a·b)|c| + (b·c)|a| + (c·a)|b|). atan2 keeps the
 // quadrant, so Ω spans (-2π, 2π]; it is positive when the viewpoint is behind the triangle (on
 // the side its counter-clockwise normal points away from).
-double solid_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+double triangle_solid_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const double la = a.norm();
   const double lb = b.norm();
   const double lc = c.norm();
@@ -26,12 +25,11 @@ double solid_angle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   return 2.0 * std::atan2(triple, denominator);
 }
 
-}  // namespace
-
 double winding_number(const TriangleMesh& mesh, const Vec3d& p) {
   double total = 0.0;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    total += solid_angle(mesh.corner(t, 0) - p, mesh.corner(t, 1) - p, mesh.corner(t, 2) - p);
+    total +=
+        triangle_solid_angle(mesh.corner(t, 0) - p, mesh.corner(t, 1) - p, mesh.corner(t, 2) - p);
   }
   return total / (4.0 * std::numbers::pi);
 }

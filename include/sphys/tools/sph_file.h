@@ -1,0 +1,32 @@
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+
+#include "sphys/sphere_tree.h"
+#include "sphys/tools/triangle_mesh.h"
+
+namespace sphys::tools {
+
+struct SphReadOptions {
+  // Added to every centre after reading. Bradshaw's toolkit writes centres relative to the
+  // input mesh's bounding-box centre; pass that centre (mesh.bounds().center()) here to get the
+  // centres back in the mesh's own coordinates. unit: m
+  Vec3d shift = Vec3d::Zero();
+};
+
+// Reads a sphere-tree in the format of Bradshaw's Sphere-Tree Construction Toolkit (see
+// docs/file-formats.md) into a compact SphereTree. Throws sphys::Error naming the file and line.
+[[nodiscard]] SphereTree read_sph(const std::filesystem::path& path,
+                                  const SphReadOptions& options = {});
+// The same from a stream; `name` is used in messages.
+[[nodiscard]] SphereTree read_sph(std::istream& in, const std::filesystem::path& name,
+                                  const SphReadOptions& options = {});
+
+// Writes the tree as a complete B-ary tree in breadth-first order, unused slots with a negative
+// radius, centres as stored. The file is written whole or not at all (a temporary file renamed
+// into place). Throws sphys::Error if the file cannot be written.
+void write_sph(const std::filesystem::path& path, const SphereTree& tree);
+void write_sph(std::ostream& out, const SphereTree& tree);
+
+}  // namespace sphys::tools

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sphys/sphere_tree.h"
+#include "sphys/tools/mesh_query.h"
+
+namespace sphys::tools {
+
+// How well one level of a sphere-tree approximates the mesh. Distances are fractions of the
+// mesh's bounding-box diagonal; volumes are multiples of the mesh's volume.
+//
+// All four are sampled: coverage and gap from area-weighted random points on the surface,
+// tightness by Monte Carlo in the union's bounding box (standard error about
+// box volume / mesh volume · sqrt(p(1-p) / volume_samples), p the fraction counted), protrusion
+// over an evenly spread lattice of boundary_samples points on every sphere (it can only
+// underestimate, by at most about radius · (1 - cos sqrt(4π / boundary_samples))). A point on the
+// union's boundary is one that no other sphere holds strictly inside.
+struct LevelQuality {
+  int level = 0;  // 0 = root
+  std::size_t spheres = 0;
+  double coverage = 0.0;          // fraction of surface samples inside some sphere (want 1)
+  double worst_gap = 0.0;         // largest distance from an uncovered sample to the nearest sphere
+  double tightness = 0.0;         // volume of the union of spheres outside the mesh / mesh volume
+  double worst_protrusion = 0.0;  // largest distance from the union's boundary outside the mesh
+                                  // to the mesh surface
+};
+
+struct QualityOptions {
+  std::size_t surface_samples = 100000;  // for coverage and gap. unit: count
+  std::size_t volume_samples = 400000;   // Monte Carlo points for tightness. unit: count
+  std::size_t boundary_samples = 400;    // per sphere, for protrusion. unit: count
+  std::uint64_t seed = 2008;             // fixed: the same tree and mesh give the same figures
+};
+
+// Measures one set of spheres (level is left 0). The figures depend only on the spheres, the
+// mesh and the options, not on the number of threads. Throws sphys::Error when there are no
+// spheres, a sphere is not finite or has a negative radius, a sample count is 0, or the mesh
+// encloses no volume.
+[[nodiscard]] LevelQuality measure_level(std::span<const Sphere> spheres, const MeshQuery& mesh,
+                                         const QualityOptions& options = {});
+// One entry per level of the tree, with the same surface samples for every level.
+[[nodiscard]] std::vector<LevelQuality> measure_tree(const SphereTree& tree, const MeshQuery& mesh,
+                                                     const QualityOptions& options = {});
+
+}  // namespace sphys::tools

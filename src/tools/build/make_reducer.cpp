@@ -1,0 +1,116 @@
+// The point-set reducers: one class, the method choosing how the representatives are reduced;
+// every result then goes through the same refinement.
+#include <cstdint>
+#include <memory>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "reducers_impl.h"
+#include "sphys/error.h"
+
+namespace sphys::tools::build {
+namespace {
+
+// Representatives per node: enough for the medial axis to follow the surface's features at the
+// node's scale, few enough that a node costs milliseconds whatever the mesh's triangle count.
+constexpr std::size_t kRegionPoints = 1000;
+// The coarse sampling of the whole surface that surrounds every node's medial axis.
+constexpr std::size_t kContextPoints = 400;
+
+class PointSetReducer final : public Reducer {
+ public:
+  PointSetReducer(BuildMethod method, const BuildContext& context)
+      : method_(method), context_(context), measure_(context.query) {
+    std::vector<std::uint32_t> all(context.samples.points.size());
+    std::iota(all.begin(), all.end(), 0U);
+    context_points_ = make_region(context, all, kContextPoints).points;
+  }
+
+  Cover cover(std::span<const std::uint32_t> samples, const Ball& /*parent*/,
+              int max_balls) override {
+    if (samples.empty()) return {};
+    const Region region = make_region(context_, samples, kRegionPoints);
+    if (max_balls <= 1) {
+      // One ball: every method agrees on the least-error ball around all the points.
+      std::vector<std::uint32_t> all(region.points.size());
+      std::iota(all.begin(), all.end(), 0U);
+      return finish(samples, region, {fit_cluster(region, measure_, std::move(all))});
+    }
+    switch (method_) {
+      case BuildMethod::Grid:
+        return finish(samples, region, grid_clusters(region, measure_, max_balls));
+      case BuildMethod::Spawn:
+        return finish(samples, region, spawn_clusters(region, measure_, max_balls));
+      case BuildMethod::Hubbard:
+        return finish(samples, region, merged(region, axis(region, false), max_balls));
+      case BuildMethod::Merge:
+        return finish(samples, region, merged(region, axis(region, true), max_balls));
+      case BuildMethod::Burst:
+        return finish(samples, region, burst(region, axis(region, true), max_balls));
+      case BuildMethod::Expand:
+        return finish(samples, region,
+                      expand_clusters(region, axis(region, true), measure_, max_balls));
+      case BuildMethod::Combined:
+        return combined(samples, region, max_balls);
+      case BuildMethod::Octree:
+        break;
+    }
+    throw Error("the Octree method has no point-set reducer");
+  }
+
+ private:
+  MedialAxis axis(const Region& region, bool adaptive) const {
+    return region_medial_axis(region, context_points_, measure_, adaptive);
+  }
+
+  std::vector<Cluster> merged(const Region& region, const MedialAxis& axis, int max_balls) const {
+    return merge_clusters(medial_clusters(region, axis, measure_), region, measure_, max_balls);
+  }
+
+  std::vector<Cluster> burst(const Region& region, const MedialAxis& axis, int max_balls) const {
+    return burst_clusters(medial_clusters(region, axis, measure_), region, max_balls);
+  }
+
+  Cover finish(std::span<const std::uint32_t> samples, const Region& region,
+               std::vector<Cluster> clusters) const {
+    return refine_cover(context_, measure_, samples, region, std::move(clusters));
+  }
+
+  // Bradshaw §4.5 keeps, per node, the better of Merge and Burst; Expand joins them here. All
+  // three start from the same medial axis, and each result is compared after refinement, so
+  // Combined's worst error is never above any of theirs.
+  Cover combined(std::span<const std::uint32_t> samples, const Region& region,
+                 int max_balls) const {
+    const MedialAxis medial = axis(region, true);
+    Cover best = finish(samples, region, merged(region, medial, max_balls));
+    double best_error = worst_error(best, measure_);
+    for (int method = 0; method < 2; ++method) {
+      Cover other = finish(samples, region,
+                           method == 0 ? burst(region, medial, max_balls)
+                                       : expand_clusters(region, medial, measure_, max_balls));
+      const double error = worst_error(other, measure_);
+      if (error < best_error) {
+        best = std::move(other);
+        best_error = error;
+      }
+    }
+    return best;
+  }
+
+  BuildMethod method_;
+  BuildContext context_;
+  ErrorMeasure measure_;
+  std::vector<Vec3d> context_points_;
+};
+
+}  // namespace
+
+std::unique_ptr<Reducer> make_reducer(BuildMethod method, const BuildContext& context) {
+  if (method == BuildMethod::Octree) {
+    throw Error("the Octree method subdivides space and has no point-set reducer");
+  }
+  return std::make_unique<PointSetReducer>(method, context);
+}
+
+}  // namespace sphys::tools::build

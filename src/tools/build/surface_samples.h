@@ -1,0 +1,23 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sphys/tools/triangle_mesh.h"
+
+namespace sphys::tools::build {
+
+// Points spread over the whole surface: what the nodes of a sphere-tree must cover. Made by
+// splitting every triangle evenly until its pieces have edges no longer than `spacing`; the
+// points are the pieces' corners. Every surface point is within spacing/√3 of some sample.
+struct SurfaceSamples {
+  std::vector<Vec3d> points;
+  std::vector<std::uint32_t> triangle;  // the mesh triangle each point lies on
+  double spacing = 0.0;                 // unit: m
+};
+
+// Chooses the spacing so that roughly `target_count` samples result (at least three per
+// triangle).
+[[nodiscard]] SurfaceSamples sample_surface(const TriangleMesh& mesh, std::size_t target_count);
+
+}  // namespace sphys::tools::build
