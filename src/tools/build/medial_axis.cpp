@@ -3,9 +3,11 @@
 #include "medial_axis.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -151,6 +153,26 @@ class Approximation {
  private:
   bool relevant(std::uint32_t point) const { return point < focus_ || point >= input_count_; }
 
+  // The centre of the sphere through the cell's four corners: solves 2 (p_k - p_0) . x =
+  // |p_k - p_0|² for x = centre - p_0. Nothing when the cell is too flat for a stable answer.
+  static std::optional<Vec3d> circumcentre(const Delaunay::Cell_handle& cell) {
+    const Vec3d p0 = to_vec(cell->vertex(0)->point());
+    Eigen::Matrix3d edges;
+    Vec3d lengths;
+    double longest = 0.0;
+    for (int k = 1; k < 4; ++k) {
+      const Vec3d d = to_vec(cell->vertex(k)->point()) - p0;
+      edges.row(k - 1) = 2.0 * d.transpose();
+      lengths[k - 1] = d.squaredNorm();
+      longest = std::max(longest, d.norm());
+    }
+    const double determinant = edges.determinant();
+    if (!(std::abs(determinant) > 1e-12 * 8.0 * longest * longest * longest)) return std::nullopt;
+    const Vec3d center = p0 + edges.inverse() * lengths;
+    if (!center.allFinite()) return std::nullopt;
+    return center;
+  }
+
   const CellInfo& evaluate(const Delaunay::Cell_handle& cell) {
     CellInfo& info = cell->info();
     if (info.evaluated) return info;
@@ -162,14 +184,14 @@ class Approximation {
       touches_region = touches_region || relevant(g);
     }
     if (!touches_region) return info;
-    const Vec3d center = to_vec(dt_.dual(cell));
-    // Nearly flat tetrahedra put their circumcentres far away, or at infinity; nothing outside
-    // the object's box is inside the object.
-    if (!center.allFinite() || !measure_.bounds().contains(center)) return info;
-    const double signed_distance = measure_.signed_distance(center);
+    // Nearly flat tetrahedra put their circumcentres far away, or at infinity (where CGAL's
+    // construction asserts); nothing outside the object's box is inside the object.
+    const std::optional<Vec3d> center = circumcentre(cell);
+    if (!center || !measure_.bounds().contains(*center)) return info;
+    const double signed_distance = measure_.signed_distance(*center);
     if (signed_distance >= 0.0) return info;  // outside: not part of the medial axis
     info.medial = true;
-    info.sphere.ball = {center, (to_vec(cell->vertex(0)->point()) - center).norm()};
+    info.sphere.ball = {*center, (to_vec(cell->vertex(0)->point()) - *center).norm()};
     info.sphere.error = info.sphere.ball.radius + signed_distance;
     return info;
   }

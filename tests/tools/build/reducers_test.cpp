@@ -10,6 +10,7 @@
 #include "sphys/tools/mesh_query.h"
 #include "sphys/tools/model.h"
 #include "sphys/tools/primitives.h"
+#include "support/sanitized_run.h"
 #include "tools/build/reducer.h"
 #include "tools/build/surface_samples.h"
 
@@ -114,6 +115,7 @@ class ReducerTest : public ::testing::TestWithParam<std::tuple<BuildMethod, std:
 
 TEST_P(ReducerTest, PartitionsAndContainsTheSamples) {
   const auto& [method, shape] = GetParam();
+  if (test::sanitized_run() && shape != "torus") GTEST_SKIP() << "sanitized run: the torus only";
   const Subject& s = subject(shape);
   const BuildContext context = s.context();
   const std::unique_ptr<Reducer> reducer = make_reducer(method, context);
@@ -138,6 +140,8 @@ class CombinedTest : public ::testing::TestWithParam<std::string> {};
 
 // Combined keeps, per node, the best of Merge, Burst and Expand (Bradshaw §4.5).
 TEST_P(CombinedTest, NoWorseThanItsParts) {
+  if (test::sanitized_run() && GetParam() != "torus")
+    GTEST_SKIP() << "sanitized run: the torus only";
   const Subject& s = subject(GetParam());
   const BuildContext context = s.context();
   const double combined =

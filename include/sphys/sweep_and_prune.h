@@ -1,0 +1,129 @@
+#pragma once
+
+// Broad phase: incremental Sweep & Prune over axis-aligned boxes (paper §3.1; Cohen, Lin, Manocha
+// & Ponamgi 1995, I-COLLIDE; Ericson, Real-Time Collision Detection §7.5). docs/collision.md
+// explains the cost, the handling of ties and what is allocated when.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sphys/math.h"
+
+namespace sphys {
+
+// A handle to a box of the broad phase. Ids of removed proxies are given out again.
+using ProxyId = std::uint32_t;
+
+// Two proxies whose boxes overlap, a < b.
+struct ProxyPair {
+  ProxyId a = 0;
+  ProxyId b = 0;
+
+  friend bool operator==(const ProxyPair&, const ProxyPair&) = default;
+  friend auto operator<=>(const ProxyPair&, const ProxyPair&) = default;
+};
+
+// Static proxies (the ground, walls) are never paired with each other, only with dynamic ones.
+enum class ProxyKind : std::uint8_t { kDynamic, kStatic };
+
+// The set of overlapping pairs of a changing set of boxes, kept up to date from one call of
+// update() to the next. Boxes overlap as Aabb::overlaps says: closed intervals, so boxes that
+// touch overlap.
+//
+// add(), remove() and set_box() only record; update() applies them all and refreshes pairs().
+// It re-sorts the endpoints of the boxes on each axis with an insertion sort and updates the pairs
+// from the swaps the sort makes, in O(n + m + swaps) for n boxes and m pairs; small motions between
+// updates (temporal coherence) make few swaps. Once the pair count and the endpoint arrays have
+// reached their largest size, update() allocates nothing and throws nothing.
+//
+// Deterministic: the same sequence of calls gives the same ids and the same pairs() in the same
+// order. Not thread-safe; one thread at a time.
+class SweepAndPrune {
+ public:
+  // Adds a box (unit: m) and returns its id. The box takes part from the next update() on.
+  // Throws sphys::Error for a box with a non-finite coordinate or min > max on some axis, or when
+  // 2^31 proxies exist at once.
+  ProxyId add(const Aabb& box, ProxyKind kind);
+  // Removes a proxy; it and its pairs leave pairs() at the next update(), after which its id may be
+  // given out again. `id` must be a proxy that exists (checked by assert).
+  void remove(ProxyId id);
+  // Moves a proxy's box (unit: m); the sorting happens in update(). `box` must be finite with
+  // min <= max on every axis and `id` a proxy that exists (checked by assert; the step never
+  // throws).
+  void set_box(ProxyId id, const Aabb& box);
+  // The box last given to add() or set_box() (unit: m).
+  [[nodiscard]] Aabb box(ProxyId id) const;
+
+  // Applies the adds, removes and moves since the last call and refreshes pairs().
+  void update();
+
+  // The overlapping pairs as of the last update(), sorted by (a, b). Valid until the next update().
+  [[nodiscard]] std::span<const ProxyPair> pairs() const { return pairs_; }
+  // Proxies added and not removed (counting those waiting for the next update()).
+  [[nodiscard]] std::size_t size() const { return live_count_; }
+  // Endpoint swaps the insertion sort made in the last update(), over all three axes: the measure
+  // of motion the cost follows. 0 after an update() that rebuilt everything (see docs).
+  [[nodiscard]] std::uint64_t swaps_last_update() const { return swaps_last_update_; }
+
+ private:
+  // Open-addressing hash set of pair keys (linear probing, backward-shift deletion: no
+  // tombstones). Grows when half full; never shrinks, so steady state allocates nothing.
+  class PairSet {
+   public:
+    bool insert(std::uint64_t key);  // true when the key was absent
+    bool erase(std::uint64_t key);   // true when the key was present
+    [[nodiscard]] bool contains(std::uint64_t key) const;
+    void clear();
+
+   private:
+    [[nodiscard]] std::size_t home(std::uint64_t key) const;
+    void grow();
+
+    std::vector<std::uint64_t> slots_;  // kEmptySlot or a key; size a power of two
+    std::size_t size_ = 0;
+    int shift_ = 64;  // 64 - log2(slots_.size())
+  };
+
+  void store(ProxyId id, const Aabb& box);
+  void rebuild();
+  void sort_axis(int axis);
+  void integrate_added();
+  void drop_removed_pairs();
+  void merge_changes();
+  void on_min_passes_max(int axis, ProxyId a, ProxyId b);
+  void on_max_passes_min(int axis, ProxyId a, ProxyId b);
+
+  // A box as six floats, min x y z then max x y z, so that an endpoint finds its value without a
+  // branch; the box now and as of the last update(), together in one cache line, since the swaps
+  // of the sort read both at random.
+  struct alignas(64) Bounds {
+    std::array<float, 6> now;
+    std::array<float, 6> before;
+  };
+
+  // Per id.
+  std::vector<Bounds> bounds_;
+  // Per axis and id: the box's interval {min, max} on that axis, a copy of bounds_[id].now that
+  // packs what the sort of one axis reads into an eighth of the memory.
+  std::array<std::vector<std::array<float, 2>>, 3> intervals_;
+  std::vector<std::uint8_t> flags_;
+  // Per axis: the endpoints of the boxes taking part, sorted (see the key layout in the source).
+  std::array<std::vector<std::uint64_t>, 3> endpoints_;
+
+  PairSet pair_set_;
+  std::vector<ProxyPair> pairs_;        // sorted; what pairs() shows
+  std::vector<ProxyPair> merged_;       // the next pairs_, built by merge_changes()
+  std::vector<std::uint64_t> added_;    // keys that entered pair_set_ in this update()
+  std::vector<std::uint64_t> removed_;  // keys that left pair_set_ in this update()
+
+  std::vector<ProxyId> waiting_;  // added since the last update(), in the order of add()
+  std::vector<ProxyId> retired_;  // removed since the last update()
+  std::vector<ProxyId> free_ids_;
+  std::size_t live_count_ = 0;
+  std::uint64_t swaps_last_update_ = 0;
+};
+
+}  // namespace sphys

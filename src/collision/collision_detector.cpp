@@ -1,0 +1,204 @@
+#include "sphys/collision_detector.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "sphys/error.h"
+
+namespace sphys {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double elapsed_ms(Clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
+}
+
+bool finite(const Transform& pose) {
+  return pose.translation.allFinite() && pose.rotation.coeffs().allFinite();
+}
+
+// The last level used of a tree: its nodes are the leaves.
+int last_level(const SphereTree& tree, int tree_depth) {
+  return (tree_depth <= 0 || tree_depth > tree.depth()) ? tree.depth() - 1 : tree_depth - 1;
+}
+
+// World bound of a body from one level's spheres, each grown to its subtree radius so that every
+// deeper sphere is inside too.
+Aabb world_bounds(const SphereTree& tree, const Transform& pose, int level) {
+  const int used = std::min(level, tree.depth() - 1);
+  Aabb box;
+  for (std::uint32_t node = tree.level_begin(used); node < tree.level_end(used); ++node) {
+    box.extend(
+        Aabb::around_sphere(pose.apply(tree.sphere(node).center), tree.subtree_radius(node)));
+  }
+  // Leaves above the level (trees need not be complete) bound parts of the body too.
+  for (std::uint32_t node = 0; node < tree.level_begin(used); ++node) {
+    if (tree.is_leaf(node)) {
+      box.extend(
+          Aabb::around_sphere(pose.apply(tree.sphere(node).center), tree.sphere(node).radius));
+    }
+  }
+  return box;
+}
+
+}  // namespace
+
+CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {}
+
+BodyId CollisionDetector::add_body(std::shared_ptr<const SphereTree> tree, const Transform& pose,
+                                   bool is_static) {
+  if (!tree || tree->empty()) throw Error("a body needs a non-empty sphere-tree");
+  if (!finite(pose)) throw Error("a body's pose must be finite");
+  std::uint32_t index = 0;
+  if (free_bodies_.empty()) {
+    index = static_cast<std::uint32_t>(bodies_.size());
+    bodies_.emplace_back();
+  } else {
+    index = free_bodies_.back();
+    free_bodies_.pop_back();
+  }
+  Body& body = bodies_[index];
+  body.tree = std::move(tree);
+  body.pose = pose;
+  body.is_static = is_static;
+  body.alive = true;
+  body.proxy = broad_phase_.add(world_bounds(*body.tree, pose, settings_.bounds_level),
+                                is_static ? ProxyKind::kStatic : ProxyKind::kDynamic);
+  if (body_of_proxy_.size() <= body.proxy) body_of_proxy_.resize(body.proxy + 1);
+  body_of_proxy_[body.proxy] = index;
+  return {index};
+}
+
+void CollisionDetector::remove_body(BodyId id) {
+  Body& body = bodies_[id.index];
+  broad_phase_.remove(body.proxy);
+  body = Body{};
+  free_bodies_.push_back(id.index);
+}
+
+void CollisionDetector::set_pose(BodyId id, const Transform& pose) {
+  Body& body = bodies_[id.index];
+  body.pose = pose;
+  if (body.is_static) {
+    broad_phase_.set_box(body.proxy, world_bounds(*body.tree, pose, settings_.bounds_level));
+  }
+}
+
+Aabb CollisionDetector::bounds(BodyId id) const {
+  return broad_phase_.box(bodies_[id.index].proxy);
+}
+
+const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) {
+  contacts.clear();
+  stats_ = {};
+  stats_.bodies = static_cast<std::uint32_t>(broad_phase_.size());
+
+  const Clock::time_point broad_start = Clock::now();
+  for (const Body& body : bodies_) {
+    if (body.alive && !body.is_static) {
+      broad_phase_.set_box(body.proxy, world_bounds(*body.tree, body.pose, settings_.bounds_level));
+    }
+  }
+  broad_phase_.update();
+  stats_.candidate_pairs = static_cast<std::uint32_t>(broad_phase_.pairs().size());
+  stats_.broad_phase_ms = elapsed_ms(broad_start);
+
+  const Clock::time_point narrow_start = Clock::now();
+  narrow_phase(contacts);
+  stats_.narrow_phase_ms = elapsed_ms(narrow_start);
+  stats_.contacts = static_cast<std::uint32_t>(contacts.size());
+  return stats_;
+}
+
+DescentSettings CollisionDetector::descent_budget() const {
+  DescentSettings descent;
+  descent.depth_a = settings_.tree_depth;
+  descent.depth_b = settings_.tree_depth;
+  // A budget that is on never reaches 0 (which would mean "off"): a pair met after the budget
+  // is spent is resolved at its roots.
+  if (settings_.max_sphere_tests > 0) {
+    descent.max_sphere_tests = settings_.max_sphere_tests > stats_.sphere_tests
+                                   ? settings_.max_sphere_tests - stats_.sphere_tests
+                                   : 1;
+  }
+  if (settings_.max_microseconds > 0.0) {
+    descent.max_microseconds =
+        std::max(settings_.max_microseconds - stats_.narrow_phase_ms * 1e3, 1e-3);
+  }
+  return descent;
+}
+
+void CollisionDetector::narrow_phase(std::vector<Contact>& contacts) {
+  const Clock::time_point start = Clock::now();
+  for (const ProxyPair& pair : broad_phase_.pairs()) {
+    const std::uint32_t ia = body_of_proxy_[pair.a];
+    const std::uint32_t ib = body_of_proxy_[pair.b];
+    const Body& a = bodies_[ia];
+    const Body& b = bodies_[ib];
+    stats_.narrow_phase_ms = elapsed_ms(start);  // what the time budget has spent so far
+    node_pairs_.clear();
+    const DescentStats descent =
+        descent_.descend(*a.tree, a.pose, *b.tree, b.pose, descent_budget(), node_pairs_);
+    stats_.sphere_tests += descent.sphere_tests;
+    stats_.leaf_pairs += descent.leaf_pairs;
+    stats_.pairs_cut_short += descent.cut_short_pairs;
+    const Vec3 fallback = fallback_normal(a.pose.translation, b.pose.translation);
+    for (const NodePair& nodes : node_pairs_) {
+      Contact contact;
+      contact.body_a = ia;
+      contact.body_b = ib;
+      contact.leaf_a = nodes.node_a;
+      contact.leaf_b = nodes.node_b;
+      if (sphere_sphere_contact(descent_.world_sphere_a(*a.tree, nodes.node_a),
+                                descent_.world_sphere_b(*b.tree, nodes.node_b), fallback,
+                                contact)) {
+        ++stats_.coincident_centres;
+      }
+      contacts.push_back(contact);
+    }
+  }
+  if (settings_.ground_plane_height) {
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+      if (bodies_[i].alive && !bodies_[i].is_static) {
+        ground_plane_contacts(i, *settings_.ground_plane_height, contacts);
+      }
+    }
+  }
+}
+
+// Descends one body's tree against the half-space y <= height: a subtree is skipped when its
+// bound is above the plane; each leaf sphere reaching the plane gives a contact.
+void CollisionDetector::ground_plane_contacts(std::uint32_t index, float height,
+                                              std::vector<Contact>& contacts) {
+  const Body& body = bodies_[index];
+  const SphereTree& tree = *body.tree;
+  const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
+  plane_stack_.assign(1, 0);
+  while (!plane_stack_.empty()) {
+    const std::uint32_t node = plane_stack_.back();
+    plane_stack_.pop_back();
+    const Sphere& sphere = tree.sphere(node);
+    const Vec3 center = body.pose.apply(sphere.center);
+    ++stats_.sphere_tests;
+    const bool leaf = tree.is_leaf(node) || node >= leaves_begin;
+    if (center.y() - (leaf ? sphere.radius : tree.subtree_radius(node)) > height) continue;
+    if (!leaf) {
+      for (std::uint32_t c = tree.first_child(node) + tree.child_count(node);
+           c-- > tree.first_child(node);) {
+        plane_stack_.push_back(c);
+      }
+      continue;
+    }
+    Contact contact;
+    contact.body_a = kGroundPlaneBody;
+    contact.body_b = index;
+    contact.leaf_a = 0;
+    contact.leaf_b = node;
+    sphere_plane_contact(height, {center, sphere.radius}, contact);
+    contacts.push_back(contact);
+    ++stats_.leaf_pairs;
+  }
+}
+
+}  // namespace sphys

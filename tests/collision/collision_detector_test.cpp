@@ -1,0 +1,204 @@
+#include "sphys/collision_detector.h"
+
+#include <random>
+#include <set>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "sphys/error.h"
+#include "sphys/tools/build_tree.h"
+#include "sphys/tools/primitives.h"
+
+namespace sphys {
+namespace {
+
+using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
+
+std::shared_ptr<const SphereTree> octree_of(const tools::TriangleMesh& mesh, int depth) {
+  tools::BuildOptions options;
+  options.method = tools::BuildMethod::Octree;
+  options.depth = depth;
+  return std::make_shared<const SphereTree>(tools::build_sphere_tree(mesh, options));
+}
+
+struct Scene {
+  std::vector<std::shared_ptr<const SphereTree>> trees;
+  std::vector<Transform> poses;
+  std::vector<bool> is_static;
+};
+
+// Nodes that are leaves when the tree is used to `depth` levels (0: all).
+std::vector<std::uint32_t> used_leaves(const SphereTree& tree, int depth) {
+  const int last = (depth <= 0 || depth > tree.depth()) ? tree.depth() - 1 : depth - 1;
+  std::vector<std::uint32_t> leaves;
+  for (std::uint32_t n = 0; n < tree.level_end(last); ++n) {
+    if (tree.is_leaf(n) || n >= tree.level_begin(last)) leaves.push_back(n);
+  }
+  return leaves;
+}
+
+// The oracle: every leaf pair of every body pair (not both static), tested directly; and every
+// leaf reaching the ground plane.
+std::set<Key> brute_force(const Scene& scene, int depth, std::optional<float> ground) {
+  std::set<Key> keys;
+  for (std::uint32_t a = 0; a < scene.trees.size(); ++a) {
+    for (std::uint32_t b = a + 1; b < scene.trees.size(); ++b) {
+      if (scene.is_static[a] && scene.is_static[b]) continue;
+      for (std::uint32_t la : used_leaves(*scene.trees[a], depth)) {
+        for (std::uint32_t lb : used_leaves(*scene.trees[b], depth)) {
+          const Sphere& sa = scene.trees[a]->sphere(la);
+          const Sphere& sb = scene.trees[b]->sphere(lb);
+          if (spheres_overlap(scene.poses[a].apply(sa.center), sa.radius,
+                              scene.poses[b].apply(sb.center), sb.radius)) {
+            keys.insert({a, b, la, lb});
+          }
+        }
+      }
+    }
+    if (ground && !scene.is_static[a]) {
+      for (std::uint32_t l : used_leaves(*scene.trees[a], depth)) {
+        const Sphere& s = scene.trees[a]->sphere(l);
+        if (scene.poses[a].apply(s.center).y() - s.radius <= *ground) {
+          keys.insert({kGroundPlaneBody, a, 0, l});
+        }
+      }
+    }
+  }
+  return keys;
+}
+
+// Body pairs in increasing order (the ground plane first), each contact once.
+std::set<Key> keys_of(const std::vector<Contact>& contacts) {
+  std::set<Key> keys;
+  for (const Contact& c : contacts) {
+    const bool in_order = c.body_a == kGroundPlaneBody || c.body_a < c.body_b;
+    const Key key = in_order ? Key{c.body_a, c.body_b, c.leaf_a, c.leaf_b}
+                             : Key{c.body_b, c.body_a, c.leaf_b, c.leaf_a};
+    EXPECT_TRUE(keys.insert(key).second) << "a contact appears twice";
+  }
+  return keys;
+}
+
+Transform random_pose(std::mt19937_64& rng, float spread) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Transform pose;
+  pose.rotation = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+  pose.translation = Vec3(u(rng), u(rng) * 0.5f + 0.5f, u(rng)) * spread;
+  return pose;
+}
+
+TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
+  const auto torus = octree_of(tools::make_torus(0.5, 0.15, 24, 12), 3);
+  const auto box = octree_of(tools::make_box({0.6, 0.3, 0.4}), 3);
+  std::mt19937_64 rng(2008);
+  for (int depth : {0, 2}) {
+    Scene scene;
+    CollisionSettings settings;
+    settings.tree_depth = depth;
+    settings.ground_plane_height = 0.1f;
+    CollisionDetector detector(settings);
+    std::vector<BodyId> ids;
+    for (int i = 0; i < 24; ++i) {
+      scene.trees.push_back(i % 2 ? torus : box);
+      scene.poses.push_back(random_pose(rng, 2.0f));
+      scene.is_static.push_back(i % 7 == 0);
+      ids.push_back(
+          detector.add_body(scene.trees.back(), scene.poses.back(), scene.is_static.back()));
+    }
+    std::vector<Contact> contacts;
+    for (int step = 0; step < 20; ++step) {
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (scene.is_static[i]) continue;
+        // Mostly small moves (temporal coherence), now and then a jump.
+        Transform& pose = scene.poses[i];
+        if (step % 7 == 3 && i % 3 == 0) {
+          pose = random_pose(rng, 2.0f);
+        } else {
+          const Transform nudge = random_pose(rng, 0.05f);
+          pose.translation += nudge.translation - Vec3(0, 0.025f, 0);
+          pose.rotation =
+              (pose.rotation * Quat::Identity().slerp(0.05f, nudge.rotation)).normalized();
+        }
+        detector.set_pose(ids[i], pose);
+      }
+      const CollisionStats& stats = detector.detect(contacts);
+      const std::set<Key> expected = brute_force(scene, depth, settings.ground_plane_height);
+      ASSERT_EQ(keys_of(contacts), expected) << "depth " << depth << " step " << step;
+      EXPECT_EQ(stats.contacts, contacts.size());
+      EXPECT_EQ(stats.leaf_pairs, contacts.size());
+      EXPECT_EQ(stats.pairs_cut_short, 0u);
+      EXPECT_EQ(stats.bodies, 24u);
+    }
+  }
+}
+
+TEST(CollisionDetector, ContactsFollowThePaperEquations) {
+  // Two single-sphere bodies: the contact is eq. 1-3 of the paper.
+  const auto small = std::make_shared<const SphereTree>(
+      SphereTree::from_nodes(std::vector<SphereTreeNode>{{{Vec3::Zero(), 1.0f}, -1}}, 8));
+  const auto large = std::make_shared<const SphereTree>(
+      SphereTree::from_nodes(std::vector<SphereTreeNode>{{{Vec3::Zero(), 3.0f}, -1}}, 8));
+  CollisionDetector detector;
+  Transform pa;
+  Transform pb;
+  pb.translation = Vec3(3.0f, 0, 0);
+  detector.add_body(small, pa, false);
+  detector.add_body(large, pb, false);
+  std::vector<Contact> contacts;
+  detector.detect(contacts);
+  ASSERT_EQ(contacts.size(), 1u);
+  const Contact& c = contacts.front();
+  EXPECT_FLOAT_EQ(c.depth, 1.0f);                    // 1 + 3 - 3
+  EXPECT_TRUE(c.normal.isApprox(Vec3(1, 0, 0)));     // from a to b
+  EXPECT_TRUE(c.point.isApprox(Vec3(0.75f, 0, 0)));  // C1 + r1/(r1+r2)·v
+}
+
+TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
+  const auto torus = octree_of(tools::make_torus(0.5, 0.15, 24, 12), 4);
+  CollisionSettings settings;
+  settings.max_sphere_tests = 50;
+  CollisionDetector detector(settings);
+  std::mt19937_64 rng(7);
+  std::vector<Transform> poses;
+  for (int i = 0; i < 8; ++i) {
+    poses.push_back(random_pose(rng, 0.4f));
+    detector.add_body(torus, poses.back(), false);
+  }
+  std::vector<Contact> contacts;
+  const CollisionStats stats = detector.detect(contacts);
+  EXPECT_GT(stats.pairs_cut_short, 0u);
+  EXPECT_GT(contacts.size(), 0u);
+  for (const Contact& c : contacts) EXPECT_GE(c.depth, -1e-5f);  // only overlapping spheres
+
+  settings.max_sphere_tests = 0;  // off: exact again
+  detector.set_settings(settings);
+  const CollisionStats exact = detector.detect(contacts);
+  EXPECT_EQ(exact.pairs_cut_short, 0u);
+  EXPECT_EQ(exact.leaf_pairs, contacts.size());
+}
+
+TEST(CollisionDetector, RemovedBodiesLeaveNoContacts) {
+  const auto box = octree_of(tools::make_box({1, 1, 1}), 2);
+  CollisionDetector detector;
+  const BodyId a = detector.add_body(box, Transform{}, false);
+  const BodyId b = detector.add_body(box, Transform{}, false);
+  std::vector<Contact> contacts;
+  detector.detect(contacts);
+  EXPECT_GT(contacts.size(), 0u);
+  detector.remove_body(b);
+  detector.detect(contacts);
+  EXPECT_TRUE(contacts.empty());
+  const BodyId c = detector.add_body(box, Transform{}, true);
+  detector.detect(contacts);
+  EXPECT_GT(contacts.size(), 0u);
+  (void)a;
+  (void)c;
+  EXPECT_THROW((void)detector.add_body(nullptr, Transform{}, false), Error);
+  Transform bad;
+  bad.translation.x() = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW((void)detector.add_body(box, bad, false), Error);
+}
+
+}  // namespace
+}  // namespace sphys
