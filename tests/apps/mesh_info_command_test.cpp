@@ -2,18 +2,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "support/run_command.h"
+#include "apps/cli.h"
 #include "support/temp_file.h"
 
 namespace sphys {
 namespace {
 
+using test::expect_bad_input;
+using test::sphys_cli;
 using testing::HasSubstr;
-using testing::StartsWith;
-
-test::CommandResult sphys_cli(const std::vector<std::string>& args) {
-  return test::run_command(SPHYS_CLI_PATH, args);
-}
 
 constexpr const char* kTetObj =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
@@ -53,13 +50,6 @@ TEST(MeshInfoCommand, SizeNormalizesTheModel) {
     EXPECT_NEAR(info["center_of_mass"][k].get<double>(), 0.0, 1e-9);
   }
   EXPECT_NEAR(longest, 1.0, 1e-9);
-}
-
-// Bad input: one line on standard error naming the file and the problem, exit code 2.
-void expect_bad_input(const std::vector<std::string>& args, const std::string& message) {
-  const test::CommandResult r = sphys_cli(args);
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-  EXPECT_THAT(r.err, HasSubstr(message));
 }
 
 TEST(MeshInfoCommand, BadInputExitsWithCode2) {

@@ -2,17 +2,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "support/run_command.h"
+#include "apps/cli.h"
 #include "support/temp_file.h"
 
 namespace sphys {
 namespace {
 
+using test::expect_bad_input;
+using test::sphys_cli;
 using testing::HasSubstr;
-
-test::CommandResult sphys_cli(const std::vector<std::string>& args) {
-  return test::run_command(SPHYS_CLI_PATH, args);
-}
 
 TEST(TreeCommands, BuildThenMeasureTheBunny) {
   const test::TempDir dir;
@@ -38,12 +36,6 @@ TEST(TreeCommands, BuildThenMeasureTheBunny) {
   EXPECT_EQ(json["levels"][0]["spheres"], 1);
   for (const auto& level : json["levels"]) EXPECT_EQ(level["coverage"].get<double>(), 1.0);
   unsetenv("SPHYS_CACHE_DIR");
-}
-
-void expect_bad_input(const std::vector<std::string>& args, const std::string& message) {
-  const test::CommandResult r = sphys_cli(args);
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-  EXPECT_THAT(r.err, HasSubstr(message));
 }
 
 TEST(TreeCommands, BadInputExitsWithCode2) {
