@@ -84,7 +84,7 @@ class CollisionDetector {
 
   void narrow_phase(std::vector<Contact>& contacts);
   void ground_plane_contacts(std::uint32_t body, float height, std::vector<Contact>& contacts);
-  [[nodiscard]] DescentSettings descent_budget() const;
+  [[nodiscard]] DescentSettings descent_budget(double spent_microseconds) const;
 
   CollisionSettings settings_;
   std::vector<Body> bodies_;

@@ -111,7 +111,9 @@ const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) 
   return stats_;
 }
 
-DescentSettings CollisionDetector::descent_budget() const {
+// What is left of the time-critical budgets after `spent_microseconds` and the sphere tests
+// counted so far in this call.
+DescentSettings CollisionDetector::descent_budget(double spent_microseconds) const {
   DescentSettings descent;
   descent.depth_a = settings_.tree_depth;
   descent.depth_b = settings_.tree_depth;
@@ -123,8 +125,7 @@ DescentSettings CollisionDetector::descent_budget() const {
                                    : 1;
   }
   if (settings_.max_microseconds > 0.0) {
-    descent.max_microseconds =
-        std::max(settings_.max_microseconds - stats_.narrow_phase_ms * 1e3, 1e-3);
+    descent.max_microseconds = std::max(settings_.max_microseconds - spent_microseconds, 1e-3);
   }
   return descent;
 }
@@ -136,10 +137,9 @@ void CollisionDetector::narrow_phase(std::vector<Contact>& contacts) {
     const std::uint32_t ib = body_of_proxy_[pair.b];
     const Body& a = bodies_[ia];
     const Body& b = bodies_[ib];
-    stats_.narrow_phase_ms = elapsed_ms(start);  // what the time budget has spent so far
     node_pairs_.clear();
-    const DescentStats descent =
-        descent_.descend(*a.tree, a.pose, *b.tree, b.pose, descent_budget(), node_pairs_);
+    const DescentStats descent = descent_.descend(
+        *a.tree, a.pose, *b.tree, b.pose, descent_budget(1e3 * elapsed_ms(start)), node_pairs_);
     stats_.sphere_tests += descent.sphere_tests;
     stats_.leaf_pairs += descent.leaf_pairs;
     stats_.pairs_cut_short += descent.cut_short_pairs;

@@ -58,8 +58,7 @@ std::vector<BallNode> build_top_down(const build::BuildContext& context, BuildMe
   const std::unique_ptr<build::Reducer> reducer = build::make_reducer(method, context);
   std::vector<std::uint32_t> all(context.samples.points.size());
   for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-  const Ball everything = build::min_enclosing_ball(context.samples.points, options.seed);
-  build::Cover root = reducer->cover(all, everything, 1);
+  build::Cover root = reducer->cover(all, 1);
 
   std::vector<BallNode> nodes{{root.balls.front(), -1}};
   std::vector<std::vector<std::uint32_t>> regions{std::move(root.samples.front())};
@@ -68,8 +67,7 @@ std::vector<BallNode> build_top_down(const build::BuildContext& context, BuildMe
     std::vector<std::vector<std::uint32_t>> next;
     for (std::size_t i = 0; i < regions.size(); ++i) {
       if (regions[i].size() > 1) {
-        build::Cover cover =
-            reducer->cover(regions[i], nodes[level_start + i].ball, options.branching);
+        build::Cover cover = reducer->cover(regions[i], options.branching);
         for (std::size_t c = 0; c < cover.balls.size(); ++c) {
           nodes.push_back({cover.balls[c], static_cast<std::int32_t>(level_start + i)});
           next.push_back(std::move(cover.samples[c]));

@@ -27,8 +27,7 @@ class PointSetReducer final : public Reducer {
     context_points_ = make_region(context, all, kContextPoints).points;
   }
 
-  Cover cover(std::span<const std::uint32_t> samples, const Ball& /*parent*/,
-              int max_balls) override {
+  Cover cover(std::span<const std::uint32_t> samples, int max_balls) override {
     if (samples.empty()) return {};
     const Region region = make_region(context_, samples, kRegionPoints);
     if (max_balls <= 1) {

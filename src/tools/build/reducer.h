@@ -33,8 +33,7 @@ struct Cover {
 class Reducer {
  public:
   virtual ~Reducer() = default;
-  [[nodiscard]] virtual Cover cover(std::span<const std::uint32_t> samples, const Ball& parent,
-                                    int max_balls) = 0;
+  [[nodiscard]] virtual Cover cover(std::span<const std::uint32_t> samples, int max_balls) = 0;
 };
 
 // The reducer of a point-set method (every method but Octree, which subdivides space instead).

@@ -25,27 +25,7 @@ constexpr BuildMethod kMethods[] = {BuildMethod::Grid,    BuildMethod::Spawn, Bu
                                     BuildMethod::Merge,   BuildMethod::Burst, BuildMethod::Expand,
                                     BuildMethod::Combined};
 
-std::string method_label(BuildMethod method) {
-  switch (method) {
-    case BuildMethod::Octree:
-      return "Octree";
-    case BuildMethod::Grid:
-      return "Grid";
-    case BuildMethod::Spawn:
-      return "Spawn";
-    case BuildMethod::Hubbard:
-      return "Hubbard";
-    case BuildMethod::Merge:
-      return "Merge";
-    case BuildMethod::Burst:
-      return "Burst";
-    case BuildMethod::Expand:
-      return "Expand";
-    case BuildMethod::Combined:
-      return "Combined";
-  }
-  return "?";
-}
+std::string method_label(BuildMethod method) { return std::string(method_name(method)); }
 
 // A mesh with its query structure and samples, built once per shape.
 struct Subject {
@@ -79,7 +59,7 @@ const Subject& subject(const std::string& name) {
 // The samples of the first child of a one-ball cover and an eight-ball cover: what the second
 // level of a tree hands a reducer.
 std::vector<std::uint32_t> first_child(Reducer& reducer, const Subject& s) {
-  const Cover top = reducer.cover(s.all, Ball{}, 8);
+  const Cover top = reducer.cover(s.all, 8);
   return top.samples.front();
 }
 
@@ -121,11 +101,11 @@ TEST_P(ReducerTest, PartitionsAndContainsTheSamples) {
   const std::unique_ptr<Reducer> reducer = make_reducer(method, context);
   for (const int max_balls : {1, 8}) {
     SCOPED_TRACE("max_balls " + std::to_string(max_balls));
-    expect_valid(reducer->cover(s.all, Ball{}, max_balls), s, s.all, max_balls);
+    expect_valid(reducer->cover(s.all, max_balls), s, s.all, max_balls);
   }
   // A node further down: part of the surface only.
   const std::vector<std::uint32_t> part = first_child(*reducer, s);
-  expect_valid(reducer->cover(part, Ball{}, 8), s, part, 8);
+  expect_valid(reducer->cover(part, 8), s, part, 8);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, ReducerTest,
@@ -145,9 +125,9 @@ TEST_P(CombinedTest, NoWorseThanItsParts) {
   const Subject& s = subject(GetParam());
   const BuildContext context = s.context();
   const double combined =
-      worst_error(make_reducer(BuildMethod::Combined, context)->cover(s.all, Ball{}, 8), s.query);
+      worst_error(make_reducer(BuildMethod::Combined, context)->cover(s.all, 8), s.query);
   for (const BuildMethod part : {BuildMethod::Merge, BuildMethod::Burst, BuildMethod::Expand}) {
-    const double error = worst_error(make_reducer(part, context)->cover(s.all, Ball{}, 8), s.query);
+    const double error = worst_error(make_reducer(part, context)->cover(s.all, 8), s.query);
     EXPECT_LE(combined, error + 1e-12) << method_label(part);
   }
 }
