@@ -9,5 +9,7 @@ namespace sphys::cli {
 void add_mesh_info_command(CLI::App& app);
 void add_build_tree_command(CLI::App& app);
 void add_tree_info_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
+void add_experiment_command(CLI::App& app);
 
 }  // namespace sphys::cli

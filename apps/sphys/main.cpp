@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   sphys::cli::add_mesh_info_command(app);
   sphys::cli::add_build_tree_command(app);
   sphys::cli::add_tree_info_command(app);
+  sphys::cli::add_simulate_command(app);
+  sphys::cli::add_experiment_command(app);
 
   try {
     app.parse(argc, argv);

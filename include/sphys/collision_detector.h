@@ -21,9 +21,6 @@ struct BodyId {
   friend bool operator==(const BodyId&, const BodyId&) = default;
 };
 
-// Contact::body_a of a contact with the exact ground plane.
-inline constexpr std::uint32_t kGroundPlaneBody = 0xFFFFFFFFu;
-
 struct CollisionSettings {
   // Levels of every sphere-tree used, the root included; 0 uses them all (a depth-3 tree used as
   // depth 2: the nodes of the last used level are the leaves). unit: levels
@@ -31,10 +28,10 @@ struct CollisionSettings {
   // Level whose spheres (with their subtree radii) bound a body for the broad phase: 0 is the
   // root's bound, cheapest to update; deeper levels give tighter boxes. unit: level
   int bounds_level = 0;
-  // Time-critical narrow phase (paper §3.2): budgets for the whole detect() call, shared by the
-  // pairs in order; 0 turns a budget off. With both off, detection is exact.
+  // Time-critical narrow phase (paper §3.2): budgets for the narrow phase of a detect() call,
+  // shared by the pairs in order; 0 turns a budget off. With both off, detection is exact.
   std::uint64_t max_sphere_tests = 0;  // unit: sphere tests per detect()
-  double max_microseconds = 0.0;       // unit: µs per detect()
+  double max_microseconds = 0.0;       // unit: µs of descent per detect()
   // The exact half-space ground y <= height (sphere against plane), instead of or besides a
   // static body carrying the paper's octree of a thin box. unit: m
   std::optional<float> ground_plane_height;
@@ -50,7 +47,8 @@ struct CollisionStats {
   std::uint32_t pairs_cut_short = 0;     // node pairs left when a time-critical budget ran out
   std::uint32_t coincident_centres = 0;  // contacts whose normal came from the fallback
   double broad_phase_ms = 0.0;           // unit: ms
-  double narrow_phase_ms = 0.0;          // unit: ms (descent and contacts)
+  double narrow_phase_ms = 0.0;          // sphere-tree descents. unit: ms
+  double contacts_ms = 0.0;              // contact data from the leaf pairs (eq. 1-3). unit: ms
 };
 
 class CollisionDetector {
@@ -82,8 +80,20 @@ class CollisionDetector {
     bool alive = false;
   };
 
-  void narrow_phase(std::vector<Contact>& contacts);
-  void ground_plane_contacts(std::uint32_t body, float height, std::vector<Contact>& contacts);
+  // Two overlapping leaf spheres in the world frame, what the narrow phase hands to the contacts
+  // phase. Against the ground plane, body_a is kGroundPlaneBody and sphere_a is unused.
+  struct LeafSpheres {
+    std::uint32_t body_a = 0;
+    std::uint32_t body_b = 0;
+    std::uint32_t leaf_a = 0;
+    std::uint32_t leaf_b = 0;
+    Sphere sphere_a;
+    Sphere sphere_b;
+  };
+
+  void narrow_phase();
+  void ground_plane_leaves(std::uint32_t body, float height);
+  void make_contacts(std::vector<Contact>& contacts);
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds) const;
 
   CollisionSettings settings_;
@@ -93,6 +103,7 @@ class CollisionDetector {
   SweepAndPrune broad_phase_;
   TreeDescent descent_;
   std::vector<NodePair> node_pairs_;
+  std::vector<LeafSpheres> leaf_spheres_;
   std::vector<std::uint32_t> plane_stack_;
   CollisionStats stats_;
 };

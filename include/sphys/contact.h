@@ -9,6 +9,9 @@
 
 namespace sphys {
 
+// Contact::body_a of a contact with the exact ground plane.
+inline constexpr std::uint32_t kGroundPlaneBody = 0xFFFFFFFFu;
+
 // One contact between two bodies, made from one overlapping pair of spheres.
 struct Contact {
   std::uint32_t body_a = 0;

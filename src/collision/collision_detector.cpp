@@ -105,8 +105,12 @@ const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) 
   stats_.broad_phase_ms = elapsed_ms(broad_start);
 
   const Clock::time_point narrow_start = Clock::now();
-  narrow_phase(contacts);
+  narrow_phase();
   stats_.narrow_phase_ms = elapsed_ms(narrow_start);
+
+  const Clock::time_point contacts_start = Clock::now();
+  make_contacts(contacts);
+  stats_.contacts_ms = elapsed_ms(contacts_start);
   stats_.contacts = static_cast<std::uint32_t>(contacts.size());
   return stats_;
 }
@@ -130,7 +134,8 @@ DescentSettings CollisionDetector::descent_budget(double spent_microseconds) con
   return descent;
 }
 
-void CollisionDetector::narrow_phase(std::vector<Contact>& contacts) {
+void CollisionDetector::narrow_phase() {
+  leaf_spheres_.clear();
   const Clock::time_point start = Clock::now();
   for (const ProxyPair& pair : broad_phase_.pairs()) {
     const std::uint32_t ia = body_of_proxy_[pair.a];
@@ -143,34 +148,24 @@ void CollisionDetector::narrow_phase(std::vector<Contact>& contacts) {
     stats_.sphere_tests += descent.sphere_tests;
     stats_.leaf_pairs += descent.leaf_pairs;
     stats_.pairs_cut_short += descent.cut_short_pairs;
-    const Vec3 fallback = fallback_normal(a.pose.translation, b.pose.translation);
     for (const NodePair& nodes : node_pairs_) {
-      Contact contact;
-      contact.body_a = ia;
-      contact.body_b = ib;
-      contact.leaf_a = nodes.node_a;
-      contact.leaf_b = nodes.node_b;
-      if (sphere_sphere_contact(descent_.world_sphere_a(*a.tree, nodes.node_a),
-                                descent_.world_sphere_b(*b.tree, nodes.node_b), fallback,
-                                contact)) {
-        ++stats_.coincident_centres;
-      }
-      contacts.push_back(contact);
+      leaf_spheres_.push_back({ia, ib, nodes.node_a, nodes.node_b,
+                               descent_.world_sphere_a(*a.tree, nodes.node_a),
+                               descent_.world_sphere_b(*b.tree, nodes.node_b)});
     }
   }
   if (settings_.ground_plane_height) {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
       if (bodies_[i].alive && !bodies_[i].is_static) {
-        ground_plane_contacts(i, *settings_.ground_plane_height, contacts);
+        ground_plane_leaves(i, *settings_.ground_plane_height);
       }
     }
   }
 }
 
 // Descends one body's tree against the half-space y <= height: a subtree is skipped when its
-// bound is above the plane; each leaf sphere reaching the plane gives a contact.
-void CollisionDetector::ground_plane_contacts(std::uint32_t index, float height,
-                                              std::vector<Contact>& contacts) {
+// bound is above the plane; each leaf sphere reaching the plane is kept.
+void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height) {
   const Body& body = bodies_[index];
   const SphereTree& tree = *body.tree;
   const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
@@ -190,14 +185,38 @@ void CollisionDetector::ground_plane_contacts(std::uint32_t index, float height,
       }
       continue;
     }
-    Contact contact;
-    contact.body_a = kGroundPlaneBody;
-    contact.body_b = index;
-    contact.leaf_a = 0;
-    contact.leaf_b = node;
-    sphere_plane_contact(height, {center, sphere.radius}, contact);
-    contacts.push_back(contact);
+    leaf_spheres_.push_back({kGroundPlaneBody, index, 0, node, Sphere{}, {center, sphere.radius}});
     ++stats_.leaf_pairs;
+  }
+}
+
+// One contact per pair of leaf spheres (paper eq. 1-3), in the narrow phase's order.
+void CollisionDetector::make_contacts(std::vector<Contact>& contacts) {
+  contacts.reserve(leaf_spheres_.size());
+  std::uint32_t fallback_a = kGroundPlaneBody;
+  std::uint32_t fallback_b = kGroundPlaneBody;
+  Vec3 fallback = Vec3::UnitY();
+  for (const LeafSpheres& leaves : leaf_spheres_) {
+    Contact contact;
+    contact.body_a = leaves.body_a;
+    contact.body_b = leaves.body_b;
+    contact.leaf_a = leaves.leaf_a;
+    contact.leaf_b = leaves.leaf_b;
+    if (leaves.body_a == kGroundPlaneBody) {
+      sphere_plane_contact(*settings_.ground_plane_height, leaves.sphere_b, contact);
+    } else {
+      // The pairs of one body pair are consecutive: one fallback normal serves them all.
+      if (leaves.body_a != fallback_a || leaves.body_b != fallback_b) {
+        fallback_a = leaves.body_a;
+        fallback_b = leaves.body_b;
+        fallback = fallback_normal(bodies_[fallback_a].pose.translation,
+                                   bodies_[fallback_b].pose.translation);
+      }
+      if (sphere_sphere_contact(leaves.sphere_a, leaves.sphere_b, fallback, contact)) {
+        ++stats_.coincident_centres;
+      }
+    }
+    contacts.push_back(contact);
   }
 }
 

@@ -11,13 +11,13 @@
 #include <limits>
 #include <optional>
 #include <ostream>
-#include <random>
 #include <string>
 #include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
 
+#include "atomic_file.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
@@ -284,39 +284,6 @@ void write_slots(std::ostream& out, const SphereTree& tree) {
   }
 }
 
-// Removes a temporary file when it goes out of scope, unless it was moved into place.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
-  ~TemporaryFile() {
-    if (!path_.empty()) {
-      std::error_code ignored;
-      fs::remove(path_, ignored);
-    }
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-  [[nodiscard]] const fs::path& path() const { return path_; }
-  void release() { path_.clear(); }
-
- private:
-  fs::path path_;
-};
-
-// A fresh name next to `target`, so that the final rename stays within one file system.
-fs::path temporary_sibling(const fs::path& target) {
-  std::random_device random;
-  const std::uint64_t tag = (std::uint64_t{random()} << 32) ^ random();
-  std::array<char, 17> hex{};
-  const auto result = std::to_chars(hex.data(), hex.data() + hex.size(), tag, 16);
-  fs::path sibling = target;
-  sibling += ".";
-  sibling += std::string_view(hex.data(), static_cast<std::size_t>(result.ptr - hex.data()));
-  sibling += ".tmp";
-  return sibling;
-}
-
 }  // namespace
 
 SphereTree read_sph(const fs::path& path, const SphReadOptions& options) {
@@ -414,22 +381,7 @@ void write_sph(std::ostream& out, const SphereTree& tree) {
 
 void write_sph(const fs::path& path, const SphereTree& tree) {
   if (const auto reason = unwritable_reason(tree)) throw Error::in_file(path, *reason);
-  TemporaryFile temporary(temporary_sibling(path));
-  std::ofstream out(temporary.path(), std::ios::binary);
-  if (!out) {
-    const fs::path directory = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    std::error_code ec;
-    throw Error::in_file(path, fs::is_directory(directory, ec)
-                                   ? "cannot create a file in its directory"
-                                   : "cannot write: the directory does not exist");
-  }
-  write_slots(out, tree);
-  out.close();
-  if (!out) throw Error::in_file(path, "cannot write the file (is the disk full?)");
-  std::error_code ec;
-  fs::rename(temporary.path(), path, ec);
-  if (ec) throw Error::in_file(path, "cannot replace the file: " + ec.message());
-  temporary.release();
+  write_file_atomically(path, [&tree](std::ostream& out) { write_slots(out, tree); });
 }
 
 }  // namespace sphys::tools

@@ -1,0 +1,161 @@
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "progress.h"
+#include "sphys/error.h"
+#include "sphys/tools/experiment.h"
+#include "sphys/tools/run_experiment.h"
+#include "sphys/tools/text_file.h"
+#include "sphys/tools/tree_cache.h"
+
+namespace sphys::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ExperimentCommandOptions {
+  int frames = 880;
+  std::optional<std::string> only;
+  std::string out = "out/experiment";
+  std::string ground = "octree";
+  bool json = false;
+  bool no_plots = false;
+  bool no_cache = false;
+};
+
+// "model name" of the first processor in /proc/cpuinfo and the hardware threads, for reports.
+std::string machine_description() {
+  std::string cpu = "unknown processor";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.starts_with("model name")) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos) cpu = line.substr(line.find_first_not_of(' ', colon + 1));
+      break;
+    }
+  }
+  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) +
+         " hardware threads, one used";
+}
+
+nlohmann::ordered_json row_json(const tools::RowResult& result) {
+  const tools::RowSummary summary = tools::summarize(result);
+  nlohmann::ordered_json row;
+  row["id"] = result.row.id();
+  row["frames"] = result.frames.size();
+  row["contacts_per_frame"] = summary.contacts_per_frame;
+  row["fps"] = summary.fps;
+  row["frame_time_sd_ms"] = summary.frame_time_sd_ms;
+  row["detection_share_percent"] = summary.detection_share;
+  row["response_share_percent"] = summary.response_share;
+  row["bodies"] = result.bodies;
+  row["bodies_below_plane"] = result.bodies_below_plane;
+  row["lowest_center_y_m"] = result.lowest_center_y;
+  row["deepest_penetration_m"] = result.deepest_penetration;
+  row["stopped_non_finite"] = result.stopped_non_finite;
+  row["tree_builder"] = result.tree_builder;
+  return row;
+}
+
+void run(const ExperimentCommandOptions& options) {
+  if (options.frames < 1) throw Error("--frames must be at least 1");
+  std::vector<tools::ExperimentRow> rows;
+  if (options.only) {
+    rows = tools::parse_rows(*options.only);
+  } else {
+    for (const tools::PaperRow& paper : tools::paper_table()) rows.push_back(paper.row);
+  }
+  const fs::path out(options.out);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw Error::in_file(out, "cannot create the output folder: " + ec.message());
+
+  tools::ExperimentOptions experiment;
+  experiment.frames = options.frames;
+  if (options.ground == "plane") {
+    experiment.ground = tools::GroundSpec::Kind::kPlane;
+  } else if (options.ground != "octree") {
+    throw Error("--ground must be octree or plane, got '" + options.ground + "'");
+  }
+  if (!options.no_cache) experiment.cache_dir = tools::default_cache_dir();
+  std::vector<tools::RowResult> results;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ProgressBar bar("row " + std::to_string(i + 1) + "/" + std::to_string(rows.size()) + " " +
+                    rows[i].id());
+    experiment.progress = [&bar](double fraction) { bar.update(fraction); };
+    results.push_back(tools::run_experiment_row(rows[i], experiment));
+  }
+
+  for (const tools::RowResult& result : results) {
+    tools::write_row_csv(out / (result.row.id() + ".csv"), result);
+  }
+  std::vector<fs::path> plots;
+  if (!options.no_plots) plots = tools::write_plots(out, results);
+  const fs::path report = out / "report.md";
+  tools::write_text_file(report, tools::markdown_report(results, machine_description()));
+
+  if (options.json) {
+    nlohmann::ordered_json json;
+    json["machine"] = machine_description();
+    json["rows"] = nlohmann::ordered_json::array();
+    std::vector<tools::RowSummary> summaries;
+    for (const tools::RowResult& result : results) {
+      json["rows"].push_back(row_json(result));
+      summaries.push_back(tools::summarize(result));
+    }
+    const tools::ExperimentStatistics stats = tools::compute_statistics(summaries);
+    auto number = [](double value) {
+      return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
+    };
+    json["statistics"] = {
+        {"contacts_fps_correlation", number(stats.contacts_fps_correlation)},
+        {"contacts_frame_sd_correlation", number(stats.contacts_frame_sd_correlation)},
+        {"detection_share_mean_percent", number(stats.detection_share_mean)},
+        {"detection_share_sd_points", number(stats.detection_share_sd)},
+        {"response_share_mean_percent", number(stats.response_share_mean)},
+        {"response_share_sd_points", number(stats.response_share_sd)},
+        {"detection_share_contacts_correlation",
+         number(stats.detection_share_contacts_correlation)},
+        {"response_share_contacts_correlation", number(stats.response_share_contacts_correlation)}};
+    json["report"] = report.string();
+    std::cout << json.dump(2) << '\n';
+    return;
+  }
+  std::printf("%s", tools::comparison_text(results).c_str());
+  std::printf("\nmachine: %s\nreport: %s (with the per-frame CSVs%s in %s)\n",
+              machine_description().c_str(), report.string().c_str(),
+              plots.empty() ? "" : " and plots", out.string().c_str());
+}
+
+}  // namespace
+
+void add_experiment_command(CLI::App& app) {
+  auto options = std::make_shared<ExperimentCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "experiment", "Reproduce the paper's evaluation (Table 1 and the statistics of its §5)");
+  cmd->add_option("--frames", options->frames, "Frames per row (the paper ran 880)")
+      ->capture_default_str();
+  cmd->add_option("--only", options->only,
+                  "Comma-separated rows, e.g. d2-4x25,d3-8x10 (default: all eight)");
+  cmd->add_option("--out", options->out, "Folder for report.md, the CSVs and the plots")
+      ->capture_default_str();
+  cmd->add_option("--ground", options->ground,
+                  "octree: the paper's 5-level octree of a 16 m thin box; plane: the exact plane")
+      ->capture_default_str();
+  cmd->add_flag("--json", options->json, "Print the results as JSON");
+  cmd->add_flag("--no-plots", options->no_plots, "Skip the gnuplot PNGs");
+  cmd->add_flag("--no-cache", options->no_cache, "Build sphere-trees even if they are cached");
+  cmd->callback([options] { run(*options); });
+}
+
+}  // namespace sphys::cli

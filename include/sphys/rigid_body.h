@@ -1,0 +1,45 @@
+#pragma once
+
+// A rigid body's mass properties and state, and the semi-implicit Euler integrator.
+
+#include "sphys/math.h"
+
+namespace sphys {
+
+// What a body is made of and how it moves. The body frame has its origin at the centre of mass;
+// `pose` places it in the world. A static body never moves and has infinite mass (its inverse
+// mass and inverse inertia are zero).
+struct RigidBody {
+  Transform pose;                            // unit: m
+  Vec3 linear_velocity = Vec3::Zero();       // of the centre of mass, world frame. unit: m/s
+  Vec3 angular_velocity = Vec3::Zero();      // world frame. unit: rad/s
+  float inverse_mass = 0.0f;                 // unit: 1/kg
+  Mat3 inverse_inertia_body = Mat3::Zero();  // about the centre of mass, body axes. unit: 1/(kg·m²)
+  Mat3 inertia_body = Mat3::Zero();          // unit: kg·m²
+  float restitution = 0.3f;                  // unit: dimensionless, 0..1
+  float friction = 0.5f;                     // Coulomb coefficient. unit: dimensionless
+  bool is_static = false;
+
+  // I⁻¹ in the world frame: R I_body⁻¹ Rᵀ.
+  [[nodiscard]] Mat3 inverse_inertia_world() const;
+  // Velocity of the body's material point at world position `point`. unit: m/s
+  [[nodiscard]] Vec3 velocity_at(const Vec3& point) const {
+    return linear_velocity + angular_velocity.cross(point - pose.translation);
+  }
+  [[nodiscard]] float mass() const { return inverse_mass > 0.0f ? 1.0f / inverse_mass : 0.0f; }
+  // ½ m v² + ½ ωᵀ I ω. unit: J
+  [[nodiscard]] double kinetic_energy() const;
+  // True when the pose and both velocities are finite.
+  [[nodiscard]] bool finite() const;
+};
+
+// Semi-implicit (symplectic) Euler, first half: v += g dt. Static bodies are left alone.
+void integrate_velocity(RigidBody& body, const Vec3& gravity, float dt);
+
+// Second half: x += v dt; the orientation turns by ω_mid dt (q += ½ dt (0, ω_mid) q, then
+// renormalised), with ω_mid the angular velocity at the middle of the turn. The world angular
+// momentum I ω is kept across the turn (ω' = I'⁻¹ I ω), so a torque-free body conserves it
+// instead of keeping ω fixed while its inertia turns. Static bodies are left alone.
+void integrate_position(RigidBody& body, float dt);
+
+}  // namespace sphys

@@ -1,0 +1,71 @@
+#pragma once
+
+// Recordings: the pose of every body at every frame of a simulation, kept for replay in a viewer
+// and for export. The file (.sphysrec) is compact, little-endian binary with a version header,
+// laid out byte by byte in docs/file-formats.md.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sphys/math.h"
+
+namespace sphys::tools {
+
+// The format version this build writes, and the only one it reads.
+inline constexpr std::uint32_t kRecordingVersion = 1;
+
+struct BodyPose {
+  Vec3 position = Vec3::Zero();         // of the centre of mass. unit: m
+  Quat orientation = Quat::Identity();  // body to world; unit length
+};
+
+// Streams frames to disk as they come, so that a recording never has to fit in memory. The file
+// appears at `path` only when finish() succeeds; until then the frames go to a temporary file next
+// to it, which is removed if the writer is destroyed without finish() (an exception, a cancelled
+// run). Every failure throws sphys::Error naming the file.
+class RecordingWriter {
+ public:
+  // `time_step` is the time between frames (unit: s; positive and finite). `metadata` is stored
+  // as given: the scene as JSON text, opaque to the recording.
+  RecordingWriter(const std::filesystem::path& path, std::uint32_t body_count, double time_step,
+                  std::string_view metadata);
+  ~RecordingWriter();
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+
+  // Appends one frame: a pose per body, in body order. Throws, writing nothing, when the number
+  // of poses is not the body count, a value is not finite or an orientation is not of unit
+  // length (what read_recording() would refuse). Not after finish().
+  void add_frame(std::span<const BodyPose> poses);
+  // Stores the frame count in the header and moves the file into place, replacing an existing
+  // one. Call once.
+  void finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct Recording {
+  std::uint32_t version = kRecordingVersion;
+  double time_step = 0.0;  // between frames. unit: s
+  std::string metadata;
+  std::uint32_t body_count = 0;
+  std::uint32_t frame_count = 0;
+  std::vector<BodyPose> poses;  // frame after frame, body_count poses each
+
+  // The poses of frame i (counting from 0; i < frame_count), in body order.
+  [[nodiscard]] std::span<const BodyPose> frame(std::uint32_t i) const;
+};
+
+// Reads a whole recording, checking it: the header, the size against the counts it announces,
+// and every pose (finite, orientations of unit length). Throws sphys::Error naming the file and
+// the problem (and the frame and body for a bad pose).
+[[nodiscard]] Recording read_recording(const std::filesystem::path& path);
+
+}  // namespace sphys::tools

@@ -1,0 +1,33 @@
+#pragma once
+
+// Runs rows of the paper's evaluation (§5) headless: the stacks:SxN scene at the row's depth, one
+// World::step per frame, every frame's figures kept.
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+
+#include "sphys/tools/experiment.h"
+#include "sphys/tools/scene.h"
+
+namespace sphys::tools {
+
+struct ExperimentOptions {
+  int frames = 880;  // the paper's run length
+  // The paper's 5-level octree of a thin box (kOctreeBox), or the exact plane (kPlane) to see
+  // what the ground's sphere bumps and finite extent do to the results.
+  GroundSpec::Kind ground = GroundSpec::Kind::kOctreeBox;
+  std::optional<std::filesystem::path> cache_dir;
+  // Called with the fraction of the row simulated (0..1).
+  std::function<void(double)> progress;
+};
+
+// Throws sphys::Error for a frame count below 1.
+[[nodiscard]] RowResult run_experiment_row(const ExperimentRow& row,
+                                           const ExperimentOptions& options);
+
+// Parses --only: comma-separated ids such as "d2-4x25,d3-8x10"; throws sphys::Error naming an
+// unknown id and listing the valid ones. Rows come back in the paper's order.
+[[nodiscard]] std::vector<ExperimentRow> parse_rows(std::string_view ids);
+
+}  // namespace sphys::tools

@@ -1,0 +1,78 @@
+#pragma once
+
+// A scene: what a simulation starts from. Read from JSON scene files (docs/scenes.md,
+// docs/scene.schema.json) or made by the built-in presets (sphys/tools/scenarios.h).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sphys/math.h"
+#include "sphys/tools/build_tree.h"
+#include "sphys/world.h"
+
+namespace sphys::tools {
+
+// Where a body's sphere-tree comes from: a .sph file, or built from the body's mesh.
+struct TreeSpec {
+  std::optional<std::filesystem::path> sph_file;  // in the body frame (centre of mass at 0)
+  BuildMethod method = BuildMethod::Combined;
+  int branching = 8;  // 2..8
+  int depth = 3;      // levels including the root, 1..6
+};
+
+struct BodySpec {
+  // "bunny" (the default model) or a mesh file (relative paths are relative to the scene file).
+  std::string mesh = "bunny";
+  // Triangle budget for decimation; unset: the model's default for "bunny", none for files.
+  std::optional<std::size_t> triangles;
+  // Longest side of the bounding box after uniform scaling; unset keeps the mesh's size. unit: m
+  std::optional<double> size = 1.0;
+  TreeSpec tree;
+  Vec3 position = Vec3::Zero();  // of the centre of mass. unit: m
+  Quat orientation = Quat::Identity();
+  Vec3 linear_velocity = Vec3::Zero();   // unit: m/s
+  Vec3 angular_velocity = Vec3::Zero();  // unit: rad/s
+  double density = 1000.0;               // unit: kg/m³
+  std::optional<double> mass;            // overrides density·volume (inertia scales). unit: kg
+  float restitution = 0.3f;
+  float friction = 0.5f;
+  bool is_static = false;
+};
+
+struct GroundSpec {
+  enum class Kind {
+    kNone,
+    kPlane,      // the exact half-space y <= height
+    kOctreeBox,  // the paper's plane: a thin box's octree sphere-tree, top face at y = height
+  };
+  Kind kind = Kind::kOctreeBox;
+  double height = 0.0;     // unit: m
+  double size = 16.0;      // side of the box's top face (kOctreeBox). unit: m
+  double thickness = 0.5;  // unit: m
+  int depth = 5;           // levels of the box's octree
+  float restitution = 0.3f;
+  float friction = 0.5f;
+};
+
+// "paper" and the other response modes by name, as scene files and the command line write them.
+[[nodiscard]] std::string_view response_mode_name(ResponseMode mode);
+// Throws sphys::Error listing the valid names.
+[[nodiscard]] ResponseMode parse_response_mode(std::string_view name);
+
+struct Scene {
+  std::string name;                         // the file name or the preset, for reports
+  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);  // unit: m/s²
+  double time_step = 1.0 / 60.0;            // unit: s
+  int frames = 880;                         // one step per frame
+  ResponseMode response = ResponseMode::kPaper;
+  int paper_passes = 1;  // WorldSettings::paper_passes
+  GroundSpec ground;
+  std::vector<BodySpec> bodies;
+  // Folder that relative mesh and .sph paths are taken from.
+  std::filesystem::path base_directory;
+};
+
+}  // namespace sphys::tools

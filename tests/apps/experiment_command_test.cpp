@@ -1,0 +1,140 @@
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/cli.h"
+#include "support/temp_file.h"
+
+namespace sphys {
+namespace {
+
+namespace fs = std::filesystem;
+using test::expect_bad_input;
+using test::sphys_cli;
+using testing::HasSubstr;
+
+// One sphere-tree cache for the whole test program: each run builds the bunny's depth-2 tree
+// only if no earlier test in the program did. Removed when the program ends.
+class ExperimentCache {
+ public:
+  ExperimentCache()
+      : path_(fs::temp_directory_path() /
+              ("sphys_experiment_test_cache_" + std::to_string(getpid()))) {
+    fs::create_directories(path_);
+  }
+  ~ExperimentCache() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  ExperimentCache(const ExperimentCache&) = delete;
+  ExperimentCache& operator=(const ExperimentCache&) = delete;
+
+  // Points the command line at the cache (other tests in the program may have moved it).
+  static void use() {
+    static const ExperimentCache cache;
+    setenv("SPHYS_CACHE_DIR", cache.path_.c_str(), 1);
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::vector<std::string> read_lines(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
+  ExperimentCache::use();
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "experiment";
+  const test::CommandResult r = sphys_cli(
+      {"experiment", "--only", "d2-8x10", "--frames", "3", "--no-plots", "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Table 1's row for 8 stacks of 10 at depth 2, on one line: contacts per frame, FPS and
+  // frame-time sd as the paper printed them.
+  const std::size_t at = r.out.find("16381.50");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::size_t line_start = r.out.rfind('\n', at) + 1;
+  const std::string line = r.out.substr(line_start, r.out.find('\n', at) - line_start);
+  EXPECT_THAT(line, HasSubstr("8 × 10"));
+  EXPECT_THAT(line, HasSubstr("43.80"));
+  EXPECT_THAT(line, HasSubstr("9.25"));
+  EXPECT_THAT(line, HasSubstr("0 of 80"));
+  EXPECT_THAT(r.out, HasSubstr((out / "report.md").string()));
+
+  std::ifstream report_file(out / "report.md");
+  std::stringstream report;
+  report << report_file.rdbuf();
+  EXPECT_THAT(report.str(), HasSubstr("d2-8x10"));
+  EXPECT_THAT(report.str(), HasSubstr("16381.50"));
+
+  const std::vector<std::string> csv = read_lines(out / "d2-8x10.csv");
+  ASSERT_EQ(csv.size(), 4u);
+  EXPECT_EQ(csv[0], "frame,step_ms,detection_ms,response_ms,contacts");
+  for (int frame = 1; frame <= 3; ++frame) {
+    EXPECT_EQ(csv[static_cast<std::size_t>(frame)].substr(0, 2), std::to_string(frame) + ",");
+  }
+  // Only the one row ran, and --no-plots drew nothing.
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    EXPECT_NE(entry.path().extension(), ".png") << entry.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 2);
+}
+
+TEST(ExperimentCommand, JsonHasTheRowAndItsFrames) {
+  ExperimentCache::use();
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "experiment";
+  const test::CommandResult r =
+      sphys_cli({"experiment", "--only", "d2-8x10", "--frames", "3", "--no-plots", "--ground",
+                 "plane", "--out", out.string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  ASSERT_EQ(json["rows"].size(), 1u);
+  const auto& row = json["rows"][0];
+  EXPECT_EQ(row["id"], "d2-8x10");
+  EXPECT_EQ(row["frames"], 3);
+  EXPECT_EQ(row["bodies"], 80);
+  EXPECT_EQ(row["stopped_non_finite"], false);
+  EXPECT_EQ(row["bodies_below_plane"], 0);
+  EXPECT_GE(row["contacts_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(row["fps"].get<double>(), 0.0);
+  EXPECT_THAT(row["tree_builder"].get<std::string>(), HasSubstr("combined, branching 8"));
+  // Three frames of falling from 1 m: the lowest bunny is still well above the plane.
+  EXPECT_GT(row["lowest_center_y_m"].get<double>(), 0.9);
+  EXPECT_EQ(json["report"], (out / "report.md").string());
+  EXPECT_TRUE(fs::exists(out / "d2-8x10.csv"));
+}
+
+TEST(ExperimentCommand, BadOptionsExitWithCode2) {
+  const test::TempDir dir;
+  const std::string out = (dir.path() / "experiment").string();
+  expect_bad_input({"experiment", "--only", "d2-8x10,d4-1x1", "--out", out, "--no-cache"},
+                   "unknown experiment row 'd4-1x1'; rows: d2-4x25, d2-4x50, d3-4x25, d3-4x50, "
+                   "d2-8x10, d2-8x20, d3-8x10, d3-8x20");
+  expect_bad_input({"experiment", "--only", "", "--out", out, "--no-cache"},
+                   "unknown experiment row ''");
+  expect_bad_input({"experiment", "--frames", "0", "--out", out, "--no-cache"},
+                   "--frames must be at least 1");
+  expect_bad_input(
+      {"experiment", "--only", "d2-8x10", "--ground", "bogus", "--out", out, "--no-cache"},
+      "--ground must be octree or plane, got 'bogus'");
+  // Refused before anything ran: no report.
+  EXPECT_FALSE(fs::exists(fs::path(out) / "report.md"));
+}
+
+}  // namespace
+}  // namespace sphys

@@ -1,0 +1,731 @@
+#include "sphys/tools/scene_file.h"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <random>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "sphys/error.h"
+#include "support/temp_file.h"
+
+namespace sphys::tools {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::AllOf;
+using testing::Eq;
+using testing::HasSubstr;
+using testing::Not;
+using testing::StartsWith;
+
+constexpr std::string_view kHeader = R"("format": "sphys-scene", "version": 1)";
+
+// A scene file's text: the header, then `members` (JSON object members, comma-separated).
+std::string scene_text(std::string_view members) {
+  return "{" + std::string(kHeader) + ", " + std::string(members) + "}";
+}
+
+// The message of the Error that parsing `text` throws.
+std::string parse_error(std::string_view text, const fs::path& name = "scene.json") {
+  try {
+    (void)parse_scene(text, name);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return "";
+}
+
+std::string read_error(const fs::path& path) {
+  try {
+    (void)read_scene_file(path);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no error for " << path;
+  return "";
+}
+
+std::uint32_t bits(float value) { return std::bit_cast<std::uint32_t>(value); }
+std::uint64_t bits(double value) { return std::bit_cast<std::uint64_t>(value); }
+
+void expect_same(const Vec3& a, const Vec3& b, std::string_view what) {
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(bits(a[k]), bits(b[k])) << what << "[" << k << "]";
+}
+
+void expect_same(const std::optional<double>& a, const std::optional<double>& b,
+                 std::string_view what) {
+  ASSERT_EQ(a.has_value(), b.has_value()) << what;
+  if (a) {
+    EXPECT_EQ(bits(*a), bits(*b)) << what;
+  }
+}
+
+// Field by field, every number bit for bit.
+void expect_same_body(const BodySpec& a, const BodySpec& b) {
+  EXPECT_EQ(a.mesh, b.mesh);
+  EXPECT_EQ(a.triangles, b.triangles);
+  expect_same(a.size, b.size, "size");
+  EXPECT_EQ(a.tree.sph_file, b.tree.sph_file);
+  EXPECT_EQ(a.tree.method, b.tree.method);
+  EXPECT_EQ(a.tree.branching, b.tree.branching);
+  EXPECT_EQ(a.tree.depth, b.tree.depth);
+  expect_same(a.position, b.position, "position");
+  EXPECT_EQ(bits(a.orientation.w()), bits(b.orientation.w()));
+  expect_same(a.orientation.vec(), b.orientation.vec(), "orientation");
+  expect_same(a.linear_velocity, b.linear_velocity, "linear_velocity");
+  expect_same(a.angular_velocity, b.angular_velocity, "angular_velocity");
+  EXPECT_EQ(bits(a.density), bits(b.density));
+  expect_same(a.mass, b.mass, "mass");
+  EXPECT_EQ(bits(a.restitution), bits(b.restitution));
+  EXPECT_EQ(bits(a.friction), bits(b.friction));
+  EXPECT_EQ(a.is_static, b.is_static);
+}
+
+void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.base_directory, b.base_directory);
+  expect_same(a.gravity, b.gravity, "gravity");
+  EXPECT_EQ(bits(a.time_step), bits(b.time_step));
+  EXPECT_EQ(a.frames, b.frames);
+  EXPECT_EQ(a.response, b.response);
+  EXPECT_EQ(a.paper_passes, b.paper_passes);
+  EXPECT_EQ(a.ground.kind, b.ground.kind);
+  EXPECT_EQ(bits(a.ground.height), bits(b.ground.height));
+  EXPECT_EQ(bits(a.ground.size), bits(b.ground.size));
+  EXPECT_EQ(bits(a.ground.thickness), bits(b.ground.thickness));
+  EXPECT_EQ(a.ground.depth, b.ground.depth);
+  EXPECT_EQ(bits(a.ground.restitution), bits(b.ground.restitution));
+  EXPECT_EQ(bits(a.ground.friction), bits(b.ground.friction));
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    expect_same_body(a.bodies[i], b.bodies[i]);
+  }
+}
+
+void expect_rotation(const Quat& q, const Vec3& from, const Vec3& to) {
+  const Vec3 rotated = q * from;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(rotated[k], to[k], 1e-6f) << "component " << k;
+}
+
+// Every key of the format, each with a value other than its default.
+constexpr std::string_view kFullScene = R"({
+  "format": "sphys-scene",
+  "version": 1,
+  "gravity": [0.5, -3.7, 0.25],
+  "time_step": 0.005,
+  "frames": 1200,
+  "response": "paper",
+  "paper_passes": 7,
+  "ground": {"type": "plane", "height": -1.5, "size": 20, "thickness": 0.75, "depth": 4,
+             "restitution": 0.8, "friction": 0.9},
+  "defaults": {"density": 500, "friction": 0.2},
+  "bodies": [
+    {"mesh": "meshes/box.obj", "triangles": 0, "size": null,
+     "sphere_tree": {"method": "octree", "branching": 4, "depth": 2},
+     "position": [1, 2, 3], "orientation": {"w": 0, "x": 0, "y": 0, "z": 1},
+     "linear_velocity": [4, 5, 6], "angular_velocity": [-1, 0.5, 2], "density": 250,
+     "mass": 12.5, "restitution": 0.1, "friction": 0.7, "static": true},
+    {"mesh": "bunny", "triangles": 800, "size": 2.5, "sphere_tree": "trees/bunny.sph"}
+  ]
+})";
+
+class SceneFileOnDisk : public testing::Test {
+ protected:
+  SceneFileOnDisk() {
+    fs::create_directories(dir_.path() / "meshes");
+    fs::create_directories(dir_.path() / "trees");
+    // Only their existence is checked when a scene is read.
+    dir_.write("meshes/box.obj", "v 0 0 0\n");
+    dir_.write("trees/bunny.sph", "1 2\n0 0 0 1 1\n");
+  }
+
+  [[nodiscard]] fs::path scene_path() const { return dir_.path() / "scene.json"; }
+
+  test::TempDir dir_;
+};
+
+TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
+  const Scene scene = read_scene_file(dir_.write("scene.json", kFullScene));
+  EXPECT_EQ(scene.name, "scene.json");
+  EXPECT_EQ(scene.base_directory, dir_.path());
+  expect_same(scene.gravity, Vec3(0.5f, -3.7f, 0.25f), "gravity");
+  EXPECT_EQ(scene.time_step, 0.005);
+  EXPECT_EQ(scene.frames, 1200);
+  EXPECT_EQ(scene.response, ResponseMode::kPaper);
+  EXPECT_EQ(scene.paper_passes, 7);
+  EXPECT_EQ(scene.ground.kind, GroundSpec::Kind::kPlane);
+  EXPECT_EQ(scene.ground.height, -1.5);
+  EXPECT_EQ(scene.ground.size, 20.0);
+  EXPECT_EQ(scene.ground.thickness, 0.75);
+  EXPECT_EQ(scene.ground.depth, 4);
+  EXPECT_EQ(scene.ground.restitution, 0.8f);
+  EXPECT_EQ(scene.ground.friction, 0.9f);
+  ASSERT_EQ(scene.bodies.size(), 2U);
+
+  const BodySpec& box = scene.bodies[0];
+  EXPECT_EQ(box.mesh, "meshes/box.obj");
+  EXPECT_EQ(box.triangles, std::optional<std::size_t>(0));
+  EXPECT_EQ(box.size, std::nullopt);
+  EXPECT_EQ(box.tree.sph_file, std::nullopt);
+  EXPECT_EQ(box.tree.method, BuildMethod::Octree);
+  EXPECT_EQ(box.tree.branching, 4);
+  EXPECT_EQ(box.tree.depth, 2);
+  expect_same(box.position, Vec3(1.0f, 2.0f, 3.0f), "position");
+  EXPECT_EQ(box.orientation.coeffs(), Quat(0.0f, 0.0f, 0.0f, 1.0f).coeffs());
+  expect_same(box.linear_velocity, Vec3(4.0f, 5.0f, 6.0f), "linear_velocity");
+  expect_same(box.angular_velocity, Vec3(-1.0f, 0.5f, 2.0f), "angular_velocity");
+  EXPECT_EQ(box.density, 250.0);
+  EXPECT_EQ(box.mass, std::optional<double>(12.5));
+  EXPECT_EQ(box.restitution, 0.1f);
+  EXPECT_EQ(box.friction, 0.7f);
+  EXPECT_TRUE(box.is_static);
+
+  // The second body keeps the defaults' density and friction and BodySpec's other defaults.
+  const BodySpec& bunny = scene.bodies[1];
+  EXPECT_EQ(bunny.mesh, "bunny");
+  EXPECT_EQ(bunny.triangles, std::optional<std::size_t>(800));
+  EXPECT_EQ(bunny.size, std::optional<double>(2.5));
+  EXPECT_EQ(bunny.tree.sph_file, std::optional<fs::path>("trees/bunny.sph"));
+  EXPECT_EQ(bunny.density, 500.0);
+  EXPECT_EQ(bunny.friction, 0.2f);
+  BodySpec expected;
+  expected.mesh = "bunny";
+  expected.triangles = 800;
+  expected.size = 2.5;
+  expected.tree.sph_file = "trees/bunny.sph";
+  expected.density = 500.0;
+  expected.friction = 0.2f;
+  expect_same_body(bunny, expected);
+}
+
+TEST(SceneFile, SmallestSceneTakesEveryDefault) {
+  const Scene scene = parse_scene(scene_text(R"("bodies": [{}])"), "dir/scene.json");
+  Scene expected;
+  expected.name = "scene.json";
+  expected.base_directory = "dir";
+  expected.bodies.emplace_back();
+  expect_same_scene(scene, expected);
+  // The header and an empty body list make a scene too.
+  EXPECT_TRUE(parse_scene(scene_text(R"("bodies": [])"), "s.json").bodies.empty());
+}
+
+TEST(SceneFile, BodyKeysOverrideTheDefaults) {
+  const Scene scene = parse_scene(scene_text(R"(
+    "defaults": {"triangles": 500, "size": 2, "mass": 3, "density": 10, "static": true,
+                 "linear_velocity": [1, 0, 0],
+                 "sphere_tree": {"method": "grid", "branching": 2, "depth": 4}},
+    "bodies": [
+      {},
+      {"triangles": null, "size": null, "mass": null, "static": false,
+       "sphere_tree": {"depth": 2}},
+      {"density": 20, "linear_velocity": [0, 0, 1]}
+    ])"),
+                                  "s.json");
+  ASSERT_EQ(scene.bodies.size(), 3U);
+  const BodySpec& inherits = scene.bodies[0];
+  EXPECT_EQ(inherits.triangles, std::optional<std::size_t>(500));
+  EXPECT_EQ(inherits.size, std::optional<double>(2.0));
+  EXPECT_EQ(inherits.mass, std::optional<double>(3.0));
+  EXPECT_EQ(inherits.density, 10.0);
+  EXPECT_TRUE(inherits.is_static);
+  expect_same(inherits.linear_velocity, Vec3(1.0f, 0.0f, 0.0f), "linear_velocity");
+  EXPECT_EQ(inherits.tree.method, BuildMethod::Grid);
+  EXPECT_EQ(inherits.tree.branching, 2);
+  EXPECT_EQ(inherits.tree.depth, 4);
+
+  // null unsets; a sphere_tree object overrides only the keys it has.
+  const BodySpec& unsets = scene.bodies[1];
+  EXPECT_EQ(unsets.triangles, std::nullopt);
+  EXPECT_EQ(unsets.size, std::nullopt);
+  EXPECT_EQ(unsets.mass, std::nullopt);
+  EXPECT_FALSE(unsets.is_static);
+  EXPECT_EQ(unsets.tree.method, BuildMethod::Grid);
+  EXPECT_EQ(unsets.tree.branching, 2);
+  EXPECT_EQ(unsets.tree.depth, 2);
+
+  const BodySpec& overrides = scene.bodies[2];
+  EXPECT_EQ(overrides.density, 20.0);
+  expect_same(overrides.linear_velocity, Vec3(0.0f, 0.0f, 1.0f), "linear_velocity");
+  EXPECT_EQ(overrides.mass, std::optional<double>(3.0));
+}
+
+TEST_F(SceneFileOnDisk, SphereTreeFileReplacesTheBuildSettingsOfTheDefaults) {
+  const Scene scene = parse_scene(scene_text(R"(
+    "defaults": {"sphere_tree": {"method": "grid", "depth": 4}},
+    "bodies": [{"sphere_tree": "trees/bunny.sph"}])"),
+                                  scene_path());
+  const TreeSpec& tree = scene.bodies.at(0).tree;
+  EXPECT_EQ(tree.sph_file, std::optional<fs::path>("trees/bunny.sph"));
+  EXPECT_EQ(tree.method, TreeSpec{}.method);
+  EXPECT_EQ(tree.depth, TreeSpec{}.depth);
+}
+
+TEST(SceneFile, OrientationFormsGiveTheSameRotations) {
+  const Scene scene = parse_scene(scene_text(R"("bodies": [
+      {"orientation": {"yaw_degrees": 90}},
+      {"orientation": {"axis": [0, 2, 0], "angle_degrees": 90}},
+      {"orientation": {"w": 1, "x": 0, "y": 1, "z": 0}},
+      {"orientation": {"axis": [1, 0, 0], "angle_degrees": -90}},
+      {"orientation": {"w": 0, "x": 0, "y": 3, "z": 4}},
+      {"orientation": {"w": 1, "x": 0, "y": 0, "z": 0}}
+    ])"),
+                                  "s.json");
+  ASSERT_EQ(scene.bodies.size(), 6U);
+  // Counter-clockwise about +y seen from above: +x turns to -z.
+  for (int i = 0; i < 3; ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    expect_rotation(scene.bodies[i].orientation, Vec3::UnitX(), -Vec3::UnitZ());
+    EXPECT_NEAR(scene.bodies[i].orientation.norm(), 1.0f, 1e-7f);
+  }
+  expect_rotation(scene.bodies[3].orientation, Vec3::UnitY(), -Vec3::UnitZ());
+  EXPECT_EQ(scene.bodies[4].orientation.coeffs(), Quat(0.0f, 0.0f, 0.6f, 0.8f).coeffs());
+  EXPECT_EQ(scene.bodies[5].orientation.coeffs(), Quat::Identity().coeffs());
+}
+
+TEST(SceneFile, IntegralNumbersCountAsIntegers) {
+  const Scene scene = parse_scene(R"({"format": "sphys-scene", "version": 1.0, "frames": 1e3,
+      "bodies": [{"triangles": 4.0, "sphere_tree": {"depth": 2.0}}]})",
+                                  "s.json");
+  EXPECT_EQ(scene.frames, 1000);
+  EXPECT_EQ(scene.bodies.at(0).triangles, std::optional<std::size_t>(4));
+  EXPECT_EQ(scene.bodies.at(0).tree.depth, 2);
+}
+
+// A scene with every value drawn at random from its whole valid range.
+class RandomScene {
+ public:
+  explicit RandomScene(std::uint32_t seed) : rng_(seed) {}
+
+  Scene next() {
+    Scene scene;
+    scene.name = "s.json";
+    scene.gravity = any_vec3();
+    scene.time_step = std::uniform_real_distribution<double>(1e-9, 1.0)(rng_);
+    scene.frames = std::uniform_int_distribution<int>(1, 10'000'000)(rng_);
+    scene.paper_passes = std::uniform_int_distribution<int>(1, 1000)(rng_);
+    scene.ground.kind = pick(std::array{GroundSpec::Kind::kNone, GroundSpec::Kind::kPlane,
+                                        GroundSpec::Kind::kOctreeBox});
+    scene.ground.height = any_double();
+    scene.ground.size = std::abs(any_double()) + 1e-300;
+    scene.ground.thickness = std::abs(any_double()) + 1e-300;
+    scene.ground.depth = std::uniform_int_distribution<int>(1, 7)(rng_);
+    scene.ground.restitution = unit_float();
+    scene.ground.friction = std::abs(any_float());
+    const int bodies = std::uniform_int_distribution<int>(0, 4)(rng_);
+    for (int i = 0; i < bodies; ++i) scene.bodies.push_back(body());
+    return scene;
+  }
+
+ private:
+  BodySpec body() {
+    BodySpec body;
+    body.mesh = coin() ? "bunny" : "meshes/box.obj";
+    if (coin()) body.triangles = std::uniform_int_distribution<std::size_t>(4, 4'294'967'295)(rng_);
+    body.size = coin() ? std::optional<double>() : std::abs(any_double()) + 1e-300;
+    if (coin()) {
+      body.tree.sph_file = "trees/bunny.sph";
+    } else {
+      body.tree.method = pick(std::array{
+          BuildMethod::Octree, BuildMethod::Grid, BuildMethod::Spawn, BuildMethod::Hubbard,
+          BuildMethod::Merge, BuildMethod::Burst, BuildMethod::Expand, BuildMethod::Combined});
+      body.tree.branching = std::uniform_int_distribution<int>(2, 8)(rng_);
+      body.tree.depth = std::uniform_int_distribution<int>(1, 6)(rng_);
+    }
+    body.position = any_vec3();
+    Eigen::Vector4f wxyz;
+    for (int k = 0; k < 4; ++k) wxyz[k] = std::normal_distribution<float>()(rng_);
+    wxyz.normalize();
+    body.orientation = Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+    body.linear_velocity = any_vec3();
+    body.angular_velocity = any_vec3();
+    body.density = std::abs(any_double()) + 1e-300;
+    if (coin()) body.mass = std::abs(any_double()) + 1e-300;
+    body.restitution = unit_float();
+    body.friction = std::abs(any_float());
+    body.is_static = coin();
+    return body;
+  }
+
+  bool coin() { return std::uniform_int_distribution<int>(0, 1)(rng_) == 1; }
+  template <typename T, std::size_t N>
+  T pick(const std::array<T, N>& values) {
+    return values[std::uniform_int_distribution<std::size_t>(0, N - 1)(rng_)];
+  }
+  // Any finite float, every exponent alike.
+  float any_float() {
+    for (;;) {
+      const float value = std::bit_cast<float>(static_cast<std::uint32_t>(rng_()));
+      if (std::isfinite(value)) return value;
+    }
+  }
+  double any_double() {
+    for (;;) {
+      const double value = std::bit_cast<double>((std::uint64_t{rng_()} << 32) | rng_());
+      if (std::isfinite(value)) return value;
+    }
+  }
+  float unit_float() {
+    for (;;) {
+      const float value = std::abs(any_float());
+      if (value <= 1.0f) return value;
+    }
+  }
+  Vec3 any_vec3() { return {any_float(), any_float(), any_float()}; }
+
+  std::mt19937 rng_;
+};
+
+TEST_F(SceneFileOnDisk, RandomScenesRoundTripBitForBit) {
+  RandomScene scenes(20240611);
+  for (int trial = 0; trial < 200; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    Scene scene = scenes.next();
+    scene.name = "scene.json";
+    scene.base_directory = dir_.path();
+    const std::string text = scene_to_json(scene);
+    const Scene back = parse_scene(text, scene_path());
+    expect_same_scene(back, scene);
+    EXPECT_EQ(scene_to_json(back), text);
+  }
+}
+
+TEST_F(SceneFileOnDisk, FullSceneRoundTripsBitForBit) {
+  const Scene scene = parse_scene(kFullScene, scene_path());
+  expect_same_scene(parse_scene(scene_to_json(scene), scene_path()), scene);
+}
+
+TEST(SceneFile, WrittenFloatsUseTheirShortestForm) {
+  Scene scene;
+  scene.bodies.emplace_back();
+  scene.bodies[0].restitution = 0.3f;
+  // 7.038531e-26 is the one float magnitude whose shortest form, read as a double, rounds to a
+  // neighbouring float: it must still come back exactly.
+  const float tricky = std::bit_cast<float>(std::uint32_t{0x15ae43fd});
+  scene.bodies[0].position = Vec3(0.1f, -tricky, tricky);
+  scene.gravity = Vec3(0.0f, -9.81f, 0.0f);
+  const std::string text = scene_to_json(scene);
+  EXPECT_THAT(text, HasSubstr("\"restitution\": 0.3,"));
+  EXPECT_THAT(text, HasSubstr("-9.81"));
+  EXPECT_THAT(text, HasSubstr("\n  \"version\": 1,\n"));
+  const Scene back = parse_scene(text, "s.json");
+  expect_same(back.bodies.at(0).position, scene.bodies[0].position, "position");
+  expect_same(back.gravity, scene.gravity, "gravity");
+}
+
+struct BadCase {
+  std::string text;
+  std::string path;  // JSON pointer the message must name
+  std::string reason;
+};
+
+TEST(SceneFile, BadValuesNameTheirPathAndReason) {
+  const std::vector<BadCase> cases = {
+      // Unknown keys, with a suggestion when one is close.
+      {scene_text(R"("gravty": [0, 0, 0], "bodies": [])"), "/gravty",
+       "unknown key; did you mean \"gravity\"?"},
+      {scene_text(R"("bodies": [{"colour": "red"}])"), "/bodies/0/colour",
+       "unknown key (valid: mesh, triangles, size, sphere_tree, position, orientation"},
+      {scene_text(R"("bodies": [{}, {"densty": 3}])"), "/bodies/1/densty",
+       "did you mean \"density\"?"},
+      {scene_text(R"("ground": {"kind": "plane"}, "bodies": [])"), "/ground/kind", "unknown key"},
+      {scene_text(R"("bodies": [{"sphere_tree": {"levels": 3}}])"), "/bodies/0/sphere_tree/levels",
+       "unknown key"},
+      {scene_text(R"("bodies": [{"orientation": {"yaw": 3}}])"), "/bodies/0/orientation/yaw",
+       "did you mean \"yaw_degrees\"?"},
+      {scene_text(R"("bodies": [{"angularVelocity": [0, 0, 0]}])"), "/bodies/0/angularVelocity",
+       "did you mean \"angular_velocity\"?"},
+      {scene_text(R"("bodies": [{"q": {}}])"), "/bodies/0/q", "unknown key (valid: "},
+      {scene_text(R"("bodies": [], "a/b~c": 1)"), "/a~1b~0c", "unknown key"},
+      {scene_text(R"("defaults": {"position": [0, 0, 0]}, "bodies": [])"), "/defaults/position",
+       "set per body, not in \"defaults\""},
+      // Wrong types.
+      {scene_text(R"("time_step": "fast", "bodies": [])"), "/time_step",
+       "expected a number, got a string \"fast\""},
+      {scene_text(R"("bodies": [{"static": 1}])"), "/bodies/0/static",
+       "expected true or false, got a number 1"},
+      {scene_text(R"("gravity": [0, -9.81], "bodies": [])"), "/gravity",
+       "expected 3 numbers [x, y, z], got 2"},
+      {scene_text(R"("gravity": [0, null, 0], "bodies": [])"), "/gravity/1",
+       "expected a number, got null"},
+      {scene_text(R"("gravity": {"x": 0}, "bodies": [])"), "/gravity",
+       "expected an array of 3 numbers, got an object {\"x\":0}"},
+      {scene_text(R"("bodies": {})"), "/bodies", "expected an array of bodies, got an object"},
+      {scene_text(R"("bodies": [3])"), "/bodies/0", "expected an object, got a number 3"},
+      {scene_text(R"("bodies": [{"mesh": 7}])"), "/bodies/0/mesh", "expected a string"},
+      {scene_text(R"("bodies": [{"sphere_tree": 3}])"), "/bodies/0/sphere_tree",
+       "expected an object {\"method\", \"branching\", \"depth\"} or the path of a .sph file"},
+      {scene_text(R"("ground": [], "bodies": [])"), "/ground", "expected an object, got an array"},
+      {scene_text(R"("bodies": [{"mesh": "xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx"}])"),
+       "/bodies/0/mesh", "no such file"},
+      // Numbers out of range.
+      {scene_text(R"("bodies": [{}, {}, {}, {"density": -2}])"), "/bodies/3/density",
+       "must be positive, got -2"},
+      {scene_text(R"("bodies": [{"density": 0}])"), "/bodies/0/density", "must be positive, got 0"},
+      {scene_text(R"("bodies": [{"mass": 0}])"), "/bodies/0/mass", "must be positive, got 0"},
+      {scene_text(R"("bodies": [{"mass": -12.5}])"), "/bodies/0/mass",
+       "must be positive, got -12.5"},
+      {scene_text(R"("defaults": {"mass": -1}, "bodies": [])"), "/defaults/mass",
+       "must be positive, got -1"},
+      {scene_text(R"("time_step": 0, "bodies": [])"), "/time_step", "must be positive, got 0"},
+      {scene_text(R"("time_step": -0.01, "bodies": [])"), "/time_step",
+       "must be positive, got -0.01"},
+      {scene_text(R"("time_step": 2, "bodies": [])"), "/time_step", "must be at most 1 s, got 2"},
+      {scene_text(R"("frames": 2.5, "bodies": [])"), "/frames", "must be an integer, got 2.5"},
+      {scene_text(R"("paper_passes": 0, "bodies": [])"), "/paper_passes",
+       "must be between 1 and 1000, got 0"},
+      {scene_text(R"("frames": 0, "bodies": [])"), "/frames",
+       "must be between 1 and 10000000, got 0"},
+      {scene_text(R"("frames": 99999999999999999999, "bodies": [])"), "/frames",
+       "must be between 1 and 10000000, got 1e+20"},
+      {scene_text(R"("bodies": [{"triangles": 3}])"), "/bodies/0/triangles",
+       "must be 0 (keep every triangle) or at least 4, got 3"},
+      {scene_text(R"("bodies": [{"triangles": -1}])"), "/bodies/0/triangles",
+       "must be between 0 and 4294967295, got -1"},
+      {scene_text(R"("bodies": [{"size": 0}])"), "/bodies/0/size", "must be positive, got 0"},
+      {scene_text(R"("bodies": [{"restitution": 1.5}])"), "/bodies/0/restitution",
+       "must be between 0 and 1, got 1.5"},
+      {scene_text(R"("bodies": [{"friction": -0.5}])"), "/bodies/0/friction",
+       "must not be negative, got -0.5"},
+      {scene_text(R"("bodies": [{"friction": 1e39}])"), "/bodies/0/friction",
+       "does not fit in single precision, got 1e+39"},
+      {scene_text(R"("bodies": [{"position": [0, -4e38, 0]}])"), "/bodies/0/position/1",
+       "does not fit in single precision"},
+      {scene_text(R"("bodies": [{"sphere_tree": {"branching": 9}}])"),
+       "/bodies/0/sphere_tree/branching", "must be between 2 and 8, got 9"},
+      {scene_text(R"("bodies": [{"sphere_tree": {"depth": 7}}])"), "/bodies/0/sphere_tree/depth",
+       "must be between 1 and 6, got 7"},
+      {scene_text(R"("ground": {"depth": 0}, "bodies": [])"), "/ground/depth",
+       "must be between 1 and 7, got 0"},
+      {scene_text(R"("ground": {"size": -16}, "bodies": [])"), "/ground/size",
+       "must be positive, got -16"},
+      {scene_text(R"("ground": {"thickness": 0}, "bodies": [])"), "/ground/thickness",
+       "must be positive, got 0"},
+      // Enumerations list their values.
+      {scene_text(R"("response": "plausible", "bodies": [])"), "/response",
+       "unknown value \"plausible\" (valid: \"paper\")"},
+      {scene_text(R"("ground": {"type": "box"}, "bodies": [])"), "/ground/type",
+       "unknown value \"box\" (valid: \"octree-box\", \"plane\", \"none\")"},
+      {scene_text(R"("bodies": [{"sphere_tree": {"method": "best"}}])"),
+       "/bodies/0/sphere_tree/method", "unknown sphere-tree method 'best' (valid: octree, grid"},
+      // Orientations.
+      {scene_text(R"("bodies": [{"orientation": {"w": 0, "x": 0, "y": 0, "z": 0}}])"),
+       "/bodies/0/orientation", "a zero-length quaternion is no rotation"},
+      {scene_text(R"("bodies": [{"orientation": {"axis": [0, 0, 0], "angle_degrees": 5}}])"),
+       "/bodies/0/orientation/axis", "a zero-length axis has no direction"},
+      {scene_text(R"("bodies": [{"orientation": {"axis": [0, 1, 0]}}])"),
+       "/bodies/0/orientation/angle_degrees", "missing; an axis needs an angle"},
+      {scene_text(R"("bodies": [{"orientation": {"w": 1, "x": 0, "z": 0}}])"),
+       "/bodies/0/orientation/y", "missing; a quaternion needs w, x, y and z"},
+      {scene_text(R"("bodies": [{"orientation": {"w": 1, "yaw_degrees": 5}}])"),
+       "/bodies/0/orientation", "mixes forms; give one of"},
+      {scene_text(R"("bodies": [{"orientation": {}}])"), "/bodies/0/orientation",
+       "expected one of {\"w\", \"x\", \"y\", \"z\"}, {\"yaw_degrees\"} or {\"axis\", "
+       "\"angle_degrees\"}"},
+      // The header and the required keys.
+      {R"({"version": 1, "bodies": []})", "/format",
+       "missing; a scene file starts with \"format\": \"sphys-scene\""},
+      {R"({"format": "sphys-recording", "version": 1, "bodies": []})", "/format",
+       "expected \"sphys-scene\", got a string \"sphys-recording\""},
+      {R"({"format": "sphys-scene", "bodies": []})", "/version", "missing"},
+      {R"({"format": "sphys-scene", "version": 2, "bodies": []})", "/version",
+       "unsupported version 2; this build reads version 1"},
+      {R"({"format": "sphys-scene", "version": "1", "bodies": []})", "/version",
+       "expected a number, got a string \"1\""},
+      {scene_text(R"("frames": 10)"), "/bodies", "missing"},
+      // Duplicate keys would otherwise be resolved silently.
+      {scene_text(R"("bodies": [{"density": 1, "density": 2}])"), "/bodies/0/density",
+       "duplicate key"},
+  };
+  for (const BadCase& bad : cases) {
+    SCOPED_TRACE(bad.text);
+    EXPECT_THAT(parse_error(bad.text),
+                AllOf(StartsWith("scene.json: " + bad.path + ": "), HasSubstr(bad.reason)));
+  }
+}
+
+TEST(SceneFile, NonFiniteNumbersAreNamedWithLineAndColumn) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"NaN", "scene.json:3: column 16: NaN is not a number in JSON; every number must be finite"},
+      {"Infinity", "scene.json:3: column 16: Infinity is not a number in JSON"},
+      {"-Infinity", "scene.json:3: column 16: -Infinity is not a number in JSON"},
+      {"nan", "scene.json:3: column 16: nan is not a number in JSON"},
+      {"1e400", "scene.json:3: column 16: the number 1e400 is beyond the range of a double"},
+      {"-1e400", "scene.json:3: column 16: the number -1e400 is beyond the range of a double"},
+  };
+  for (const auto& [value, message] : cases) {
+    const std::string text = std::string("{\n  ") + std::string(kHeader) +
+                             ",\n  \"time_step\": " + value + ",\n  \"bodies\": []\n}\n";
+    EXPECT_THAT(parse_error(text), StartsWith(message)) << text;
+  }
+}
+
+TEST(SceneFile, TextThatIsNotJsonNamesLineAndColumn) {
+  EXPECT_THAT(parse_error("{\n  \"bodies\": [\n    {\"mesh\": 'bunny'}\n  ]\n}"),
+              StartsWith("scene.json:3: column 14: not valid JSON: syntax error"));
+  EXPECT_THAT(parse_error(""), StartsWith("scene.json:1: column 1: not valid JSON: "));
+  EXPECT_THAT(parse_error(scene_text(R"("bodies": [])") + " x"),
+              HasSubstr("expected end of input"));
+  EXPECT_THAT(parse_error("[1, 2]"),
+              Eq("scene.json: expected a JSON object at the top level, got an array [1,2]"));
+}
+
+TEST_F(SceneFileOnDisk, RelativePathsResolveAgainstTheScenesFolder) {
+  const std::string text =
+      scene_text(R"("bodies": [{"mesh": "meshes/box.obj", "sphere_tree": "trees/bunny.sph"}])");
+  const Scene scene = read_scene_file(dir_.write("scene.json", text));
+  EXPECT_EQ(scene.bodies.at(0).mesh, "meshes/box.obj");
+  // The same text elsewhere finds neither file.
+  const fs::path elsewhere = dir_.path() / "trees" / "scene.json";
+  EXPECT_THAT(parse_error(text, elsewhere),
+              AllOf(StartsWith(elsewhere.string() + ": /bodies/0/mesh: no such file: "),
+                    HasSubstr((dir_.path() / "trees" / "meshes/box.obj").string())));
+  // An absolute path needs no folder.
+  const std::string absolute =
+      scene_text(R"("bodies": [{"mesh": ")" + (dir_.path() / "meshes/box.obj").string() + "\"}]");
+  EXPECT_EQ(parse_scene(absolute, elsewhere).bodies.at(0).mesh,
+            (dir_.path() / "meshes/box.obj").string());
+}
+
+TEST_F(SceneFileOnDisk, MissingMeshAndTreeFilesAreNamed) {
+  EXPECT_EQ(parse_error(scene_text(R"("bodies": [{"mesh": "meshes/gone.obj"}])"), scene_path()),
+            scene_path().string() +
+                ": /bodies/0/mesh: no such file: " + (dir_.path() / "meshes/gone.obj").string());
+  EXPECT_THAT(parse_error(scene_text(R"("defaults": {"sphere_tree": "gone.sph"}, "bodies": [])"),
+                          scene_path()),
+              HasSubstr(": /defaults/sphere_tree: no such file: "));
+  EXPECT_THAT(parse_error(scene_text(R"("bodies": [{"mesh": "meshes"}])"), scene_path()),
+              HasSubstr(": /bodies/0/mesh: is a directory, not a mesh file: "));
+  EXPECT_THAT(parse_error(scene_text(R"("bodies": [{"sphere_tree": ""}])"), scene_path()),
+              HasSubstr(": /bodies/0/sphere_tree: expected the path of a .sph file, got \"\""));
+}
+
+TEST_F(SceneFileOnDisk, UnreadableFilesAreNamed) {
+  EXPECT_EQ(read_error(dir_.path() / "none.json"),
+            (dir_.path() / "none.json").string() + ": no such file");
+  EXPECT_EQ(read_error(dir_.path() / "meshes"),
+            (dir_.path() / "meshes").string() + ": is a directory, not a scene file");
+  const std::string full(kFullScene);
+  const fs::path truncated = dir_.write("truncated.json", full.substr(0, full.find("\"frames\"")));
+  EXPECT_THAT(read_error(truncated),
+              AllOf(StartsWith(truncated.string() + ":6: column 2: "),
+                    HasSubstr("not valid JSON: "), HasSubstr("unexpected end of input")));
+}
+
+// The keys a schema object lists under "properties".
+std::set<std::string> property_names(const nlohmann::json& schema) {
+  std::set<std::string> names;
+  for (const auto& item : schema.at("properties").items()) names.insert(item.key());
+  return names;
+}
+
+std::set<std::string> object_keys(const nlohmann::json& object) {
+  std::set<std::string> keys;
+  for (const auto& item : object.items()) keys.insert(item.key());
+  return keys;
+}
+
+std::string read_doc(std::string_view name) {
+  const fs::path path = fs::path(__FILE__).parent_path() / "../../../docs" / name;
+  std::ifstream in(path, std::ios::binary);
+  EXPECT_TRUE(in) << "cannot open " << path;
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+nlohmann::json read_schema() { return nlohmann::json::parse(read_doc("scene.schema.json")); }
+
+TEST(SceneFileDocs, TheExampleReadsAsDescribed) {
+  const std::string doc = read_doc("scenes.md");
+  const std::string fence = "```json\n";
+  const std::size_t begin = doc.find(fence);
+  ASSERT_NE(begin, std::string::npos);
+  const std::size_t end = doc.find("```", begin + fence.size());
+  ASSERT_NE(end, std::string::npos);
+  const Scene scene =
+      parse_scene(doc.substr(begin + fence.size(), end - begin - fence.size()), "example.json");
+  ASSERT_EQ(scene.bodies.size(), 3U);
+  EXPECT_EQ(scene.frames, 880);
+  EXPECT_EQ(scene.ground.kind, GroundSpec::Kind::kOctreeBox);
+  const BodySpec& last = scene.bodies[2];
+  EXPECT_EQ(last.mesh, "bunny");
+  EXPECT_EQ(last.triangles, std::optional<std::size_t>(2000));
+  EXPECT_EQ(last.mass, std::optional<double>(12.5));
+  EXPECT_EQ(last.tree.method, BuildMethod::Combined);
+  EXPECT_EQ(last.tree.depth, 2);
+  // 45 degrees about (1, 0, 1): the axis stays put, +y turns towards (-1, 0, 1)/2 + y/sqrt(2).
+  const float half = std::sqrt(0.5f);
+  expect_rotation(last.orientation, Vec3(half, 0.0f, half), Vec3(half, 0.0f, half));
+  expect_rotation(last.orientation, Vec3::UnitY(), Vec3(-0.5f, half, 0.5f));
+}
+
+TEST(SceneFileSchema, ListsTheKeysOfTheFormat) {
+  const nlohmann::json schema = read_schema();
+  EXPECT_EQ(schema.at("$schema"), "https://json-schema.org/draft/2020-12/schema");
+  const nlohmann::json& defs = schema.at("$defs");
+  const std::set<std::string> body_keys = [&] {
+    std::set<std::string> keys = property_names(defs.at("body_settings"));
+    keys.merge(property_names(defs.at("body")));
+    return keys;
+  }();
+
+  // The full scene uses every key, and reads into the values above.
+  const nlohmann::json full = nlohmann::json::parse(kFullScene);
+  EXPECT_EQ(property_names(schema), object_keys(full));
+  EXPECT_EQ(body_keys, object_keys(full.at("bodies").at(0)));
+  EXPECT_EQ(property_names(defs.at("ground")), object_keys(full.at("ground")));
+  EXPECT_EQ(property_names(defs.at("sphere_tree_build")),
+            object_keys(full.at("bodies").at(0).at("sphere_tree")));
+  EXPECT_EQ(property_names(defs.at("body")), (std::set<std::string>{"position", "orientation"}));
+  EXPECT_EQ(schema.at("required"), nlohmann::json({"format", "version", "bodies"}));
+}
+
+TEST(SceneFileSchema, TheParserReadsEveryKeyItLists) {
+  const nlohmann::json schema = read_schema();
+  const nlohmann::json& defs = schema.at("$defs");
+  // Sets `key` to a value no key accepts, inside `object` (a JSON pointer) of a scene whose other
+  // members are `rest`: the parser must then complain about the value, not the key.
+  const auto expect_read = [](std::string_view object, const std::string& key,
+                              std::string_view rest) {
+    nlohmann::json document = nlohmann::json::parse(scene_text(rest));
+    document[nlohmann::json::json_pointer(std::string(object) + "/" + key)] =
+        nlohmann::json::array({nlohmann::json::array()});
+    const std::string text = document.dump();
+    SCOPED_TRACE(text);
+    EXPECT_THAT(parse_error(text),
+                AllOf(StartsWith("scene.json: " + std::string(object) + "/" + key),
+                      Not(HasSubstr("unknown key"))));
+  };
+  for (const std::string& key : property_names(schema)) {
+    if (key != "format" && key != "version") expect_read("", key, "\"frames\": 1");
+  }
+  for (const std::string& key : property_names(defs.at("ground"))) {
+    expect_read("/ground", key, R"("ground": {}, "bodies": [])");
+  }
+  for (const std::string& key : property_names(defs.at("body_settings"))) {
+    expect_read("/defaults", key, R"("defaults": {}, "bodies": [])");
+    expect_read("/bodies/0", key, R"("bodies": [{}])");
+  }
+  for (const std::string& key : property_names(defs.at("body"))) {
+    expect_read("/bodies/0", key, R"("bodies": [{}])");
+  }
+  for (const std::string& key : property_names(defs.at("sphere_tree_build"))) {
+    expect_read("/bodies/0/sphere_tree", key, R"("bodies": [{"sphere_tree": {}}])");
+  }
+}
+
+}  // namespace
+}  // namespace sphys::tools

@@ -1,0 +1,339 @@
+#include "sphys/tools/build_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sphys/error.h"
+#include "sphys/tools/mass_properties.h"
+#include "sphys/tools/primitives.h"
+#include "sphys/tools/scenarios.h"
+#include "sphys/tools/sph_file.h"
+#include "support/temp_file.h"
+
+namespace sphys::tools {
+namespace {
+
+using testing::ElementsAre;
+using testing::HasSubstr;
+
+// A body whose tree is a quick octree: the tests that use it do not depend on the method.
+BodySpec octree_body(const std::string& mesh, int depth = 2) {
+  BodySpec body;
+  body.mesh = mesh;
+  body.tree.method = BuildMethod::Octree;
+  body.tree.depth = depth;
+  return body;
+}
+
+Scene scene_without_ground(std::vector<BodySpec> bodies) {
+  Scene scene;
+  scene.name = "test scene";
+  scene.ground.kind = GroundSpec::Kind::kNone;
+  scene.bodies = std::move(bodies);
+  return scene;
+}
+
+// The mesh as OBJ text, moved by `offset`.
+std::string obj_text(const TriangleMesh& mesh, const Vec3d& offset = Vec3d::Zero()) {
+  std::string text;
+  for (const Vec3d& v : mesh.vertices) {
+    const Vec3d p = v + offset;
+    text += "v " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+            std::to_string(p.z()) + "\n";
+  }
+  for (const Triangle& t : mesh.triangles) {
+    text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+            std::to_string(t[2] + 1) + "\n";
+  }
+  return text;
+}
+
+BuildWorldOptions with_tree_depth(int depth) {
+  BuildWorldOptions options;
+  options.tree_depth = depth;
+  return options;
+}
+
+// Relative comparison of two inertia tensors, entry by entry against the largest entry.
+void expect_inertia_near(const Mat3& actual, const Mat3d& expected, double relative) {
+  const double scale = expected.cwiseAbs().maxCoeff();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(actual(r, c), expected(r, c), relative * scale)
+          << "inertia(" << r << ", " << c << ")";
+    }
+  }
+}
+
+TEST(BuildWorld, BodiesOfOneStackShareOneShape) {
+  Scene scene = bunny_stacks_scene(1, 3, 2);
+  scene.ground.kind = GroundSpec::Kind::kNone;
+  for (BodySpec& body : scene.bodies) body.tree.method = BuildMethod::Octree;
+  const SimulationSetup setup = build_world(scene);
+  ASSERT_EQ(setup.bodies.size(), 3u);
+  ASSERT_EQ(setup.shapes.size(), 1u);
+  EXPECT_THAT(setup.body_shape, ElementsAre(0u, 0u, 0u));
+  EXPECT_EQ(setup.shapes[0].mesh, "bunny");
+  EXPECT_EQ(setup.shapes[0].tree->depth(), 2);
+  EXPECT_THAT(setup.shapes[0].tree_source, HasSubstr("octree, branching 8, depth 2"));
+  EXPECT_FALSE(setup.ground.has_value());
+  EXPECT_EQ(setup.world->body_slots(), 3u);
+  // The bodies are where the scene puts them.
+  for (std::size_t i = 0; i < 3; ++i) {
+    const RigidBody& body = setup.world->body(setup.bodies[i]);
+    EXPECT_EQ(body.pose.translation, scene.bodies[i].position);
+    EXPECT_TRUE(body.pose.rotation.isApprox(scene.bodies[i].orientation));
+    EXPECT_FALSE(body.is_static);
+  }
+}
+
+TEST(BuildWorld, ADifferentSizeOrTreeMakesANewShape) {
+  BodySpec small = octree_body("bunny", 1);
+  small.size = 0.5;
+  BodySpec deeper = octree_body("bunny", 2);
+  const Scene scene = scene_without_ground(
+      {octree_body("bunny", 1), small, octree_body("bunny", 1), deeper, small});
+  const SimulationSetup setup = build_world(scene);
+  ASSERT_EQ(setup.shapes.size(), 3u);
+  EXPECT_THAT(setup.body_shape, ElementsAre(0u, 1u, 0u, 2u, 1u));
+  EXPECT_EQ(setup.shapes[2].tree->depth(), 2);
+  // Same mesh file, so the sizes tell the shapes apart.
+  EXPECT_NEAR(setup.shapes[1].max_vertex_distance * 2.0, setup.shapes[0].max_vertex_distance, 1e-9);
+}
+
+TEST(BuildWorld, MassIsDensityTimesTheMeshVolume) {
+  BodySpec light = octree_body("bunny", 1);
+  light.density = 800.0;
+  BodySpec heavy = light;
+  heavy.mass = 12.5;
+  const SimulationSetup setup = build_world(scene_without_ground({light, heavy}));
+  ASSERT_EQ(setup.shapes.size(), 1u);
+  const BodyShape& shape = setup.shapes[0];
+  const MassProperties expected = compute_mass_properties(*shape.body_mesh, {.density = 800.0});
+  EXPECT_NEAR(shape.volume, expected.volume, 1e-12);
+  // The unit-size bunny encloses a fraction of its 1 m bounding box; a sanity bound on the
+  // figure everything else scales from.
+  EXPECT_GT(expected.volume, 0.1);
+  EXPECT_LT(expected.volume, 0.5);
+
+  const RigidBody& by_density = setup.world->body(setup.bodies[0]);
+  EXPECT_NEAR(by_density.mass(), expected.mass, 1e-5 * expected.mass);
+  expect_inertia_near(by_density.inertia_body, expected.inertia, 1e-5);
+
+  // A given mass replaces density times volume; the inertia scales with it.
+  const RigidBody& by_mass = setup.world->body(setup.bodies[1]);
+  EXPECT_NEAR(by_mass.mass(), 12.5, 1e-5);
+  expect_inertia_near(by_mass.inertia_body, expected.inertia * (12.5 / expected.mass), 1e-5);
+}
+
+TEST(BuildWorld, BoxMassPropertiesMatchTheClosedForm) {
+  const test::TempDir dir;
+  // A 2 x 1 x 0.5 box scaled to size 1 becomes 1 x 0.5 x 0.25: volume 0.125 m³.
+  const auto box = dir.write("box.obj", obj_text(make_box({2.0, 1.0, 0.5})));
+  BodySpec body = octree_body(box.string(), 1);
+  body.size = 1.0;
+  body.density = 1000.0;
+  const SimulationSetup setup = build_world(scene_without_ground({body}));
+  const RigidBody& built = setup.world->body(setup.bodies[0]);
+  const double mass = 125.0;
+  EXPECT_NEAR(setup.shapes[0].volume, 0.125, 1e-12);
+  EXPECT_NEAR(built.mass(), mass, 1e-4);
+  // A box of sides a, b, c: I_xx = m (b² + c²) / 12 and so on, no products of inertia.
+  Mat3d expected = Mat3d::Zero();
+  expected(0, 0) = mass * (0.5 * 0.5 + 0.25 * 0.25) / 12.0;
+  expected(1, 1) = mass * (1.0 + 0.25 * 0.25) / 12.0;
+  expected(2, 2) = mass * (1.0 + 0.5 * 0.5) / 12.0;
+  expect_inertia_near(built.inertia_body, expected, 1e-5);
+}
+
+TEST(BuildWorld, BodyMeshIsCentredOnItsCentreOfMassAndScaledToItsSize) {
+  BodySpec bunny = octree_body("bunny", 1);
+  bunny.size = 0.5;
+  const SimulationSetup setup = build_world(scene_without_ground({bunny}));
+  const TriangleMesh& mesh = *setup.shapes[0].body_mesh;
+  EXPECT_NEAR(mesh.bounds().sizes().maxCoeff(), 0.5, 1e-9);
+  EXPECT_LT(compute_mass_properties(mesh).center_of_mass.norm(), 1e-9);
+  double farthest = 0.0;
+  for (const Vec3d& v : mesh.vertices) farthest = std::max(farthest, v.norm());
+  EXPECT_DOUBLE_EQ(setup.shapes[0].max_vertex_distance, farthest);
+  // Every vertex lies inside the root sphere of the body's tree: tree and mesh share the frame.
+  const Sphere& root = setup.shapes[0].tree->sphere(0);
+  for (const Vec3d& v : mesh.vertices) {
+    EXPECT_LE((v.cast<float>() - root.center).norm(), root.radius * 1.0001f);
+  }
+}
+
+TEST(BuildWorld, MeshKeepsItsSizeWhenNoneIsGivenButIsStillCentred) {
+  const test::TempDir dir;
+  const auto box =
+      dir.write("far_box.obj", obj_text(make_box({2.0, 1.0, 0.5}), Vec3d(5.0, -3.0, 2.0)));
+  BodySpec body = octree_body(box.string(), 1);
+  body.size.reset();
+  const SimulationSetup setup = build_world(scene_without_ground({body}));
+  const TriangleMesh& mesh = *setup.shapes[0].body_mesh;
+  EXPECT_TRUE(mesh.bounds().sizes().isApprox(Vec3d(2.0, 1.0, 0.5), 1e-9));
+  EXPECT_LT(mesh.bounds().center().norm(), 1e-6);
+  EXPECT_NEAR(setup.shapes[0].volume, 1.0, 1e-9);
+}
+
+TEST(BuildWorld, TreeDepthOptionOverridesTheScene) {
+  const Scene scene = scene_without_ground({octree_body("bunny", 1)});
+  EXPECT_EQ(build_world(scene).shapes[0].tree->depth(), 1);
+  const SimulationSetup setup = build_world(scene, with_tree_depth(2));
+  EXPECT_EQ(setup.shapes[0].tree->depth(), 2);
+  EXPECT_THAT(setup.shapes[0].tree_source, HasSubstr("depth 2"));
+
+  for (int bad : {0, 7}) {
+    try {
+      (void)build_world(scene, with_tree_depth(bad));
+      ADD_FAILURE() << "tree depth " << bad << " accepted";
+    } catch (const Error& error) {
+      EXPECT_THAT(error.what(), HasSubstr("depth must be 1 to 6, got " + std::to_string(bad)));
+    }
+  }
+}
+
+TEST(BuildWorld, TreeDepthOptionCutsTreesReadFromFiles) {
+  const test::TempDir dir;
+  BuildOptions octree;
+  octree.method = BuildMethod::Octree;
+  octree.depth = 3;
+  const auto sph = dir.path() / "box.sph";
+  write_sph(sph, build_sphere_tree(make_box({1.0, 0.5, 0.5}), octree));
+  const auto box = dir.write("box.obj", obj_text(make_box({1.0, 0.5, 0.5})));
+  BodySpec body = octree_body(box.string());
+  body.tree.sph_file = sph;
+
+  const Scene scene = scene_without_ground({body});
+  EXPECT_EQ(build_world(scene).shapes[0].tree->depth(), 3);
+  const SimulationSetup cut = build_world(scene, with_tree_depth(2));
+  EXPECT_EQ(cut.shapes[0].tree->depth(), 2);
+  EXPECT_THAT(cut.shapes[0].tree_source, HasSubstr("cut to depth 2"));
+  // A deeper request cannot deepen a file's tree.
+  EXPECT_EQ(build_world(scene, with_tree_depth(5)).shapes[0].tree->depth(), 3);
+}
+
+TEST(BuildWorld, OctreeBoxGroundIsAStaticBody) {
+  Scene scene = scene_without_ground({octree_body("bunny", 1)});
+  scene.ground.kind = GroundSpec::Kind::kOctreeBox;
+  scene.ground.height = 0.25;
+  scene.ground.depth = 2;
+  const SimulationSetup setup = build_world(scene);
+  ASSERT_TRUE(setup.ground.has_value());
+  EXPECT_EQ(setup.world->body_slots(), 2u);
+  EXPECT_EQ(setup.bodies.size(), 1u);
+  EXPECT_NE(setup.bodies[0], *setup.ground);
+  const RigidBody& ground = setup.world->body(*setup.ground);
+  EXPECT_TRUE(ground.is_static);
+  EXPECT_EQ(ground.pose.translation, Vec3(0.0f, 0.25f, 0.0f));
+  EXPECT_FALSE(setup.world->settings().collision.ground_plane_height.has_value());
+}
+
+TEST(BuildWorld, PlaneGroundIsTheDetectorsGroundPlane) {
+  Scene scene = scene_without_ground({octree_body("bunny", 1)});
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  scene.ground.height = -0.5;
+  scene.ground.restitution = 0.7f;
+  scene.ground.friction = 0.2f;
+  const SimulationSetup setup = build_world(scene);
+  EXPECT_FALSE(setup.ground.has_value());
+  EXPECT_EQ(setup.world->body_slots(), 1u);
+  const WorldSettings& settings = setup.world->settings();
+  ASSERT_TRUE(settings.collision.ground_plane_height.has_value());
+  EXPECT_EQ(*settings.collision.ground_plane_height, -0.5f);
+  EXPECT_EQ(settings.ground_restitution, 0.7f);
+  EXPECT_EQ(settings.ground_friction, 0.2f);
+
+  scene.ground.kind = GroundSpec::Kind::kNone;
+  const SimulationSetup none = build_world(scene);
+  EXPECT_FALSE(none.ground.has_value());
+  EXPECT_FALSE(none.world->settings().collision.ground_plane_height.has_value());
+}
+
+TEST(BuildWorld, SceneSettingsReachTheWorld) {
+  Scene scene = scene_without_ground({});
+  scene.gravity = Vec3(0.0f, -1.62f, 0.5f);
+  scene.paper_passes = 4;
+  const SimulationSetup setup = build_world(scene);
+  EXPECT_EQ(setup.world->settings().gravity, Vec3(0.0f, -1.62f, 0.5f));
+  EXPECT_EQ(setup.world->settings().paper_passes, 4u);
+  EXPECT_TRUE(setup.bodies.empty());
+  EXPECT_TRUE(setup.shapes.empty());
+}
+
+// The message of the Error that building `scene` throws.
+std::string build_error(const Scene& scene) {
+  try {
+    (void)build_world(scene);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no error for " << scene.name;
+  return "";
+}
+
+TEST(BuildWorld, ABodyThatCannotBeBuiltIsNamedByItsJsonPath) {
+  const test::TempDir dir;
+  const auto box = dir.write("box.obj", obj_text(make_box({1.0, 1.0, 1.0})));
+  const std::string gone = (dir.path() / "gone.obj").string();
+  const std::string missing =
+      build_error(scene_without_ground({octree_body(box.string(), 1), octree_body(gone, 1)}));
+  EXPECT_THAT(missing, HasSubstr("test scene: /bodies/1: "));
+  EXPECT_THAT(missing, HasSubstr("gone.obj"));
+
+  BodySpec massless = octree_body(box.string(), 1);
+  massless.mass = -1.0;
+  EXPECT_THAT(build_error(scene_without_ground(
+                  {octree_body(box.string(), 1), octree_body(box.string(), 1), massless})),
+              HasSubstr("/bodies/2: "));
+}
+
+TEST(BuildWorld, ProgressReachesOneOncePerBody) {
+  const Scene scene = scene_without_ground(
+      {octree_body("bunny", 1), octree_body("bunny", 1), octree_body("bunny", 1)});
+  std::vector<double> reported;
+  BuildWorldOptions options;
+  options.progress = [&reported](double fraction) { reported.push_back(fraction); };
+  (void)build_world(scene, options);
+  ASSERT_EQ(reported.size(), 3u);
+  EXPECT_DOUBLE_EQ(reported.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+}
+
+TEST(BuildWorld, ABunnyDroppedOntoThePlaneStaysAboveIt) {
+  BodySpec bunny = octree_body("bunny", 2);
+  bunny.position = Vec3(0.0f, 1.0f, 0.0f);
+  Scene scene = scene_without_ground({bunny});
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  const SimulationSetup setup = build_world(scene);
+  const float reach = static_cast<float>(setup.shapes[0].max_vertex_distance);
+  float lowest = 1.0f;
+  bool touched = false;
+  for (int frame = 0; frame < 60; ++frame) {
+    const StepStats& stats = setup.world->step(1.0f / 60.0f);
+    ASSERT_FALSE(stats.non_finite_body.has_value()) << "frame " << frame;
+    touched = touched || stats.contacts > 0;
+    const float y = setup.world->body(setup.bodies[0]).pose.translation.y();
+    lowest = std::min(lowest, y);
+    // The centre of mass stays above the plane, and the body never sinks by more than a small
+    // fraction of its size.
+    ASSERT_GT(y, 0.0f) << "frame " << frame;
+    EXPECT_LT(stats.deepest_penetration, 0.1f) << "frame " << frame;
+  }
+  // It fell far enough to reach the plane (the lowest point of the body is within `reach` of the
+  // centre of mass) and came to rest on it rather than floating.
+  EXPECT_TRUE(touched);
+  EXPECT_LT(lowest, reach);
+  const RigidBody& body = setup.world->body(setup.bodies[0]);
+  EXPECT_LT(body.pose.translation.y(), reach);
+  EXPECT_LT(body.linear_velocity.norm(), 1.0f);
+}
+
+}  // namespace
+}  // namespace sphys::tools
