@@ -75,6 +75,9 @@ void run(const ExperimentCommandOptions& options) {
   } else {
     for (const tools::PaperRow& paper : tools::paper_table()) rows.push_back(paper.row);
   }
+  if (options.ground != "octree" && options.ground != "plane") {
+    throw Error("--ground must be octree or plane, got '" + options.ground + "'");
+  }
   const fs::path out(options.out);
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -82,11 +85,8 @@ void run(const ExperimentCommandOptions& options) {
 
   tools::ExperimentOptions experiment;
   experiment.frames = options.frames;
-  if (options.ground == "plane") {
-    experiment.ground = tools::GroundSpec::Kind::kPlane;
-  } else if (options.ground != "octree") {
-    throw Error("--ground must be octree or plane, got '" + options.ground + "'");
-  }
+  if (options.ground == "plane") experiment.ground = tools::GroundSpec::Kind::kPlane;
+
   if (!options.no_cache) experiment.cache_dir = tools::default_cache_dir();
   std::vector<tools::RowResult> results;
   for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace sphys::test {
 
@@ -20,5 +22,10 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// The whole content of a file, byte for byte (empty when it cannot be read).
+[[nodiscard]] std::string read_whole(const std::filesystem::path& path);
+// The entries of a directory, in no particular order.
+[[nodiscard]] std::vector<std::filesystem::path> files_in(const std::filesystem::path& directory);
 
 }  // namespace sphys::test

@@ -21,6 +21,7 @@ namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
+using sphys::test::read_whole;
 using testing::AllOf;
 using testing::HasSubstr;
 using testing::IsEmpty;
@@ -82,11 +83,6 @@ std::size_t column_after(const std::string& line, std::string_view needle) {
   const std::size_t at = line.find(needle);
   EXPECT_NE(at, std::string::npos) << needle << " in " << line;
   return columns_of(line.substr(0, at + needle.size()));
-}
-
-std::string read_whole(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 std::vector<std::string> names_in(const fs::path& directory) {

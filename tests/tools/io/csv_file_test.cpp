@@ -23,6 +23,8 @@ namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
+using sphys::test::files_in;
+using sphys::test::read_whole;
 using testing::AllOf;
 using testing::ElementsAre;
 using testing::HasSubstr;
@@ -34,19 +36,6 @@ using Rows = std::vector<std::vector<double>>;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-
-std::string read_whole(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<fs::path> files_in(const fs::path& directory) {
-  std::vector<fs::path> files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(directory)) {
-    files.push_back(entry.path());
-  }
-  return files;
-}
 
 // The records of RFC 4180 text, as a spreadsheet reads them: fields split at commas outside
 // quotes, records at line ends outside quotes, "" inside quotes meaning one quote.

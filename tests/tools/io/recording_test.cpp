@@ -21,6 +21,8 @@ namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
+using sphys::test::files_in;
+using sphys::test::read_whole;
 using testing::AllOf;
 using testing::ElementsAre;
 using testing::EndsWith;
@@ -78,19 +80,6 @@ Bytes valid_file() {
     bytes.pose(0, static_cast<float>(frame), 0, 1, 0, 0, 0).pose(1, 2, 3, 0, 0, 1, 0);
   }
   return bytes;
-}
-
-std::string read_whole(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<fs::path> files_in(const fs::path& directory) {
-  std::vector<fs::path> files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(directory)) {
-    files.push_back(entry.path());
-  }
-  return files;
 }
 
 // The message of the Error that reading `path` throws.

@@ -23,6 +23,8 @@ namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
+using sphys::test::files_in;
+using sphys::test::read_whole;
 using testing::AllOf;
 using testing::ElementsAre;
 using testing::HasSubstr;
@@ -40,11 +42,6 @@ std::string written(const SphereTree& tree) {
   return out.str();
 }
 
-std::string read_whole(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // The message of the Error that reading `text` as "t.sph" throws.
 std::string read_error(const std::string& text, const SphReadOptions& options = {}) {
   try {
@@ -54,14 +51,6 @@ std::string read_error(const std::string& text, const SphReadOptions& options = 
   }
   ADD_FAILURE() << "no error for:\n" << text;
   return "";
-}
-
-std::vector<fs::path> files_in(const fs::path& directory) {
-  std::vector<fs::path> files;
-  for (const fs::directory_entry& entry : fs::directory_iterator(directory)) {
-    files.push_back(entry.path());
-  }
-  return files;
 }
 
 std::vector<std::int32_t> parents_of(const SphereTree& tree) {
