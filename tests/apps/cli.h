@@ -1,6 +1,8 @@
 #pragma once
 
+#include <filesystem>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -20,6 +22,23 @@ inline void expect_bad_input(const std::vector<std::string>& args, const std::st
   const CommandResult r = sphys_cli(args);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_THAT(r.err, testing::HasSubstr(message));
+}
+
+// Points the command line at one sphere-tree cache for the whole test program (never the user's),
+// so that a tree is built once however many tests use it. Removed when the program ends. Call it
+// in each test: another test may have moved SPHYS_CACHE_DIR.
+inline void use_shared_tree_cache() {
+  struct Cache {
+    std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                 ("sphys_cli_test_cache_" + std::to_string(getpid()));
+    Cache() { std::filesystem::create_directories(path); }
+    ~Cache() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Cache cache;
+  setenv("SPHYS_CACHE_DIR", cache.path.c_str(), 1);
 }
 
 }  // namespace sphys::test

@@ -21,32 +21,6 @@ using test::expect_bad_input;
 using test::sphys_cli;
 using testing::HasSubstr;
 
-// One sphere-tree cache for the whole test program: each run builds the bunny's depth-2 tree
-// only if no earlier test in the program did. Removed when the program ends.
-class ExperimentCache {
- public:
-  ExperimentCache()
-      : path_(fs::temp_directory_path() /
-              ("sphys_experiment_test_cache_" + std::to_string(getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~ExperimentCache() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ExperimentCache(const ExperimentCache&) = delete;
-  ExperimentCache& operator=(const ExperimentCache&) = delete;
-
-  // Points the command line at the cache (other tests in the program may have moved it).
-  static void use() {
-    static const ExperimentCache cache;
-    setenv("SPHYS_CACHE_DIR", cache.path_.c_str(), 1);
-  }
-
- private:
-  fs::path path_;
-};
-
 std::vector<std::string> read_lines(const fs::path& path) {
   std::ifstream in(path);
   std::vector<std::string> lines;
@@ -55,7 +29,7 @@ std::vector<std::string> read_lines(const fs::path& path) {
 }
 
 TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
-  ExperimentCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "experiment";
   const test::CommandResult r = sphys_cli(
@@ -95,7 +69,7 @@ TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
 }
 
 TEST(ExperimentCommand, JsonHasTheRowAndItsFrames) {
-  ExperimentCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "experiment";
   const test::CommandResult r =

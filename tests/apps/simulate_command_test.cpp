@@ -26,32 +26,6 @@ using test::sphys_cli;
 using testing::HasSubstr;
 using testing::StartsWith;
 
-// One sphere-tree cache for the whole test program, so that a tree is built once however many
-// tests run in it, and never the user's cache. Removed when the program ends.
-class SharedCache {
- public:
-  SharedCache()
-      : path_(fs::temp_directory_path() /
-              ("sphys_simulate_test_cache_" + std::to_string(getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~SharedCache() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  SharedCache(const SharedCache&) = delete;
-  SharedCache& operator=(const SharedCache&) = delete;
-
-  // Points the command line at the cache (other tests in the program may have moved it).
-  static void use() {
-    static const SharedCache cache;
-    setenv("SPHYS_CACHE_DIR", cache.path_.c_str(), 1);
-  }
-
- private:
-  fs::path path_;
-};
-
 std::vector<std::string> split(const std::string& line, char separator) {
   std::vector<std::string> fields;
   std::stringstream in(line);
@@ -76,7 +50,7 @@ constexpr const char* kQuickBody =
     R"({"position": [0, 1, 0], "sphere_tree": {"method": "octree", "depth": 1}})";
 
 TEST(SimulateCommand, PresetRunWritesFramesAndRecording) {
-  SharedCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "run";
   const test::CommandResult r =
@@ -126,7 +100,7 @@ TEST(SimulateCommand, PresetRunWritesFramesAndRecording) {
 }
 
 TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
-  SharedCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path scene =
       dir.write("fall.json", scene_text(R"("gravity": [0, -6, 0], "time_step": 0.1, "frames": 4,
@@ -146,7 +120,7 @@ TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
 }
 
 TEST(SimulateCommand, JsonSummaryParses) {
-  SharedCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "run";
   const test::CommandResult r = sphys_cli(
@@ -228,7 +202,7 @@ test::CommandResult run_blowing_up(const test::TempDir& dir, const std::string& 
 }
 
 TEST(SimulateCommand, ASceneThatBlowsUpNamesTheBodyAndTheFrame) {
-  SharedCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "out";
   // Beside the ground, so nothing but gravity acts: the speed and the height overflow to
@@ -253,7 +227,7 @@ TEST(SimulateCommand, ASceneThatBlowsUpNamesTheBodyAndTheFrame) {
 }
 
 TEST(SimulateCommand, AnImpactTooViolentForSinglePrecisionIsReportedAsNonFinite) {
-  SharedCache::use();
+  test::use_shared_tree_cache();
   const test::TempDir dir;
   // Onto the ground at 1.7e36 m/s in the first step: the impulse spins the bunny so fast that its
   // orientation cannot be renormalised in single precision. The run must stop as a simulation
