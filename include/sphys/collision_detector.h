@@ -35,6 +35,12 @@ struct CollisionSettings {
   // The exact half-space ground y <= height (sphere against plane), instead of or besides a
   // static body carrying the paper's octree of a thin box. unit: m
   std::optional<float> ground_plane_height;
+  // Leaf spheres apart by up to this gap make contacts too, with negative depth, so that a
+  // response can stop bodies before they touch. unit: m
+  float contact_margin = 0.0f;
+  // Speculative contacts: the gap allowed for a pair grows by how far the two can close in the
+  // coming step, from the motions given by set_motion() (swept sphere bounds).
+  bool speculative = false;
 };
 
 // Figures of one detect() call.
@@ -42,7 +48,8 @@ struct CollisionStats {
   std::uint32_t bodies = 0;
   std::uint32_t candidate_pairs = 0;  // overlapping bounds from the broad phase
   std::uint64_t sphere_tests = 0;     // in the narrow phase, ground plane included
-  std::uint32_t leaf_pairs = 0;       // overlapping leaf pairs (ground plane: leaves under it)
+  // Overlapping leaf pairs (ground plane: leaves under it), and those within their pair's gap.
+  std::uint32_t leaf_pairs = 0;
   std::uint32_t contacts = 0;
   std::uint32_t pairs_cut_short = 0;     // node pairs left when a time-critical budget ran out
   std::uint32_t coincident_centres = 0;  // contacts whose normal came from the fallback
@@ -61,11 +68,19 @@ class CollisionDetector {
   void remove_body(BodyId body);
   void set_pose(BodyId body, const Transform& pose);
   [[nodiscard]] const Transform& pose(BodyId body) const { return bodies_[body.index].pose; }
+  // How far a body may move in the coming step, for speculative contacts: its centre of mass by
+  // `displacement` and any of its points by up to `turn_reach` more from turning. unit: m
+  void set_motion(BodyId body, const Vec3& displacement, float turn_reach);
+  // A sleeping body is checked only against awake moving bodies (pairs of sleeping or static
+  // bodies, and a sleeping body against the ground plane, make no contacts).
+  void set_asleep(BodyId body, bool asleep);
   [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
   void set_settings(const CollisionSettings& settings) { settings_ = settings; }
 
   // Replaces `contacts` with this step's contacts, ordered by body pair (as the broad phase
-  // lists them, then the ground plane's by body) and within a pair by the descent's order.
+  // lists them, then the ground plane's by body) and within a pair by the descent's order. The
+  // contacts of one body pair are consecutive. With a contact margin or speculative contacts,
+  // pairs of leaves that are apart by less than their pair's gap come too (negative depth).
   const CollisionStats& detect(std::vector<Contact>& contacts);
   [[nodiscard]] const CollisionStats& stats() const { return stats_; }
   // The broad phase's current bound of a body (world frame).
@@ -76,8 +91,11 @@ class CollisionDetector {
     std::shared_ptr<const SphereTree> tree;
     Transform pose;
     ProxyId proxy = 0;
+    Vec3 displacement = Vec3::Zero();
+    float turn_reach = 0.0f;
     bool is_static = false;
     bool alive = false;
+    bool asleep = false;
   };
 
   // Two overlapping leaf spheres in the world frame, what the narrow phase hands to the contacts
@@ -91,10 +109,13 @@ class CollisionDetector {
     Sphere sphere_b;
   };
 
+  [[nodiscard]] Aabb broad_phase_box(const Body& body) const;
+  [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
+  [[nodiscard]] float plane_margin(const Body& body) const;
   void narrow_phase();
   void ground_plane_leaves(std::uint32_t body, float height);
   void make_contacts(std::vector<Contact>& contacts);
-  [[nodiscard]] DescentSettings descent_budget(double spent_microseconds) const;
+  [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, float margin) const;
 
   CollisionSettings settings_;
   std::vector<Body> bodies_;

@@ -42,4 +42,9 @@ void integrate_velocity(RigidBody& body, const Vec3& gravity, float dt);
 // instead of keeping ω fixed while its inertia turns. Static bodies are left alone.
 void integrate_position(RigidBody& body, float dt);
 
+// Moves a body by pseudo-velocities for dt (split-impulse penetration recovery): the position by
+// linear·dt, the orientation by the turn angular·dt. The velocities are left alone, so the
+// correction adds no kinetic energy. Static bodies are left alone.
+void correct_position(RigidBody& body, const Vec3& linear, const Vec3& angular, float dt);
+
 }  // namespace sphys

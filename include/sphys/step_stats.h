@@ -1,6 +1,7 @@
 #pragma once
 
-// Figures of one World::step: every figure the experiment reports, each measured once.
+// Figures of one World::step: every figure the experiment reports, each measured once. With
+// substeps, times and counts are summed over them and the deepest penetration is their largest.
 
 #include <cstdint>
 #include <optional>
@@ -24,15 +25,30 @@ struct StepStats {
   std::uint32_t candidate_pairs = 0;  // overlapping bounds from the broad phase
   std::uint64_t sphere_tests = 0;
   std::uint32_t leaf_pairs = 0;
-  std::uint32_t contacts = 0;
-  std::uint32_t impulses = 0;         // impulses applied, over all passes
-  std::uint32_t response_passes = 0;  // passes over the contacts (paper mode)
+  std::uint32_t contacts = 0;  // the response's contacts (after reduction, when reduced)
+  // Paper mode: impulses applied, over all passes. Plausible mode: contacts solved.
+  std::uint32_t impulses = 0;
+  // Paper mode: passes over the contacts. Plausible mode: velocity iterations.
+  std::uint32_t response_passes = 0;
+  std::uint32_t warm_started = 0;  // contacts whose impulses came from the previous step
+  std::uint32_t bounces = 0;       // contacts given restitution (plausible mode)
   std::uint32_t pairs_cut_short = 0;
   std::uint32_t coincident_centres = 0;
+  std::uint32_t islands = 0;  // groups of touching moving bodies (plausible mode)
 
-  double kinetic_energy = 0.0;  // after the step, all moving bodies. unit: J
-  float deepest_penetration =
-      0.0f;  // largest contact depth this step (0 without contacts). unit: m
+  // Plausibility, measured on the leaf-pair contacts before any reduction and on the bodies at
+  // the end of the step.
+  float deepest_penetration = 0.0f;        // largest overlap of two leaf spheres (0: none). unit: m
+  double mean_penetration = 0.0;           // mean overlap of the overlapping leaf pairs. unit: m
+  std::uint32_t penetrating_contacts = 0;  // leaf pairs that overlap (not touching or apart)
+  double kinetic_energy = 0.0;             // all moving bodies. unit: J
+  std::uint32_t moving_bodies = 0;         // bodies that are not static
+  std::uint32_t bodies_asleep = 0;
+  // Asleep, or with every point slower than SleepSettings::speed.
+  std::uint32_t bodies_at_rest = 0;
+  // Mean speed of the fastest point of the bodies that should be resting: asleep (speed 0), or
+  // touching something and slower than ten times SleepSettings::speed. unit: m/s
+  double jitter = 0.0;
 
   // The first body (by index) whose state stopped being finite (or whose orientation stopped
   // being a rotation) in this step; the world stops stepping from then on. Unset while all is well.

@@ -25,6 +25,10 @@ struct DescentSettings {
   int depth_a = 0;
   int depth_b = 0;
 
+  // Spheres this close count as overlapping: a gap of up to `margin` between two leaf spheres
+  // still returns the pair (speculative contacts; see CollisionSettings). unit: m
+  float margin = 0.0f;
+
   // Time-critical mode (paper §3.2; Hubbard 1995; Dingliana & O'Sullivan 2000): once a budget is
   // spent the descent stops, and each pair still waiting is resolved at the level it reached: it
   // is returned if the nodes' own spheres overlap. 0 turns a budget off; with both off the descent
@@ -53,7 +57,8 @@ struct DescentStats {
 class TreeDescent {
  public:
   // Appends to `pairs` every pair of leaves of tree a at pose_a and tree b at pose_b whose spheres
-  // overlap (closed test: touching counts), and with a budget, the cut-short pairs described in
+  // overlap (closed test: touching counts) or are apart by at most DescentSettings::margin, and
+  // with a budget, the cut-short pairs described in
   // DescentSettings. Poses move the centres (rotation, then translation); radii are unchanged.
   // Order: deterministic for given inputs, not sorted.
   DescentStats descend(const SphereTree& tree_a, const Transform& pose_a, const SphereTree& tree_b,

@@ -5,10 +5,12 @@
 
 #include <memory>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
+#include "sphys/material.h"
 #include "sphys/rigid_body.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/step_stats.h"
@@ -20,14 +22,61 @@ enum class ResponseMode {
   // The paper's §4: per contact, in order, the impulse magnitude of eq. 4 along the normal when
   // the contact approaches; no friction. See docs/experiment.md.
   kPaper,
+  // Sequential impulses with warm starting, Coulomb friction, restitution above a threshold,
+  // split-impulse penetration recovery, speculative contacts and sleeping. See docs/dynamics.md.
+  kPlausible,
+};
+
+// Which contacts of a body pair the response sees (plausible mode).
+enum class ContactSet {
+  kAll,      // one per overlapping leaf pair, as the paper makes them
+  kReduced,  // a small manifold per body pair (see SolverSettings::manifold_points)
+};
+
+// The plausible mode's solver. See docs/dynamics.md for what each figure does and why.
+struct SolverSettings {
+  std::uint32_t velocity_iterations = 10;  // passes over the contacts for velocities
+  std::uint32_t position_iterations = 4;   // passes for the split-impulse penetration recovery
+  bool warm_starting = true;               // start from the previous step's impulses
+  // Approach speeds below this get no restitution, so resting contacts do not bounce. unit: m/s
+  float restitution_threshold = 1.0f;
+  // Penetration left alone, so that resting contacts keep touching. unit: m
+  float linear_slop = 0.002f;
+  // Fraction of the penetration beyond the slop removed per step. unit: dimensionless, 0..1
+  float position_correction = 0.2f;
+  // Largest speed of the penetration recovery. unit: m/s
+  float max_correction_speed = 3.0f;
+  ContactSet contacts = ContactSet::kReduced;
+  std::uint32_t manifold_points = 4;  // per body pair when reduced, 1..8
+  // Contacts are made this far before spheres touch, plus how far each pair can close in a step
+  // (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m
+  float contact_margin = 0.02f;
+  bool speculative_contacts = true;
+};
+
+// Bodies at rest stop being simulated until something touches them (plausible mode).
+struct SleepSettings {
+  bool enabled = true;
+  // A body is still while its fastest point (|v| + |ω| · its bounding radius) is under this.
+  // unit: m/s
+  float speed = 0.05f;
+  // A group of touching bodies (an island) sleeps once all of them have been still this long.
+  // unit: s
+  float time = 0.5f;
 };
 
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);  // unit: m/s²
-  ResponseMode response = ResponseMode::kPaper;
+  ResponseMode response = ResponseMode::kPlausible;
   // Paper mode: passes over the contacts at most per step; a step stops early after a pass that
   // finds no approaching contact. 1 is a single pass. See docs/experiment.md.
   std::uint32_t paper_passes = 1;
+  SolverSettings solver;
+  SleepSettings sleep;
+  // Each step(dt) runs the whole pipeline this many times with dt / substeps. 1..64
+  std::uint32_t substeps = 1;
+  // In plausible mode the world sets collision.contact_margin and collision.speculative from
+  // `solver`; in paper mode it turns them off, as the paper makes contacts from overlaps only.
   CollisionSettings collision;
   // Material of the exact ground plane (CollisionSettings::ground_plane_height), if there is one.
   float ground_restitution = 0.3f;
@@ -48,9 +97,16 @@ struct BodyDesc {
   bool is_static = false;
 };
 
+class ContactReducer;
+class ContactSolver;
+class SleepTracker;
+
 class World {
  public:
   explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   // Throws sphys::Error naming what is wrong: no tree, a non-finite pose or velocity, a rotation
   // that is not a unit quaternion (within 1e-3), a mass that is not positive and finite, an
@@ -58,8 +114,15 @@ class World {
   BodyId add_body(const BodyDesc& desc);
   void remove_body(BodyId body);
   [[nodiscard]] const RigidBody& body(BodyId body) const { return bodies_[body.index]; }
-  // Changes a body's velocities (e.g. a shot); the pose stays. Non-finite values throw.
+  // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes with the
+  // bodies it sleeps with. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
+  // Applies an impulse (unit: N·s, world frame) at a world point (unit: m) and wakes the body.
+  void apply_impulse(BodyId body, const Vec3& impulse, const Vec3& point);
+  // The friction and restitution of contacts between these two bodies, instead of the mix of
+  // their own (see sphys/material.h). Checked like a body's material.
+  void set_pair_material(BodyId a, BodyId b, const PairMaterial& material);
+  [[nodiscard]] bool asleep(BodyId body) const;
   // Body slots, alive or removed; index with BodyId{i}.
   [[nodiscard]] std::uint32_t body_slots() const {
     return static_cast<std::uint32_t>(bodies_.size());
@@ -71,7 +134,7 @@ class World {
   // StepStats::non_finite_body and the world stays stopped (later steps do nothing).
   const StepStats& step(float dt);
   [[nodiscard]] const StepStats& stats() const { return stats_; }
-  // The contacts the last step responded to.
+  // The contacts the last step (its last substep) responded to: after reduction, when reduced.
   [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
   [[nodiscard]] bool stopped() const { return stopped_; }
 
@@ -79,11 +142,31 @@ class World {
   [[nodiscard]] const CollisionDetector& detector() const { return detector_; }
 
  private:
+  void substep(float dt, StepStats& stats);
+  void respond(float dt, StepStats& stats);
+  void integrate_positions(float dt, bool plausible);
+  void measure_rest(StepStats& stats);
+  void wake(std::uint32_t body);
+  [[nodiscard]] float fastest_point_speed(std::uint32_t body) const;
+
   WorldSettings settings_;
   CollisionDetector detector_;
   std::vector<RigidBody> bodies_;
   std::vector<std::uint8_t> alive_;
+  std::vector<float> extent_;  // farthest tree point from the centre of mass. unit: m
+  std::vector<Contact> leaf_contacts_;
   std::vector<Contact> contacts_;
+  std::vector<PairMaterial> materials_;
+  std::vector<std::uint8_t> dynamic_;  // alive and not static, per body
+  std::vector<std::uint8_t> moving_;   // dynamic and awake
+  std::vector<float> speeds_;
+  std::vector<std::uint8_t> touching_;
+  std::vector<std::uint32_t> sleep_changes_;  // bodies woken or fallen asleep, scratch
+  std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
+  // Plausible mode's machinery, private to the library.
+  std::unique_ptr<ContactReducer> reducer_;
+  std::unique_ptr<ContactSolver> solver_;
+  std::unique_ptr<SleepTracker> sleep_;
   StepStats stats_;
   bool stopped_ = false;
 };

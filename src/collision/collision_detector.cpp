@@ -63,8 +63,8 @@ BodyId CollisionDetector::add_body(std::shared_ptr<const SphereTree> tree, const
   body.pose = pose;
   body.is_static = is_static;
   body.alive = true;
-  body.proxy = broad_phase_.add(world_bounds(*body.tree, pose, settings_.bounds_level),
-                                is_static ? ProxyKind::kStatic : ProxyKind::kDynamic);
+  body.proxy =
+      broad_phase_.add(broad_phase_box(body), is_static ? ProxyKind::kStatic : ProxyKind::kDynamic);
   if (body_of_proxy_.size() <= body.proxy) body_of_proxy_.resize(body.proxy + 1);
   body_of_proxy_[body.proxy] = index;
   return {index};
@@ -80,9 +80,39 @@ void CollisionDetector::remove_body(BodyId id) {
 void CollisionDetector::set_pose(BodyId id, const Transform& pose) {
   Body& body = bodies_[id.index];
   body.pose = pose;
-  if (body.is_static) {
-    broad_phase_.set_box(body.proxy, world_bounds(*body.tree, pose, settings_.bounds_level));
-  }
+  if (body.is_static) broad_phase_.set_box(body.proxy, broad_phase_box(body));
+}
+
+void CollisionDetector::set_motion(BodyId id, const Vec3& displacement, float turn_reach) {
+  Body& body = bodies_[id.index];
+  body.displacement = displacement;
+  body.turn_reach = turn_reach;
+}
+
+void CollisionDetector::set_asleep(BodyId id, bool asleep) { bodies_[id.index].asleep = asleep; }
+
+// The body's bound, grown by half the contact margin (two grown boxes meet when the bodies are
+// within the margin) and, with speculative contacts, by how far the body can move this step.
+Aabb CollisionDetector::broad_phase_box(const Body& body) const {
+  float grow = 0.5f * settings_.contact_margin;
+  if (settings_.speculative) grow += body.displacement.norm() + body.turn_reach;
+  Aabb box = world_bounds(*body.tree, body.pose, settings_.bounds_level);
+  box.min.array() -= grow;
+  box.max.array() += grow;
+  return box;
+}
+
+// The gap up to which two bodies' spheres make contacts: the margin plus, with speculative
+// contacts, a bound on how much closer any two of their points can come in the step.
+float CollisionDetector::pair_margin(const Body& a, const Body& b) const {
+  if (!settings_.speculative) return settings_.contact_margin;
+  return settings_.contact_margin + (b.displacement - a.displacement).norm() + a.turn_reach +
+         b.turn_reach;
+}
+
+float CollisionDetector::plane_margin(const Body& body) const {
+  if (!settings_.speculative) return settings_.contact_margin;
+  return settings_.contact_margin + std::max(-body.displacement.y(), 0.0f) + body.turn_reach;
 }
 
 Aabb CollisionDetector::bounds(BodyId id) const {
@@ -96,8 +126,8 @@ const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) 
 
   const Clock::time_point broad_start = Clock::now();
   for (const Body& body : bodies_) {
-    if (body.alive && !body.is_static) {
-      broad_phase_.set_box(body.proxy, world_bounds(*body.tree, body.pose, settings_.bounds_level));
+    if (body.alive && !body.is_static && !body.asleep) {
+      broad_phase_.set_box(body.proxy, broad_phase_box(body));
     }
   }
   broad_phase_.update();
@@ -117,8 +147,9 @@ const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) 
 
 // What is left of the time-critical budgets after `spent_microseconds` and the sphere tests
 // counted so far in this call.
-DescentSettings CollisionDetector::descent_budget(double spent_microseconds) const {
+DescentSettings CollisionDetector::descent_budget(double spent_microseconds, float margin) const {
   DescentSettings descent;
+  descent.margin = margin;
   descent.depth_a = settings_.tree_depth;
   descent.depth_b = settings_.tree_depth;
   // A budget that is on never reaches 0 (which would mean "off"): a pair met after the budget
@@ -142,9 +173,13 @@ void CollisionDetector::narrow_phase() {
     const std::uint32_t ib = body_of_proxy_[pair.b];
     const Body& a = bodies_[ia];
     const Body& b = bodies_[ib];
+    const bool a_moves = !a.is_static && !a.asleep;
+    const bool b_moves = !b.is_static && !b.asleep;
+    if (!a_moves && !b_moves) continue;
     node_pairs_.clear();
-    const DescentStats descent = descent_.descend(
-        *a.tree, a.pose, *b.tree, b.pose, descent_budget(1e3 * elapsed_ms(start)), node_pairs_);
+    const DescentStats descent =
+        descent_.descend(*a.tree, a.pose, *b.tree, b.pose,
+                         descent_budget(1e3 * elapsed_ms(start), pair_margin(a, b)), node_pairs_);
     stats_.sphere_tests += descent.sphere_tests;
     stats_.leaf_pairs += descent.leaf_pairs;
     stats_.pairs_cut_short += descent.cut_short_pairs;
@@ -156,7 +191,7 @@ void CollisionDetector::narrow_phase() {
   }
   if (settings_.ground_plane_height) {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      if (bodies_[i].alive && !bodies_[i].is_static) {
+      if (bodies_[i].alive && !bodies_[i].is_static && !bodies_[i].asleep) {
         ground_plane_leaves(i, *settings_.ground_plane_height);
       }
     }
@@ -164,11 +199,12 @@ void CollisionDetector::narrow_phase() {
 }
 
 // Descends one body's tree against the half-space y <= height: a subtree is skipped when its
-// bound is above the plane; each leaf sphere reaching the plane is kept.
+// bound is above the plane by more than the body's margin; each leaf sphere within it is kept.
 void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height) {
   const Body& body = bodies_[index];
   const SphereTree& tree = *body.tree;
   const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
+  const float reach_down = height + plane_margin(body);
   plane_stack_.assign(1, 0);
   while (!plane_stack_.empty()) {
     const std::uint32_t node = plane_stack_.back();
@@ -177,7 +213,7 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height) {
     const Vec3 center = body.pose.apply(sphere.center);
     ++stats_.sphere_tests;
     const bool leaf = tree.is_leaf(node) || node >= leaves_begin;
-    if (center.y() - (leaf ? sphere.radius : tree.subtree_radius(node)) > height) continue;
+    if (center.y() - (leaf ? sphere.radius : tree.subtree_radius(node)) > reach_down) continue;
     if (!leaf) {
       for (std::uint32_t c = tree.first_child(node) + tree.child_count(node);
            c-- > tree.first_child(node);) {

@@ -85,7 +85,7 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
     const bool leaf_a = a.acts_as_leaf(na);
     const bool leaf_b = b.acts_as_leaf(nb);
     if (leaf_a && leaf_b) {
-      const float reach = tree_a.sphere(na).radius + tree_b.sphere(nb).radius;
+      const float reach = tree_a.sphere(na).radius + tree_b.sphere(nb).radius + settings.margin;
       if (distance_squared <= reach * reach) {
         pairs.push_back({na, nb});
         ++stats.leaf_pairs;
@@ -94,7 +94,7 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
     }
     const float bound_a = leaf_a ? tree_a.sphere(na).radius : tree_a.subtree_radius(na);
     const float bound_b = leaf_b ? tree_b.sphere(nb).radius : tree_b.subtree_radius(nb);
-    const float reach = (bound_a + bound_b) * kBoundSlack;
+    const float reach = (bound_a + bound_b + settings.margin) * kBoundSlack;
     if (distance_squared <= reach * reach) stack_.push_back({na, nb});
   };
 
@@ -151,7 +151,7 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
   stats.cut_short_pairs = static_cast<std::uint32_t>(stack_.size());
   for (const NodePair& pair : stack_) {
     ++stats.sphere_tests;
-    if (spheres_overlap(world_a[pair.node_a], tree_a.sphere(pair.node_a).radius,
+    if (spheres_overlap(world_a[pair.node_a], tree_a.sphere(pair.node_a).radius + settings.margin,
                         world_b[pair.node_b], tree_b.sphere(pair.node_b).radius)) {
       pairs.push_back(pair);
       ++stats.internal_pairs;

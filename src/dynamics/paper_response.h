@@ -6,13 +6,10 @@
 #include <span>
 
 #include "sphys/contact.h"
+#include "sphys/material.h"
 #include "sphys/rigid_body.h"
 
 namespace sphys {
-
-// The restitution of a pair of materials: the larger one (as Box2D mixes it), so that a bouncy
-// body stays bouncy on any floor. The paper uses one ε for every pair.
-[[nodiscard]] inline float mix_restitution(float a, float b) { return a > b ? a : b; }
 
 // For each contact in order, when the contact points approach along the normal (relative normal
 // velocity v_c < 0), applies J = j n with

@@ -67,4 +67,10 @@ void integrate_position(RigidBody& body, float dt) {
   body.angular_velocity = angular_velocity_of(body, body.pose.rotation, momentum);
 }
 
+void correct_position(RigidBody& body, const Vec3& linear, const Vec3& angular, float dt) {
+  if (body.is_static) return;
+  body.pose.translation += linear * dt;
+  if (!angular.isZero(0.0f)) body.pose.rotation = turned(body.pose.rotation, angular, dt);
+}
+
 }  // namespace sphys

@@ -6,8 +6,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "collision/contact_reduction.h"
+#include "dynamics/contact_solver.h"
 #include "dynamics/paper_response.h"
 #include "sphys/error.h"
+#include "world/sleep_tracker.h"
 
 namespace sphys {
 namespace {
@@ -22,6 +25,73 @@ double elapsed_ms(Clock::time_point since) {
 constexpr float kInertiaSymmetryTolerance = 1e-4f;
 // How far a given rotation may be from unit length before it is refused rather than normalised.
 constexpr float kUnitQuaternionTolerance = 1e-3f;
+// A body slower than this many times the sleep speed should be resting: its speed is jitter.
+constexpr float kSettlingFactor = 10.0f;
+
+void check_material(float restitution, float friction) {
+  if (!(restitution >= 0.0f && restitution <= 1.0f)) {
+    throw Error("restitution must be between 0 and 1, got " + std::to_string(restitution));
+  }
+  if (!(friction >= 0.0f) || !std::isfinite(friction)) {
+    throw Error("friction must be finite and not negative, got " + std::to_string(friction));
+  }
+}
+
+void check_settings(const WorldSettings& settings) {
+  if (!settings.gravity.allFinite()) throw Error("gravity must be finite");
+  if (settings.paper_passes < 1) throw Error("paper_passes must be at least 1");
+  if (!(settings.ground_restitution >= 0.0f && settings.ground_restitution <= 1.0f)) {
+    throw Error("the ground's restitution must be between 0 and 1");
+  }
+  if (!(settings.ground_friction >= 0.0f) || !std::isfinite(settings.ground_friction)) {
+    throw Error("the ground's friction must be finite and not negative");
+  }
+  if (settings.substeps < 1 || settings.substeps > 64) {
+    throw Error("substeps must be between 1 and 64, got " + std::to_string(settings.substeps));
+  }
+  const SolverSettings& solver = settings.solver;
+  if (solver.velocity_iterations < 1) throw Error("velocity_iterations must be at least 1");
+  if (solver.manifold_points < 1 || solver.manifold_points > kMaxManifoldPoints) {
+    throw Error("manifold_points must be between 1 and " + std::to_string(kMaxManifoldPoints) +
+                ", got " + std::to_string(solver.manifold_points));
+  }
+  const auto non_negative = [](float value, const char* name) {
+    if (!(value >= 0.0f) || !std::isfinite(value)) {
+      std::string message = name;
+      message += " must be finite and not negative, got ";
+      message += std::to_string(value);
+      throw Error(message);
+    }
+  };
+  non_negative(solver.restitution_threshold, "restitution_threshold");
+  non_negative(solver.linear_slop, "linear_slop");
+  non_negative(solver.max_correction_speed, "max_correction_speed");
+  non_negative(solver.contact_margin, "contact_margin");
+  non_negative(settings.sleep.speed, "the sleep speed");
+  non_negative(settings.sleep.time, "the sleep time");
+  if (!(solver.position_correction >= 0.0f && solver.position_correction <= 1.0f)) {
+    throw Error("position_correction must be between 0 and 1");
+  }
+}
+
+// The detector's settings for a response mode: the paper makes contacts from overlaps only.
+CollisionSettings collision_settings(const WorldSettings& settings) {
+  CollisionSettings collision = settings.collision;
+  const bool plausible = settings.response == ResponseMode::kPlausible;
+  collision.contact_margin = plausible ? settings.solver.contact_margin : 0.0f;
+  collision.speculative = plausible && settings.solver.speculative_contacts;
+  return collision;
+}
+
+// The farthest point of a tree from its body's origin (the centre of mass). unit: m
+float tree_extent(const SphereTree& tree) {
+  return tree.root().center.norm() + tree.subtree_radius(0);
+}
+
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t{a} << 32) | b;
+}
 
 void check_body(const BodyDesc& desc) {
   if (!desc.tree || desc.tree->empty()) throw Error("a body needs a non-empty sphere-tree");
@@ -33,12 +103,7 @@ void check_body(const BodyDesc& desc) {
   if (!desc.linear_velocity.allFinite() || !desc.angular_velocity.allFinite()) {
     throw Error("a body's velocities must be finite");
   }
-  if (!(desc.restitution >= 0.0f && desc.restitution <= 1.0f)) {
-    throw Error("restitution must be between 0 and 1, got " + std::to_string(desc.restitution));
-  }
-  if (!(desc.friction >= 0.0f) || !std::isfinite(desc.friction)) {
-    throw Error("friction must be finite and not negative, got " + std::to_string(desc.friction));
-  }
+  check_material(desc.restitution, desc.friction);
   if (desc.is_static) return;
   if (!(desc.mass > 0.0f) || !std::isfinite(desc.mass)) {
     throw Error("a moving body's mass must be positive and finite, got " +
@@ -57,13 +122,18 @@ void check_body(const BodyDesc& desc) {
 
 }  // namespace
 
-World::World(const WorldSettings& settings) : settings_(settings), detector_(settings.collision) {
-  if (!settings.gravity.allFinite()) throw Error("gravity must be finite");
-  if (settings.paper_passes < 1) throw Error("paper_passes must be at least 1");
-  if (!(settings.ground_restitution >= 0.0f && settings.ground_restitution <= 1.0f)) {
-    throw Error("the ground's restitution must be between 0 and 1");
-  }
+World::World(const WorldSettings& settings)
+    : settings_(settings),
+      detector_(collision_settings(settings)),
+      reducer_(std::make_unique<ContactReducer>()),
+      solver_(std::make_unique<ContactSolver>()),
+      sleep_(std::make_unique<SleepTracker>()) {
+  check_settings(settings);
 }
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
 
 BodyId World::add_body(const BodyDesc& desc) {
   check_body(desc);
@@ -73,6 +143,8 @@ BodyId World::add_body(const BodyDesc& desc) {
   if (bodies_.size() <= id.index) {
     bodies_.resize(id.index + 1);
     alive_.resize(id.index + 1, 0);
+    extent_.resize(id.index + 1, 0.0f);
+    sleep_->resize(id.index + 1);
   }
   RigidBody& body = bodies_[id.index];
   body = RigidBody{};
@@ -89,14 +161,27 @@ BodyId World::add_body(const BodyDesc& desc) {
     body.inverse_inertia_body = body.inertia_body.inverse();
   }
   alive_[id.index] = 1;
+  extent_[id.index] = tree_extent(*desc.tree);
   return id;
 }
 
+void World::wake(std::uint32_t index) {
+  sleep_changes_.clear();
+  sleep_->wake(index, sleep_changes_);
+  for (const std::uint32_t body : sleep_changes_) detector_.set_asleep({body}, false);
+}
+
 void World::remove_body(BodyId id) {
+  wake(id.index);  // the bodies it slept with lose a support
   detector_.remove_body(id);
   bodies_[id.index] = RigidBody{};
   bodies_[id.index].is_static = true;  // an empty slot neither moves nor counts
   alive_[id.index] = 0;
+  std::erase_if(pair_materials_, [&](const auto& entry) {
+    return static_cast<std::uint32_t>(entry.first >> 32) == id.index ||
+           static_cast<std::uint32_t>(entry.first) == id.index;
+  });
+  solver_->forget();
 }
 
 void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
@@ -107,6 +192,31 @@ void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
   if (body.is_static) return;
   body.linear_velocity = linear;
   body.angular_velocity = angular;
+  wake(id.index);
+}
+
+void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
+  if (!impulse.allFinite() || !point.allFinite()) {
+    throw Error("an impulse and its point must be finite");
+  }
+  RigidBody& body = bodies_[id.index];
+  if (body.is_static) return;
+  body.linear_velocity += body.inverse_mass * impulse;
+  body.angular_velocity +=
+      body.inverse_inertia_world() * (point - body.pose.translation).cross(impulse);
+  wake(id.index);
+}
+
+void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
+  check_material(material.restitution, material.friction);
+  pair_materials_[pair_key(a.index, b.index)] = material;
+}
+
+bool World::asleep(BodyId id) const { return sleep_->asleep(id.index); }
+
+float World::fastest_point_speed(std::uint32_t index) const {
+  const RigidBody& body = bodies_[index];
+  return body.linear_velocity.norm() + body.angular_velocity.norm() * extent_[index];
 }
 
 const StepStats& World::step(float dt) {
@@ -116,63 +226,184 @@ const StepStats& World::step(float dt) {
   if (stopped_) return stats_;
   const Clock::time_point step_start = Clock::now();
   StepStats stats;
+  const float substep_dt = dt / static_cast<float>(settings_.substeps);
+  for (std::uint32_t i = 0; i < settings_.substeps && !stopped_; ++i) substep(substep_dt, stats);
+  measure_rest(stats);
+  stats.step_ms = elapsed_ms(step_start);
+  stats_ = stats;
+  return stats_;
+}
+
+// Figures of one substep are added to the step's: times and counts summed, extremes kept.
+void World::substep(float dt, StepStats& stats) {
+  const bool plausible = settings_.response == ResponseMode::kPlausible;
+  moving_.assign(bodies_.size(), 0);
+  dynamic_.assign(bodies_.size(), 0);
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    dynamic_[i] = alive_[i] != 0 && !bodies_[i].is_static ? 1 : 0;
+    moving_[i] = dynamic_[i] != 0 && !sleep_->asleep(i) ? 1 : 0;
+  }
 
   const Clock::time_point velocities_start = Clock::now();
-  for (RigidBody& body : bodies_) integrate_velocity(body, settings_.gravity, dt);
-  stats.integration_ms = elapsed_ms(velocities_start);
-
-  const CollisionStats& detection = detector_.detect(contacts_);
-  stats.broad_phase_ms = detection.broad_phase_ms;
-  stats.narrow_phase_ms = detection.narrow_phase_ms;
-  stats.contacts_ms = detection.contacts_ms;
-  stats.bodies = detection.bodies;
-  stats.candidate_pairs = detection.candidate_pairs;
-  stats.sphere_tests = detection.sphere_tests;
-  stats.leaf_pairs = detection.leaf_pairs;
-  stats.contacts = detection.contacts;
-  stats.pairs_cut_short = detection.pairs_cut_short;
-  stats.coincident_centres = detection.coincident_centres;
-
-  const Clock::time_point response_start = Clock::now();
-  switch (settings_.response) {
-    case ResponseMode::kPaper: {
-      const PaperResponseStats response = apply_paper_response(
-          bodies_, contacts_, settings_.ground_restitution, settings_.paper_passes);
-      stats.impulses = response.impulses;
-      stats.response_passes = response.passes;
-      break;
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (moving_[i] == 0) continue;
+    RigidBody& body = bodies_[i];
+    integrate_velocity(body, settings_.gravity, dt);
+    if (plausible) {
+      detector_.set_motion({i}, body.linear_velocity * dt,
+                           body.angular_velocity.norm() * dt * extent_[i]);
     }
   }
-  stats.response_ms = elapsed_ms(response_start);
+  stats.integration_ms += elapsed_ms(velocities_start);
+
+  const CollisionStats& detection = detector_.detect(leaf_contacts_);
+  stats.broad_phase_ms += detection.broad_phase_ms;
+  stats.narrow_phase_ms += detection.narrow_phase_ms;
+  stats.contacts_ms += detection.contacts_ms;
+  stats.bodies = detection.bodies;
+  stats.candidate_pairs += detection.candidate_pairs;
+  stats.sphere_tests += detection.sphere_tests;
+  stats.leaf_pairs += detection.leaf_pairs;
+  stats.pairs_cut_short += detection.pairs_cut_short;
+  stats.coincident_centres += detection.coincident_centres;
+  double depth_sum = stats.mean_penetration * stats.penetrating_contacts;
+  for (const Contact& contact : leaf_contacts_) {
+    if (contact.depth <= 0.0f) continue;
+    stats.deepest_penetration = std::max(stats.deepest_penetration, contact.depth);
+    depth_sum += contact.depth;
+    ++stats.penetrating_contacts;
+  }
+  stats.mean_penetration =
+      stats.penetrating_contacts > 0 ? depth_sum / stats.penetrating_contacts : 0.0;
+
+  const Clock::time_point response_start = Clock::now();
+  if (plausible) {
+    respond(dt, stats);
+  } else {
+    contacts_.swap(leaf_contacts_);
+    const PaperResponseStats response = apply_paper_response(
+        bodies_, contacts_, settings_.ground_restitution, settings_.paper_passes);
+    stats.impulses += response.impulses;
+    stats.response_passes += response.passes;
+  }
+  stats.contacts += static_cast<std::uint32_t>(contacts_.size());
+  stats.response_ms += elapsed_ms(response_start);
 
   const Clock::time_point positions_start = Clock::now();
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    RigidBody& body = bodies_[i];
-    if (body.is_static) continue;
-    integrate_position(body, dt);
-    detector_.set_pose({i}, body.pose);
-  }
+  integrate_positions(dt, plausible);
   stats.integration_ms += elapsed_ms(positions_start);
 
-  for (const Contact& contact : contacts_) {
-    stats.deepest_penetration = std::max(stats.deepest_penetration, contact.depth);
-  }
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (dynamic_[i] == 0) continue;
     const RigidBody& body = bodies_[i];
-    if (body.is_static) continue;
     // A quaternion with huge coefficients normalises to zero (its norm overflows), finite but no
     // rotation: that is the same failure.
     if (!body.finite() ||
         !(std::abs(body.pose.rotation.squaredNorm() - 1.0f) < kUnitQuaternionTolerance)) {
       stats.non_finite_body = i;
       stopped_ = true;
-      break;
+      return;
     }
-    stats.kinetic_energy += body.kinetic_energy();
   }
-  stats.step_ms = elapsed_ms(step_start);
-  stats_ = stats;
-  return stats_;
+  if (plausible) {
+    speeds_.assign(bodies_.size(), 0.0f);
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+      if (moving_[i] != 0) speeds_[i] = fastest_point_speed(i);
+    }
+    sleep_changes_.clear();
+    stats.islands = sleep_->update(speeds_, dynamic_, dt, settings_.sleep, sleep_changes_);
+    for (const std::uint32_t body : sleep_changes_) {
+      bodies_[body].linear_velocity.setZero();
+      bodies_[body].angular_velocity.setZero();
+      detector_.set_asleep({body}, true);
+    }
+  }
+}
+
+// Plausible mode: contact reduction, islands and waking, then the sequential-impulse solver.
+void World::respond(float dt, StepStats& stats) {
+  const SolverSettings& solver = settings_.solver;
+  if (solver.contacts == ContactSet::kReduced) {
+    contacts_.clear();
+    reducer_->reduce(leaf_contacts_, solver.manifold_points, contacts_);
+  } else {
+    contacts_.swap(leaf_contacts_);
+  }
+
+  sleep_->build_islands(contacts_, dynamic_);
+  sleep_changes_.clear();
+  sleep_->wake_disturbed(settings_.sleep, sleep_changes_);
+  for (const std::uint32_t body : sleep_changes_) {
+    detector_.set_asleep({body}, false);
+    moving_[body] = 1;
+  }
+
+  materials_.resize(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& contact = contacts_[k];
+    const RigidBody& b = bodies_[contact.body_b];
+    if (contact.body_a == kGroundPlaneBody) {
+      materials_[k] = {mix_friction(settings_.ground_friction, b.friction),
+                       mix_restitution(settings_.ground_restitution, b.restitution)};
+      continue;
+    }
+    const RigidBody& a = bodies_[contact.body_a];
+    const auto pair = pair_materials_.empty()
+                          ? pair_materials_.end()
+                          : pair_materials_.find(pair_key(contact.body_a, contact.body_b));
+    materials_[k] = pair != pair_materials_.end()
+                        ? pair->second
+                        : PairMaterial{mix_friction(a.friction, b.friction),
+                                       mix_restitution(a.restitution, b.restitution)};
+  }
+  const ContactSolverStats solved =
+      solver_->solve(bodies_, moving_, contacts_, materials_, solver, settings_.gravity, dt);
+  stats.impulses += solved.constraints;
+  stats.warm_started += solved.warm_started;
+  stats.bounces += solved.bounces;
+  stats.response_passes += solver.velocity_iterations;
+}
+
+void World::integrate_positions(float dt, bool plausible) {
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (moving_[i] == 0) continue;
+    RigidBody& body = bodies_[i];
+    integrate_position(body, dt);
+    if (plausible) {
+      correct_position(body, solver_->position_linear()[i], solver_->position_angular()[i], dt);
+    }
+    detector_.set_pose({i}, body.pose);
+  }
+}
+
+// Bodies at rest, how fast the resting ones still move, and the kinetic energy, at the end of
+// the step.
+void World::measure_rest(StepStats& stats) {
+  touching_.assign(bodies_.size(), 0);
+  for (const Contact& contact : contacts_) {
+    if (contact.body_a != kGroundPlaneBody) touching_[contact.body_a] = 1;
+    touching_[contact.body_b] = 1;
+  }
+  double jitter_sum = 0.0;
+  std::uint32_t resting = 0;
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (alive_[i] == 0 || bodies_[i].is_static) continue;
+    stats.kinetic_energy += bodies_[i].kinetic_energy();
+    ++stats.moving_bodies;
+    if (sleep_->asleep(i)) {
+      ++stats.bodies_asleep;
+      ++stats.bodies_at_rest;
+      ++resting;
+      continue;
+    }
+    const float speed = fastest_point_speed(i);
+    if (speed < settings_.sleep.speed) ++stats.bodies_at_rest;
+    if (touching_[i] != 0 && speed < kSettlingFactor * settings_.sleep.speed) {
+      jitter_sum += speed;
+      ++resting;
+    }
+  }
+  stats.jitter = resting > 0 ? jitter_sum / resting : 0.0;
 }
 
 }  // namespace sphys

@@ -47,8 +47,15 @@ BodyDesc ball_of_mass(float radius, float mass, const Vec3& position) {
   return desc;
 }
 
-WorldSettings zero_gravity() {
+// These checks are of the paper's response (eq. 4); plausible mode has its own tests.
+WorldSettings paper_settings() {
   WorldSettings settings;
+  settings.response = ResponseMode::kPaper;
+  return settings;
+}
+
+WorldSettings zero_gravity() {
+  WorldSettings settings = paper_settings();
   settings.gravity = Vec3::Zero();
   return settings;
 }
@@ -65,7 +72,7 @@ TEST(WorldPhysics, FreeFallFollowsTheSemiImplicitEulerClosedForm) {
   // v_n = −g dt n and y_n = y0 − g dt² n(n + 1)/2: each step adds g dt to the speed, then moves by
   // the new speed. After t = n dt the body has fallen g t²/2 + g dt t/2: the integrator's error,
   // 0.0818 m after 1 s at 60 Hz.
-  World world;  // gravity −9.81 m/s² along y, no ground
+  World world(paper_settings());  // gravity −9.81 m/s² along y, no ground
   const float y0 = 10.0f;
   const BodyId ball = world.add_body(solid_ball(0.5f, 1000.0f, Vec3(0.0f, y0, 0.0f)));
   const float dt = 1.0f / 60.0f;
@@ -106,7 +113,7 @@ struct Rebound {
 };
 
 Rebound drop_ball(float restitution, float ground_restitution, float drop, float dt) {
-  WorldSettings settings;
+  WorldSettings settings = paper_settings();
   settings.collision.ground_plane_height = 0.0f;
   settings.ground_restitution = ground_restitution;
   World world(settings);
@@ -447,7 +454,7 @@ TEST(WorldPhysics, SpinningAsymmetricBoxKeepsItsAngularMomentum) {
 TEST(World, AddBodyRejectsBadInput) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
-  World world;
+  World world(paper_settings());
   const BodyDesc good = solid_ball(0.5f, 1000.0f, Vec3(0.0f, 1.0f, 0.0f));
   const auto rejects = [&](const BodyDesc& desc) {
     EXPECT_THROW((void)world.add_body(desc), Error);
@@ -523,7 +530,7 @@ TEST(World, AddBodyRejectsBadInput) {
 }
 
 TEST(World, SettingsAreChecked) {
-  WorldSettings settings;
+  WorldSettings settings = paper_settings();
   settings.gravity.y() = std::numeric_limits<float>::quiet_NaN();
   EXPECT_THROW(World{settings}, Error);
   settings = WorldSettings{};
@@ -535,7 +542,7 @@ TEST(World, SettingsAreChecked) {
 }
 
 TEST(World, StepRejectsATimeStepThatIsNotPositiveAndFinite) {
-  World world;
+  World world(paper_settings());
   const BodyId ball = world.add_body(solid_ball(0.5f, 1000.0f, Vec3(0.0f, 1.0f, 0.0f)));
   for (const float dt : {0.0f, -0.01f, std::numeric_limits<float>::quiet_NaN(),
                          std::numeric_limits<float>::infinity()}) {
@@ -550,7 +557,7 @@ TEST(World, ContactsAreFoundAtThePosesTheStepStartsFrom) {
   // The step detects at the current poses and moves afterwards: a ball 1 mm above the ground,
   // falling at 1 m/s, gets no impulse in the step that carries it 16 mm into the ground, and
   // bounces in the next one.
-  WorldSettings settings;
+  WorldSettings settings = paper_settings();
   settings.gravity = Vec3::Zero();
   settings.collision.ground_plane_height = 0.0f;
   settings.ground_restitution = 1.0f;
@@ -592,7 +599,7 @@ TEST(World, MorePassesCarryAnImpulseThroughARow) {
 }
 
 TEST(World, StaticBodyIsUnmovedByGravityAndImpacts) {
-  WorldSettings settings;
+  WorldSettings settings = paper_settings();
   settings.collision.ground_plane_height = 0.0f;
   World world(settings);
   BodyDesc slab = solid_ball(1.0f, 1000.0f, Vec3(0.0f, 0.5f, 0.0f));  // sunk into the ground
@@ -616,7 +623,7 @@ TEST(World, StaticBodyIsUnmovedByGravityAndImpacts) {
 TEST(World, OverflowingGravityStopsTheWorldAndNamesTheBody) {
   // g dt = 1e38 · 100 overflows float: the speed and then the position become infinite in the
   // first step. Body 0 is static, so the first non-finite body is 1.
-  WorldSettings settings;
+  WorldSettings settings = paper_settings();
   settings.gravity = Vec3(0.0f, -1e38f, 0.0f);
   World world(settings);
   BodyDesc fixed = solid_ball(0.5f, 1000.0f, Vec3(5.0f, 0.0f, 0.0f));

@@ -1,0 +1,224 @@
+#include "collision/contact_reduction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "sphys/error.h"
+
+namespace sphys {
+namespace {
+
+// Added to every contact's weight in the depth-weighted means, so that touching and speculative
+// contacts still count, and a run with no overlap at all gets the plain mean. A tenth of a
+// millimetre is well below the overlaps the solver leaves, so overlapping contacts dominate.
+// unit: m
+constexpr float kDepthWeightFloor = 1e-4f;
+
+// A weighted sum of unit normals shorter than this fraction of its total weight comes from normals
+// that (nearly) cancel: its direction is rounding noise, so a fallback normal is used instead.
+// unit: dimensionless
+constexpr float kCancelledMeanFraction = 1e-4f;
+
+constexpr std::uint32_t kNoCandidate = std::numeric_limits<std::uint32_t>::max();
+
+float normal_weight(float depth) { return std::max(depth, 0.0f) + kDepthWeightFloor; }
+
+class WeightedNormalSum {
+ public:
+  void add(const Contact& contact) {
+    const float weight = normal_weight(contact.depth);
+    sum_ += weight * contact.normal;
+    total_weight_ += weight;
+  }
+
+  [[nodiscard]] Vec3 mean_or(const Vec3& fallback) const {
+    const float length = sum_.norm();
+    if (!(length > kCancelledMeanFraction * total_weight_)) return fallback;
+    return sum_ / length;
+  }
+
+ private:
+  Vec3 sum_ = Vec3::Zero();
+  float total_weight_ = 0.0f;
+};
+
+bool same_body_pair(const Contact& a, const Contact& b) {
+  return a.body_a == b.body_a && a.body_b == b.body_b;
+}
+
+std::size_t end_of_run(std::span<const Contact> contacts, std::size_t begin) {
+  std::size_t end = begin + 1;
+  while (end < contacts.size() && same_body_pair(contacts[begin], contacts[end])) ++end;
+  return end;
+}
+
+std::uint32_t deepest_index(std::span<const Contact> run) {
+  std::uint32_t deepest = 0;
+  for (std::uint32_t i = 1; i < run.size(); ++i) {
+    if (run[i].depth > run[deepest].depth) deepest = i;
+  }
+  return deepest;
+}
+
+// The plane across the run's normal is where the manifold must be wide to stop the bodies tipping;
+// spread along the normal says nothing about that.
+Vec3 run_plane_normal(std::span<const Contact> run) {
+  WeightedNormalSum sum;
+  for (const Contact& contact : run) sum.add(contact);
+  return sum.mean_or(run[deepest_index(run)].normal);
+}
+
+float plane_distance_squared(const Vec3& p, const Vec3& q, const Vec3& normal) {
+  const Vec3 offset = q - p;
+  return (offset - normal.dot(offset) * normal).squaredNorm();
+}
+
+// Twice the area of the triangle's projection onto the plane across `normal`, positive when it
+// winds counter-clockwise seen from the side `normal` points to. The triple product needs no
+// basis of the plane.
+float twice_signed_area(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& normal) {
+  return normal.dot((b - a).cross(c - a));
+}
+
+// The area by which `p` grows the triangle abc's convex hull (times two): the triangles that p
+// makes with the edges it lies outside of are exactly what the hull gains (p inside: nothing).
+// This is the quad's hull area less the triangle's, so the 4th point maximises the quad's area.
+float twice_area_added(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                       const Vec3& normal) {
+  const float winding = twice_signed_area(a, b, c, normal) >= 0.0f ? 1.0f : -1.0f;
+  const float outside_ab = -winding * twice_signed_area(a, b, p, normal);
+  const float outside_bc = -winding * twice_signed_area(b, c, p, normal);
+  const float outside_ca = -winding * twice_signed_area(c, a, p, normal);
+  return std::max(outside_ab, 0.0f) + std::max(outside_bc, 0.0f) + std::max(outside_ca, 0.0f);
+}
+
+float distance_to_chosen_squared(const Vec3& p, std::span<const Contact> run,
+                                 std::span<const std::uint32_t> chosen, const Vec3& normal) {
+  float nearest = std::numeric_limits<float>::infinity();
+  for (const std::uint32_t c : chosen) {
+    nearest = std::min(nearest, plane_distance_squared(run[c].point, p, normal));
+  }
+  return nearest;
+}
+
+// The candidate with the largest positive `score(point, distance_squared_to_chosen)` among those
+// apart from every chosen point, so that no point is chosen twice; ties go to the earlier one.
+template <typename Score>
+std::uint32_t best_candidate(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
+                             const Vec3& normal, Score score) {
+  std::uint32_t best = kNoCandidate;
+  float best_score = 0.0f;
+  for (std::uint32_t i = 0; i < run.size(); ++i) {
+    const float apart = distance_to_chosen_squared(run[i].point, run, chosen, normal);
+    if (!(apart > 0.0f)) continue;
+    const float candidate_score = score(run[i].point, apart);
+    if (candidate_score > best_score) {
+      best = i;
+      best_score = candidate_score;
+    }
+  }
+  return best;
+}
+
+std::uint32_t next_point(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
+                         const Vec3& normal) {
+  std::uint32_t next = kNoCandidate;
+  if (chosen.size() == 2) {
+    const Vec3& a = run[chosen[0]].point;
+    const Vec3& b = run[chosen[1]].point;
+    next = best_candidate(run, chosen, normal, [&](const Vec3& p, float) {
+      return std::abs(twice_signed_area(a, b, p, normal));
+    });
+  } else if (chosen.size() == 3) {
+    const Vec3& a = run[chosen[0]].point;
+    const Vec3& b = run[chosen[1]].point;
+    const Vec3& c = run[chosen[2]].point;
+    next = best_candidate(run, chosen, normal, [&](const Vec3& p, float) {
+      return twice_area_added(p, a, b, c, normal);
+    });
+  }
+  // Collinear contacts (an edge resting on a face) add no area: spreading them along their line
+  // still gives the solver the widest support there is.
+  if (next == kNoCandidate) {
+    next = best_candidate(run, chosen, normal, [](const Vec3&, float apart) { return apart; });
+  }
+  return next;
+}
+
+void choose_points(std::span<const Contact> run, std::uint32_t max_points, const Vec3& normal,
+                   std::vector<std::uint32_t>& chosen) {
+  chosen.clear();
+  chosen.push_back(deepest_index(run));
+  while (chosen.size() < max_points) {
+    const std::uint32_t next = next_point(run, chosen, normal);
+    if (next == kNoCandidate) return;  // every remaining contact coincides with a chosen one
+    chosen.push_back(next);
+  }
+}
+
+std::uint32_t nearest_chosen_slot(const Vec3& p, std::span<const Contact> run,
+                                  std::span<const std::uint32_t> chosen, const Vec3& normal) {
+  std::uint32_t nearest = 0;
+  float nearest_distance = std::numeric_limits<float>::infinity();
+  for (std::uint32_t slot = 0; slot < chosen.size(); ++slot) {
+    const float distance = plane_distance_squared(run[chosen[slot]].point, p, normal);
+    if (distance < nearest_distance) {
+      nearest = slot;
+      nearest_distance = distance;
+    }
+  }
+  return nearest;
+}
+
+void assign_clusters(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
+                     const Vec3& normal, std::vector<std::uint32_t>& cluster) {
+  cluster.resize(run.size());
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    cluster[i] = nearest_chosen_slot(run[i].point, run, chosen, normal);
+  }
+}
+
+// A chosen contact stands for its whole cluster: the cluster's deepest overlap must still be
+// resolved, and its normals together describe the surface there better than any single one.
+Contact cluster_contact(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
+                        std::span<const std::uint32_t> cluster, std::uint32_t slot) {
+  Contact merged = run[chosen[slot]];
+  WeightedNormalSum normals;
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    if (cluster[i] != slot) continue;
+    normals.add(run[i]);
+    merged.depth = std::max(merged.depth, run[i].depth);
+  }
+  merged.normal = normals.mean_or(merged.normal);
+  return merged;
+}
+
+}  // namespace
+
+void ContactReducer::reduce(std::span<const Contact> contacts, std::uint32_t max_points,
+                            std::vector<Contact>& reduced) {
+  if (max_points < 1 || max_points > kMaxManifoldPoints) {
+    throw Error("contact reduction: max_points must be in 1.." +
+                std::to_string(kMaxManifoldPoints) + ", got " + std::to_string(max_points));
+  }
+  chosen_.reserve(kMaxManifoldPoints);
+  for (std::size_t begin = 0; begin < contacts.size();) {
+    const std::size_t end = end_of_run(contacts, begin);
+    const std::span<const Contact> run = contacts.subspan(begin, end - begin);
+    begin = end;
+    if (run.size() <= max_points) {
+      reduced.insert(reduced.end(), run.begin(), run.end());
+      continue;
+    }
+    const Vec3 normal = run_plane_normal(run);
+    choose_points(run, max_points, normal, chosen_);
+    assign_clusters(run, chosen_, normal, cluster_);
+    for (std::uint32_t slot = 0; slot < chosen_.size(); ++slot) {
+      reduced.push_back(cluster_contact(run, chosen_, cluster_, slot));
+    }
+  }
+}
+
+}  // namespace sphys

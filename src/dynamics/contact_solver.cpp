@@ -1,0 +1,252 @@
+#include "dynamics/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sphys {
+namespace {
+
+std::uint64_t key_of(std::uint32_t first, std::uint32_t second) {
+  return (std::uint64_t{first} << 32) | second;
+}
+
+// A fixed tangent basis of a normal, so that the friction impulses kept in world space project
+// back onto the same directions from step to step.
+void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  if (std::abs(n.x()) >= 0.57735f) {
+    t1 = Vec3(n.y(), -n.x(), 0.0f).normalized();
+  } else {
+    t1 = Vec3(0.0f, n.z(), -n.y()).normalized();
+  }
+  t2 = n.cross(t1);
+}
+
+// A gap this small counts as touching, so that a body stopped at the surface by a gap contact
+// bounces in the next step despite rounding. As a fraction of the linear slop.
+constexpr float kTouchingFraction = 0.25f;
+
+}  // namespace
+
+// Passes alternate forwards and backwards (symmetric Gauss–Seidel): one direction only leaves a
+// bias towards the contacts met last, which tilts a stack steadily to one side.
+std::size_t ContactSolver::sweep_index(std::uint32_t iteration, std::size_t k) const {
+  return iteration % 2 == 0 ? k : constraints_.size() - 1 - k;
+}
+
+Vec3 ContactSolver::relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
+                                      const std::vector<Vec3>& angular) {
+  return linear[c.b] + angular[c.b].cross(c.rb) - linear[c.a] - angular[c.a].cross(c.ra);
+}
+
+void ContactSolver::apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
+                          std::vector<Vec3>& angular) const {
+  linear[c.a] -= inverse_mass_[c.a] * impulse;
+  angular[c.a] -= inverse_inertia_[c.a] * c.ra.cross(impulse);
+  linear[c.b] += inverse_mass_[c.b] * impulse;
+  angular[c.b] += inverse_inertia_[c.b] * c.rb.cross(impulse);
+}
+
+void ContactSolver::load_bodies(std::span<const RigidBody> bodies,
+                                std::span<const std::uint8_t> moving) {
+  const std::size_t slots = bodies.size() + 1;  // the last one is the ground plane
+  linear_.assign(slots, Vec3::Zero());
+  angular_.assign(slots, Vec3::Zero());
+  position_.assign(slots, Vec3::Zero());
+  inverse_mass_.assign(slots, 0.0f);
+  inverse_inertia_.assign(slots, Mat3::Zero());
+  pseudo_linear_.assign(slots, Vec3::Zero());
+  pseudo_angular_.assign(slots, Vec3::Zero());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const RigidBody& body = bodies[i];
+    position_[i] = body.pose.translation;
+    if (body.is_static || moving[i] == 0) continue;
+    linear_[i] = body.linear_velocity;
+    angular_[i] = body.angular_velocity;
+    inverse_mass_[i] = body.inverse_mass;
+    inverse_inertia_[i] = body.inverse_inertia_world();
+  }
+}
+
+void ContactSolver::prepare(std::span<const Contact> contacts,
+                            std::span<const PairMaterial> materials, const SolverSettings& settings,
+                            float dt, ContactSolverStats& stats) {
+  const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
+  const float touching = -kTouchingFraction * settings.linear_slop;
+  constraints_.clear();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& contact = contacts[k];
+    Constraint c;
+    c.a = contact.body_a == kGroundPlaneBody ? ground : contact.body_a;
+    c.b = contact.body_b;
+    const float inverse_mass = inverse_mass_[c.a] + inverse_mass_[c.b];
+    if (!(inverse_mass > 0.0f)) continue;  // neither body moves
+    c.ra = contact.point - position_[c.a];
+    c.rb = contact.point - position_[c.b];
+    c.normal = contact.normal;
+    tangent_basis(c.normal, c.tangent1, c.tangent2);
+    const auto effective_mass = [&](const Vec3& d) {
+      const Vec3 ca = c.ra.cross(d);
+      const Vec3 cb = c.rb.cross(d);
+      const float k_inverse =
+          inverse_mass + ca.dot(inverse_inertia_[c.a] * ca) + cb.dot(inverse_inertia_[c.b] * cb);
+      return 1.0f / k_inverse;
+    };
+    c.normal_mass = effective_mass(c.normal);
+    c.tangent1_mass = effective_mass(c.tangent1);
+    c.tangent2_mass = effective_mass(c.tangent2);
+    c.friction = materials[k].friction;
+    c.restitution = materials[k].restitution;
+    c.depth = contact.depth;
+    // A gap may close within the step and no more; a touching contact may not approach.
+    c.target_speed = contact.depth < 0.0f ? contact.depth / dt : 0.0f;
+    c.approach = c.normal.dot(relative_velocity(c, linear_, angular_));
+    c.bodies_key = key_of(contact.body_a, contact.body_b);
+    c.leaves_key = key_of(contact.leaf_a, contact.leaf_b);
+
+    if (settings.warm_starting || c.depth >= touching) {
+      const Kept probe{c.bodies_key, c.leaves_key};
+      auto it = std::lower_bound(previous_.begin(), previous_.end(), probe);
+      if (settings.warm_starting && it != previous_.end() && it->bodies == c.bodies_key &&
+          it->leaves == c.leaves_key) {
+        c.normal_impulse = it->normal_impulse;
+        c.tangent1_impulse = it->friction_impulse.dot(c.tangent1);
+        c.tangent2_impulse = it->friction_impulse.dot(c.tangent2);
+        ++stats.warm_started;
+      }
+      if (c.depth >= touching) {
+        // Bodies a gap contact of this pair stopped short in the last step meet now: they bounce
+        // with the speed they came at, not the speed they were slowed to.
+        const Kept pair_start{c.bodies_key, 0};
+        for (auto p = std::lower_bound(previous_.begin(), previous_.end(), pair_start);
+             p != previous_.end() && p->bodies == c.bodies_key; ++p) {
+          c.approach = std::min(c.approach, p->stopped_approach);
+        }
+      }
+    }
+    constraints_.push_back(c);
+  }
+  stats.constraints = static_cast<std::uint32_t>(constraints_.size());
+}
+
+void ContactSolver::solve_velocities(const SolverSettings& settings) {
+  if (settings.warm_starting) {
+    for (const Constraint& c : constraints_) {
+      apply(c,
+            c.normal_impulse * c.normal + c.tangent1_impulse * c.tangent1 +
+                c.tangent2_impulse * c.tangent2,
+            linear_, angular_);
+    }
+  }
+  for (std::uint32_t iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
+    for (std::size_t k = 0; k < constraints_.size(); ++k) {
+      Constraint& c = constraints_[sweep_index(iteration, k)];
+      // Normal first, so that friction is bounded by this pass's normal impulse.
+      const float normal_speed = c.normal.dot(relative_velocity(c, linear_, angular_));
+      const float normal_total =
+          std::max(c.normal_impulse - c.normal_mass * (normal_speed - c.target_speed), 0.0f);
+      apply(c, (normal_total - c.normal_impulse) * c.normal, linear_, angular_);
+      c.normal_impulse = normal_total;
+
+      // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
+      const Vec3 relative = relative_velocity(c, linear_, angular_);
+      float t1 = c.tangent1_impulse - c.tangent1_mass * c.tangent1.dot(relative);
+      float t2 = c.tangent2_impulse - c.tangent2_mass * c.tangent2.dot(relative);
+      const float limit = c.friction * c.normal_impulse;
+      const float length = std::sqrt(t1 * t1 + t2 * t2);
+      if (length > limit) {
+        const float scale = length > 0.0f ? limit / length : 0.0f;
+        t1 *= scale;
+        t2 *= scale;
+      }
+      apply(c, (t1 - c.tangent1_impulse) * c.tangent1 + (t2 - c.tangent2_impulse) * c.tangent2,
+            linear_, angular_);
+      c.tangent1_impulse = t1;
+      c.tangent2_impulse = t2;
+    }
+  }
+}
+
+// Restitution after the velocities are solved (as Box2D does it): a touching contact that
+// approached faster than the threshold and took an impulse leaves at ε times that speed.
+void ContactSolver::bounce(const SolverSettings& settings, ContactSolverStats& stats) {
+  const float touching = -kTouchingFraction * settings.linear_slop;
+  for (Constraint& c : constraints_) {
+    if (c.restitution <= 0.0f || c.depth < touching || c.normal_impulse <= 0.0f ||
+        !(c.approach < -settings.restitution_threshold)) {
+      continue;
+    }
+    const float normal_speed = c.normal.dot(relative_velocity(c, linear_, angular_));
+    const float target = -c.restitution * c.approach;
+    const float normal_total =
+        std::max(c.normal_impulse - c.normal_mass * (normal_speed - target), 0.0f);
+    apply(c, (normal_total - c.normal_impulse) * c.normal, linear_, angular_);
+    c.normal_impulse = normal_total;
+    ++stats.bounces;
+  }
+}
+
+// Split impulses (Catto; Bullet): pseudo-velocities that push penetrating bodies apart by a
+// fraction of the penetration beyond the slop. They move the bodies in this step only and never
+// reach the real velocities, so the recovery adds no kinetic energy.
+void ContactSolver::recover_penetration(const SolverSettings& settings, float dt) {
+  for (std::uint32_t iteration = 0; iteration < settings.position_iterations; ++iteration) {
+    for (std::size_t k = 0; k < constraints_.size(); ++k) {
+      Constraint& c = constraints_[sweep_index(iteration, k)];
+      if (c.depth <= settings.linear_slop) continue;
+      const float target =
+          std::min(settings.position_correction * (c.depth - settings.linear_slop) / dt,
+                   settings.max_correction_speed);
+      const float speed = c.normal.dot(relative_velocity(c, pseudo_linear_, pseudo_angular_));
+      const float total = std::max(c.position_impulse + c.normal_mass * (target - speed), 0.0f);
+      apply(c, (total - c.position_impulse) * c.normal, pseudo_linear_, pseudo_angular_);
+      c.position_impulse = total;
+    }
+  }
+}
+
+void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gravity_step,
+                                  float dt) {
+  const float touching = -kTouchingFraction * settings.linear_slop;
+  previous_.clear();
+  for (const Constraint& c : constraints_) {
+    Kept kept{c.bodies_key, c.leaves_key, c.normal_impulse,
+              c.tangent1_impulse * c.tangent1 + c.tangent2_impulse * c.tangent2};
+    // A gap contact that had to stop its bodies short: they meet in the next step, at the speed
+    // they had when the gap closed. Gravity acted for the whole step but they fell only the gap,
+    // a fraction of the way: the part of gravity's speed for the rest is taken back, so that the
+    // bounce gains no energy.
+    if (c.depth < touching && c.normal_impulse > 0.0f && c.approach < 0.0f) {
+      const float used = std::min(-c.depth / (-c.approach * dt), 1.0f);
+      const float moving_a = inverse_mass_[c.a] > 0.0f ? 1.0f : 0.0f;
+      const float moving_b = inverse_mass_[c.b] > 0.0f ? 1.0f : 0.0f;
+      const float gravity_approach = (moving_b - moving_a) * c.normal.dot(gravity_step);
+      kept.stopped_approach = c.approach - (1.0f - used) * gravity_approach;
+    }
+    previous_.push_back(kept);
+  }
+  std::sort(previous_.begin(), previous_.end());
+}
+
+ContactSolverStats ContactSolver::solve(std::span<RigidBody> bodies,
+                                        std::span<const std::uint8_t> moving,
+                                        std::span<const Contact> contacts,
+                                        std::span<const PairMaterial> materials,
+                                        const SolverSettings& settings, const Vec3& gravity,
+                                        float dt) {
+  ContactSolverStats stats;
+  load_bodies(bodies, moving);
+  prepare(contacts, materials, settings, dt, stats);
+  solve_velocities(settings);
+  bounce(settings, stats);
+  recover_penetration(settings, dt);
+  keep_impulses(settings, gravity * dt, dt);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].is_static || moving[i] == 0) continue;
+    bodies[i].linear_velocity = linear_[i];
+    bodies[i].angular_velocity = angular_[i];
+  }
+  return stats;
+}
+
+}  // namespace sphys

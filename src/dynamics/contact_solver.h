@@ -1,0 +1,110 @@
+#pragma once
+
+// The plausible mode's response: sequential impulses (Catto 2005; Box2D, Bullet, Jolt) over all
+// contacts of a step, with warm starting, Coulomb friction, restitution above a threshold and
+// split-impulse penetration recovery. See docs/dynamics.md.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sphys/contact.h"
+#include "sphys/material.h"
+#include "sphys/math.h"
+#include "sphys/rigid_body.h"
+#include "sphys/world.h"
+
+namespace sphys {
+
+struct ContactSolverStats {
+  std::uint32_t constraints = 0;   // contacts solved (those with a moving body)
+  std::uint32_t warm_started = 0;  // of them, matched to a contact of the previous step
+  std::uint32_t bounces = 0;       // contacts given restitution
+};
+
+class ContactSolver {
+ public:
+  // Changes the velocities of the bodies with `moving[i] != 0` so that the contacts neither
+  // approach nor pull, friction stays in its cone, and contacts that approached faster than the
+  // threshold bounce; the other bodies count as static. `materials[k]` is contact k's material.
+  // A contact with negative depth (a gap) lets its bodies close the gap within dt and no more
+  // (speculative). Afterwards position_linear()/position_angular() hold the pseudo-velocities that
+  // push penetrating bodies apart: the caller moves the bodies by them for dt and forgets them,
+  // so the recovery adds no kinetic energy. `gravity` is what the moving bodies were accelerated
+  // by in this step before the call (it sets the speed a bounce starts from).
+  ContactSolverStats solve(std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
+                           std::span<const Contact> contacts,
+                           std::span<const PairMaterial> materials, const SolverSettings& settings,
+                           const Vec3& gravity, float dt);
+
+  [[nodiscard]] std::span<const Vec3> position_linear() const { return pseudo_linear_; }
+  [[nodiscard]] std::span<const Vec3> position_angular() const { return pseudo_angular_; }
+  // Forgets the impulses kept for warm starting (e.g. after bodies were teleported).
+  void forget() { previous_.clear(); }
+
+ private:
+  // One contact as the solver sees it. Index `ground` stands for the ground plane's slot.
+  struct Constraint {
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+    Vec3 ra = Vec3::Zero();  // contact point from each centre of mass. unit: m
+    Vec3 rb = Vec3::Zero();
+    Vec3 normal = Vec3::UnitY();
+    Vec3 tangent1 = Vec3::UnitX();
+    Vec3 tangent2 = Vec3::UnitZ();
+    float normal_mass = 0.0f;  // 1 / (inverse effective mass along each direction). unit: kg
+    float tangent1_mass = 0.0f;
+    float tangent2_mass = 0.0f;
+    float friction = 0.0f;
+    float restitution = 0.0f;
+    float depth = 0.0f;
+    float target_speed = 0.0f;  // normal speed the velocity pass aims at (≤ 0 for a gap)
+    float approach = 0.0f;      // relative normal speed before the solve, for the bounce
+    float normal_impulse = 0.0f;
+    float tangent1_impulse = 0.0f;
+    float tangent2_impulse = 0.0f;
+    float position_impulse = 0.0f;
+    std::uint64_t bodies_key = 0;
+    std::uint64_t leaves_key = 0;
+  };
+  // Accumulated impulses of one contact, kept for the next step's warm start.
+  struct Kept {
+    std::uint64_t bodies = 0;  // (body_a, body_b)
+    std::uint64_t leaves = 0;  // (leaf_a, leaf_b)
+    float normal_impulse = 0.0f;
+    Vec3 friction_impulse = Vec3::Zero();  // world frame, in the contact's tangent plane
+    // Approach speed when a gap contact stopped the bodies short, so that the bounce when they
+    // touch in the next step uses the speed they really had. unit: m/s (negative: approaching)
+    float stopped_approach = 0.0f;
+    friend bool operator<(const Kept& x, const Kept& y) {
+      return x.bodies != y.bodies ? x.bodies < y.bodies : x.leaves < y.leaves;
+    }
+  };
+
+  [[nodiscard]] std::size_t sweep_index(std::uint32_t iteration, std::size_t k) const;
+  [[nodiscard]] static Vec3 relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
+                                              const std::vector<Vec3>& angular);
+  // Applies `impulse` (world frame, from body a to body b) at the contact point.
+  void apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
+             std::vector<Vec3>& angular) const;
+  void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
+  void prepare(std::span<const Contact> contacts, std::span<const PairMaterial> materials,
+               const SolverSettings& settings, float dt, ContactSolverStats& stats);
+  void solve_velocities(const SolverSettings& settings);
+  void bounce(const SolverSettings& settings, ContactSolverStats& stats);
+  void recover_penetration(const SolverSettings& settings, float dt);
+  void keep_impulses(const SolverSettings& settings, const Vec3& gravity_step, float dt);
+
+  std::vector<Constraint> constraints_;
+  std::vector<Kept> previous_;  // sorted
+  // Per body, and one more slot at the end for the ground plane.
+  std::vector<Vec3> linear_;
+  std::vector<Vec3> angular_;
+  std::vector<Vec3> position_;
+  std::vector<float> inverse_mass_;
+  std::vector<Mat3> inverse_inertia_;
+  std::vector<Vec3> pseudo_linear_;
+  std::vector<Vec3> pseudo_angular_;
+};
+
+}  // namespace sphys

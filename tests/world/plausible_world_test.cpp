@@ -1,0 +1,394 @@
+// Plausible mode checked like physics: scenes whose outcome is known in advance (friction on a
+// slope and on the floor, a standing stack, a restitution ladder, a fast impact, sleep).
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "sphys/error.h"
+#include "sphys/tools/build_tree.h"
+#include "sphys/tools/primitives.h"
+#include "sphys/world.h"
+
+namespace sphys {
+namespace {
+
+constexpr float kGravity = 9.81f;
+constexpr float kDt = 1.0f / 60.0f;
+constexpr float kBoxSide = 1.0f;  // unit: m
+
+// The octree sphere-tree of a 1 m cube, as the tools build it: 64 leaves whose spheres stick out
+// of the faces, so the body is a slightly rounded, bumpy box.
+std::shared_ptr<const SphereTree> cube_tree() {
+  static const auto tree = [] {
+    tools::BuildOptions options;
+    options.method = tools::BuildMethod::Octree;
+    options.depth = 3;
+    return std::make_shared<const SphereTree>(
+        tools::build_sphere_tree(tools::make_box(tools::Vec3d::Constant(kBoxSide)), options));
+  }();
+  return tree;
+}
+
+// How far the cube's spheres reach below its centre: where it rests on a plane. unit: m
+float cube_half_height() {
+  const SphereTree& tree = *cube_tree();
+  float lowest = 0.0f;
+  for (std::uint32_t node = 0; node < tree.size(); ++node) {
+    if (tree.is_leaf(node)) {
+      lowest = std::min(lowest, tree.sphere(node).center.y() - tree.sphere(node).radius);
+    }
+  }
+  return -lowest;
+}
+
+// A homogeneous 1000 kg/m³ cube: m = 1000 kg, I = m s²/6 about every axis.
+BodyDesc cube(const Vec3& position, float friction) {
+  BodyDesc desc;
+  desc.tree = cube_tree();
+  desc.pose.translation = position;
+  desc.mass = 1000.0f;
+  desc.inertia = Mat3::Identity() * (desc.mass * kBoxSide * kBoxSide / 6.0f);
+  desc.friction = friction;
+  desc.restitution = 0.0f;
+  return desc;
+}
+
+std::shared_ptr<const SphereTree> one_sphere_tree(float radius) {
+  const SphereTreeNode root{{Vec3::Zero(), radius}, -1};
+  return std::make_shared<const SphereTree>(SphereTree::from_nodes(std::span(&root, 1), 8));
+}
+
+BodyDesc ball(float radius, const Vec3& position, float restitution) {
+  BodyDesc desc;
+  desc.tree = one_sphere_tree(radius);
+  desc.pose.translation = position;
+  desc.mass = 1.0f;
+  desc.inertia = Mat3::Identity() * (0.4f * radius * radius);
+  desc.restitution = restitution;
+  return desc;
+}
+
+// The exact plane y <= 0 as the floor, with the given material.
+WorldSettings on_plane(float friction, float restitution) {
+  WorldSettings settings;
+  settings.collision.ground_plane_height = 0.0f;
+  settings.ground_friction = friction;
+  settings.ground_restitution = restitution;
+  return settings;
+}
+
+// A slope of angle θ is the floor under gravity tilted by θ: the same forces in the slope's
+// frame, with the exact plane as the slope. Down the slope is +x.
+WorldSettings slope(float angle, float friction) {
+  WorldSettings settings = on_plane(friction, 0.0f);
+  settings.gravity = kGravity * Vec3(std::sin(angle), -std::cos(angle), 0.0f);
+  return settings;
+}
+
+void run(World& world, float seconds) {
+  const int steps = static_cast<int>(std::lround(seconds / kDt));
+  for (int i = 0; i < steps; ++i) ASSERT_FALSE(world.step(kDt).non_finite_body);
+}
+
+// 1. Coulomb friction on a slope.
+
+TEST(PlausibleFriction, ABoxStaysPutOnASlopeGentlerThanItsFrictionAngle) {
+  const float mu = 0.5f;
+  const float angle = std::atan(0.8f * mu);  // tan θ = 0.4 < μ
+  World world(slope(angle, mu));
+  const Vec3 start(0.0f, cube_half_height(), 0.0f);
+  const BodyId box = world.add_body(cube(start, mu));
+  run(world, 3.0f);
+  // Static friction holds: it may settle by a hair, but it does not creep.
+  EXPECT_LT((world.body(box).pose.translation - start).norm(), 0.01f * kBoxSide);
+  EXPECT_LT(world.body(box).linear_velocity.norm(), 0.01f);
+}
+
+TEST(PlausibleFriction, ABoxSlidesDownASteeperSlopeAtGTimesSinMinusMuCos) {
+  const float mu = 0.5f;
+  for (const float tangent : {0.7f, 1.0f}) {
+    const float angle = std::atan(tangent);
+    World world(slope(angle, mu));
+    const BodyId box = world.add_body(cube(Vec3(0.0f, cube_half_height(), 0.0f), mu));
+    run(world, 0.5f);
+    const float v0 = world.body(box).linear_velocity.x();
+    const float x0 = world.body(box).pose.translation.x();
+    run(world, 1.0f);
+    const float v1 = world.body(box).linear_velocity.x();
+    const float expected = kGravity * (std::sin(angle) - mu * std::cos(angle));
+    EXPECT_NEAR((v1 - v0) / 1.0f, expected, 0.05f * expected) << "tan θ = " << tangent;
+    // It slides: it does not tumble or leave the slope.
+    EXPECT_GT(world.body(box).pose.translation.x() - x0, 0.0f);
+    EXPECT_LT(world.body(box).angular_velocity.norm(), 0.05f) << "tan θ = " << tangent;
+    EXPECT_NEAR(world.body(box).pose.translation.y(), cube_half_height(), 0.01f);
+  }
+}
+
+// 2. Sliding to a stop on the floor.
+
+TEST(PlausibleFriction, ABoxLaunchedAlongTheFloorStopsAfterVSquaredOverTwoMuG) {
+  const float mu = 0.5f;
+  for (const float speed : {3.0f, 6.0f}) {
+    World world(on_plane(mu, 0.0f));
+    BodyDesc desc = cube(Vec3(0.0f, cube_half_height(), 0.0f), mu);
+    desc.linear_velocity = Vec3(speed, 0.0f, 0.0f);
+    const BodyId box = world.add_body(desc);
+    run(world, 3.0f);
+    const float expected = speed * speed / (2.0f * mu * kGravity);
+    EXPECT_NEAR(world.body(box).pose.translation.x(), expected, 0.05f * expected)
+        << "v0 = " << speed;
+    EXPECT_LT(world.body(box).linear_velocity.norm(), 0.01f);
+    EXPECT_NEAR(world.body(box).pose.translation.z(), 0.0f, 0.01f);
+  }
+}
+
+TEST(PlausibleFriction, APairMaterialReplacesTheMixOfTheBodiesOwn) {
+  // A box sliding on a huge static ball (locally flat): with the pair made frictionless it keeps
+  // sliding; with the mix of its own μ = 0.5 it stops within v²/(2μg) = 0.92 m.
+  for (const bool frictionless : {false, true}) {
+    WorldSettings settings;
+    World world(settings);
+    BodyDesc floor = ball(1000.0f, Vec3(0.0f, -1000.0f, 0.0f), 0.0f);
+    floor.is_static = true;
+    floor.friction = 0.5f;
+    const BodyId ground = world.add_body(floor);
+    BodyDesc desc = cube(Vec3(0.0f, cube_half_height(), 0.0f), 0.5f);
+    desc.linear_velocity = Vec3(3.0f, 0.0f, 0.0f);
+    const BodyId box = world.add_body(desc);
+    if (frictionless) world.set_pair_material(ground, box, {0.0f, 0.0f});
+    run(world, 1.0f);
+    const float speed = world.body(box).linear_velocity.x();
+    if (frictionless) {
+      EXPECT_GT(speed, 2.9f);
+    } else {
+      EXPECT_LT(std::abs(speed), 0.01f);
+      EXPECT_NEAR(world.body(box).pose.translation.x(), 9.0f / (2.0f * 0.5f * kGravity), 0.05f);
+    }
+  }
+  World world;
+  const BodyId a = world.add_body(ball(0.5f, Vec3::Zero(), 0.0f));
+  const BodyId b = world.add_body(ball(0.5f, Vec3(2.0f, 0.0f, 0.0f), 0.0f));
+  EXPECT_THROW(world.set_pair_material(a, b, {-1.0f, 0.0f}), Error);
+  EXPECT_THROW(world.set_pair_material(a, b, {0.5f, 1.5f}), Error);
+}
+
+// 3. A stack of ten boxes stands, then sleeps.
+
+TEST(PlausibleStack, TenBoxesStandForTenSecondsAndFallAsleep) {
+  const WorldSettings settings = on_plane(0.5f, 0.0f);
+  World world(settings);
+  std::vector<BodyId> boxes;
+  std::vector<Vec3> starts;
+  for (int i = 0; i < 10; ++i) {
+    // Sphere on sphere, touching: the stack as the trees make it.
+    starts.emplace_back(0.0f, cube_half_height() * static_cast<float>(2 * i + 1), 0.0f);
+    boxes.push_back(world.add_body(cube(starts.back(), 0.5f)));
+  }
+  // The stack first settles into the slop that resting contacts keep (at most the slop at each
+  // of the ten contacts below the top box), then must not move: drift is measured from there.
+  run(world, 0.5f);
+  std::vector<Vec3> settled;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const Vec3 position = world.body(boxes[i]).pose.translation;
+    EXPECT_LT((position - starts[i]).norm(),
+              settings.solver.linear_slop * static_cast<float>(i + 1) + 0.001f)
+        << "box " << i;
+    settled.push_back(position);
+  }
+  float worst_drift = 0.0f;
+  int first_all_asleep = -1;
+  for (int frame = 30; frame < 600; ++frame) {
+    const StepStats& stats = world.step(kDt);
+    ASSERT_FALSE(stats.non_finite_body);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      worst_drift =
+          std::max(worst_drift, (world.body(boxes[i]).pose.translation - settled[i]).norm());
+    }
+    if (first_all_asleep < 0 && stats.bodies_asleep == boxes.size()) first_all_asleep = frame;
+  }
+  EXPECT_LT(worst_drift, 0.01f * kBoxSide);
+  ASSERT_GE(first_all_asleep, 0) << "the stack never fell asleep";
+  EXPECT_LT(first_all_asleep, 300);
+  for (const BodyId box : boxes) EXPECT_TRUE(world.asleep(box));
+  EXPECT_EQ(world.stats().bodies_at_rest, 10u);
+  EXPECT_EQ(world.stats().jitter, 0.0);
+}
+
+// 4. The restitution ladder, and no energy gained.
+
+struct Bounce {
+  float rebound_height = 0.0f;      // top of the first rebound above the resting height. unit: m
+  double most_energy_gained = 0.0;  // largest rise of KE + PE above its start. unit: J
+};
+
+Bounce drop_ball(float restitution, float height) {
+  World world(on_plane(0.5f, restitution));
+  const float radius = 0.25f;
+  const BodyId id = world.add_body(ball(radius, Vec3(0.0f, radius + height, 0.0f), restitution));
+  // The energy the integrator keeps exactly in flight: semi-implicit Euler conserves
+  // ½ m v² + m g h − ½ m g v_y dt, not ½ m v² + m g h, which swings by ±½ m g |v| dt (0.5 J here)
+  // with the direction of flight. Rebounds are measured against it.
+  const auto energy = [&] {
+    const RigidBody& body = world.body(id);
+    const double above = body.pose.translation.y() - radius;
+    return body.kinetic_energy() + body.mass() * kGravity * above -
+           0.5 * body.mass() * kGravity * body.linear_velocity.y() * kDt;
+  };
+  const double start = energy();
+  Bounce bounce;
+  bool hit = false;
+  for (int frame = 0; frame < 240; ++frame) {
+    world.step(kDt);
+    const RigidBody& body = world.body(id);
+    bounce.most_energy_gained = std::max(bounce.most_energy_gained, energy() - start);
+    if (body.linear_velocity.y() > 0.0f) hit = true;
+    // Stop at the first apex after the impact (or when a dead ball has lain still a while).
+    if (hit && body.linear_velocity.y() <= 0.0f) break;
+    if (hit || frame > 120) {
+      bounce.rebound_height = std::max(bounce.rebound_height, body.pose.translation.y() - radius);
+    }
+  }
+  return bounce;
+}
+
+TEST(PlausibleRestitution, BallsReboundToEpsilonSquaredTimesTheDropHeight) {
+  const float height = 2.0f;
+  for (const float restitution : {0.0f, 0.5f, 1.0f}) {
+    const Bounce bounce = drop_ball(restitution, height);
+    const float expected = restitution * restitution * height;
+    // Within 4% of the drop height: the step's 1/60 s samples the apex, and semi-implicit Euler
+    // loses ½ g² dt² of energy per step in flight.
+    EXPECT_NEAR(bounce.rebound_height, expected, 0.04f * height) << "ε = " << restitution;
+    // Never above what it started with, beyond float rounding (≈ 1e-6 · 20 J).
+    EXPECT_LE(bounce.most_energy_gained, 1e-4) << "ε = " << restitution;
+  }
+}
+
+TEST(PlausibleRestitution, SlowImpactsUnderTheThresholdDoNotBounce) {
+  // Dropped from 2 cm: 0.63 m/s at impact, under the 1 m/s threshold, so even ε = 1 stays put.
+  const Bounce bounce = drop_ball(1.0f, 0.02f);
+  EXPECT_LT(bounce.rebound_height, 0.002f);
+}
+
+// 5. A fast impact: stopped at the surface, not inside or through.
+
+struct Impact {
+  float deepest = 0.0f;  // unit: m
+  float top_y = 0.0f;    // the falling box's centre at the end. unit: m
+  float bottom_y = 0.0f;
+  float horizontal_distance = 0.0f;  // between the two centres at the end. unit: m
+};
+
+// 30 m/s downwards, half its own size per step, from `gap` above a box resting on the floor.
+Impact drop_box_fast(bool speculative, float gap) {
+  WorldSettings settings = on_plane(0.5f, 0.0f);
+  settings.solver.speculative_contacts = speculative;
+  World world(settings);
+  const float rest = cube_half_height();
+  const BodyId bottom = world.add_body(cube(Vec3(0.0f, rest, 0.0f), 0.5f));
+  BodyDesc top = cube(Vec3(0.1f, 3.0f * rest + gap, 0.05f), 0.5f);
+  top.linear_velocity = Vec3(0.0f, -30.0f, 0.0f);
+  const BodyId falling = world.add_body(top);
+  Impact impact;
+  for (int frame = 0; frame < 180; ++frame) {
+    impact.deepest = std::max(impact.deepest, world.step(kDt).deepest_penetration);
+  }
+  impact.top_y = world.body(falling).pose.translation.y();
+  impact.bottom_y = world.body(bottom).pose.translation.y();
+  const Vec3 apart = world.body(falling).pose.translation - world.body(bottom).pose.translation;
+  impact.horizontal_distance = Vec3(apart.x(), 0.0f, apart.z()).norm();
+  return impact;
+}
+
+// Gaps that put the last step before the impact anywhere in the 0.5 m it covers.
+constexpr float kGaps[] = {3.0f, 3.1f, 3.2f, 3.3f, 3.4f};
+
+TEST(PlausibleImpact, ABoxAt30MetresPerSecondStopsOnAnotherWithin5PercentOfItsSize) {
+  for (const float gap : kGaps) {
+    const Impact impact = drop_box_fast(true, gap);
+    EXPECT_LT(impact.deepest, 0.05f * kBoxSide) << "gap " << gap;
+    // Never through: the falling box ends on the other or knocked beside it, both on the floor.
+    if (impact.horizontal_distance < kBoxSide) {
+      EXPECT_GT(impact.top_y - impact.bottom_y, 2.0f * cube_half_height() - 0.05f * kBoxSide)
+          << "gap " << gap;
+    }
+    EXPECT_GT(impact.top_y, cube_half_height() - 0.05f * kBoxSide) << "gap " << gap;
+    EXPECT_GT(impact.bottom_y, cube_half_height() - 0.05f * kBoxSide) << "gap " << gap;
+  }
+}
+
+TEST(PlausibleImpact, WithoutSpeculativeContactsTheSameImpactSinksDeep) {
+  // The scene is hard: the step alone, without contacts ahead of the impact, lets the box in by
+  // more than the bound above for some of the gaps.
+  float deepest = 0.0f;
+  for (const float gap : kGaps) deepest = std::max(deepest, drop_box_fast(false, gap).deepest);
+  EXPECT_GT(deepest, 0.05f * kBoxSide);
+}
+
+// 6. Sleep and waking.
+
+TEST(PlausibleSleep, ARestingBodySleepsAndAnImpulseOrAnImpactWakesIt) {
+  World world(on_plane(0.5f, 0.0f));
+  const BodyId box = world.add_body(cube(Vec3(0.0f, cube_half_height(), 0.0f), 0.5f));
+  run(world, 1.5f);
+  ASSERT_TRUE(world.asleep(box));
+  const Vec3 resting = world.body(box).pose.translation;
+  run(world, 1.0f);  // asleep: not moved at all
+  EXPECT_EQ(world.body(box).pose.translation, resting);
+
+  world.apply_impulse(box, Vec3(2000.0f, 0.0f, 0.0f), world.body(box).pose.translation);
+  EXPECT_FALSE(world.asleep(box));
+  world.step(kDt);
+  EXPECT_GT(world.body(box).pose.translation.x(), resting.x());
+  run(world, 3.0f);
+  ASSERT_TRUE(world.asleep(box));
+
+  // A ball dropped onto the sleeping box wakes it (their island is disturbed).
+  const Vec3 top = world.body(box).pose.translation + Vec3(0.0f, 1.5f, 0.0f);
+  const BodyId dropped = world.add_body(ball(0.2f, top, 0.0f));
+  bool woke = false;
+  for (int frame = 0; frame < 60 && !woke; ++frame) {
+    world.step(kDt);
+    woke = !world.asleep(box);
+  }
+  EXPECT_TRUE(woke);
+  run(world, 3.0f);
+  EXPECT_TRUE(world.asleep(box));
+  EXPECT_TRUE(world.asleep(dropped));
+}
+
+TEST(PlausibleSleep, SleepingCanBeTurnedOff) {
+  WorldSettings settings = on_plane(0.5f, 0.0f);
+  settings.sleep.enabled = false;
+  World world(settings);
+  const BodyId box = world.add_body(cube(Vec3(0.0f, cube_half_height(), 0.0f), 0.5f));
+  run(world, 3.0f);
+  EXPECT_FALSE(world.asleep(box));
+  EXPECT_EQ(world.stats().bodies_at_rest, 1u);
+}
+
+TEST(PlausibleSettings, ImpossibleSolverSettingsAreRefused) {
+  const auto refused = [](auto change) {
+    WorldSettings settings;
+    change(settings);
+    EXPECT_THROW(World{settings}, Error);
+  };
+  refused([](WorldSettings& s) { s.substeps = 0; });
+  refused([](WorldSettings& s) { s.substeps = 65; });
+  refused([](WorldSettings& s) { s.solver.velocity_iterations = 0; });
+  refused([](WorldSettings& s) { s.solver.manifold_points = 0; });
+  refused([](WorldSettings& s) { s.solver.manifold_points = 9; });
+  refused([](WorldSettings& s) { s.solver.linear_slop = -0.1f; });
+  refused([](WorldSettings& s) { s.solver.position_correction = 1.5f; });
+  refused([](WorldSettings& s) { s.solver.contact_margin = std::nanf(""); });
+  refused([](WorldSettings& s) { s.sleep.time = -1.0f; });
+  refused([](WorldSettings& s) { s.ground_friction = -0.5f; });
+}
+
+}  // namespace
+}  // namespace sphys
