@@ -1,8 +1,27 @@
 #pragma once
 
+#include <string>
+#include <string_view>
+
 #include <CLI/CLI.hpp>
 
+#include "sphys/error.h"
+
 namespace sphys::cli {
+
+// The value of a named option read by `parse` (e.g. tools::parse_response_mode); its
+// sphys::Error gains the option's name, so the message says which option was wrong.
+template <typename Parse>
+auto parse_option(std::string_view option, std::string_view value, Parse parse) {
+  try {
+    return parse(value);
+  } catch (const Error& error) {
+    std::string message(option);
+    message += ": ";
+    message += error.what();
+    throw Error(message);
+  }
+}
 
 // Each subcommand lives in its own file and registers itself on the top-level app. Its callback
 // throws sphys::Error for bad input (exit code 2) and anything else for internal errors (1).

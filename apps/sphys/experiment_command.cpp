@@ -15,6 +15,7 @@
 #include "sphys/error.h"
 #include "sphys/tools/experiment.h"
 #include "sphys/tools/run_experiment.h"
+#include "sphys/tools/scene.h"
 #include "sphys/tools/text_file.h"
 #include "sphys/tools/tree_cache.h"
 
@@ -28,6 +29,9 @@ struct ExperimentCommandOptions {
   std::optional<std::string> only;
   std::string out = "out/experiment";
   std::string ground = "octree";
+  // ExperimentMode's defaults: the paper's response.
+  std::string mode{tools::response_mode_name(tools::ExperimentMode{}.response)};
+  std::string contacts{tools::contact_set_name(tools::ExperimentMode{}.contacts)};
   bool json = false;
   bool no_plots = false;
   bool no_cache = false;
@@ -61,7 +65,15 @@ nlohmann::ordered_json row_json(const tools::RowResult& result) {
   row["bodies"] = result.bodies;
   row["bodies_below_plane"] = result.bodies_below_plane;
   row["lowest_center_y_m"] = result.lowest_center_y;
-  row["deepest_penetration_m"] = result.deepest_penetration;
+  const tools::Plausibility& plausible = result.plausibility;
+  row["deepest_penetration_m"] = plausible.deepest_penetration;
+  row["mean_penetration_m"] = plausible.mean_penetration;
+  row["bodies_at_rest"] = plausible.bodies_at_rest;
+  row["all_at_rest_from_frame"] = plausible.all_at_rest_frame
+                                      ? nlohmann::ordered_json(*plausible.all_at_rest_frame)
+                                      : nlohmann::ordered_json();
+  row["jitter_m_per_s"] = plausible.jitter;
+  row["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
   row["stopped_non_finite"] = result.stopped_non_finite;
   row["tree_builder"] = result.tree_builder;
   return row;
@@ -78,12 +90,14 @@ void run(const ExperimentCommandOptions& options) {
   if (options.ground != "octree" && options.ground != "plane") {
     throw Error("--ground must be octree or plane, got '" + options.ground + "'");
   }
+  tools::ExperimentOptions experiment;
+  experiment.mode.response = parse_option("--mode", options.mode, tools::parse_response_mode);
+  experiment.mode.contacts = parse_option("--contacts", options.contacts, tools::parse_contact_set);
   const fs::path out(options.out);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw Error::in_file(out, "cannot create the output folder: " + ec.message());
 
-  tools::ExperimentOptions experiment;
   experiment.frames = options.frames;
   if (options.ground == "plane") experiment.ground = tools::GroundSpec::Kind::kPlane;
 
@@ -102,11 +116,14 @@ void run(const ExperimentCommandOptions& options) {
   std::vector<fs::path> plots;
   if (!options.no_plots) plots = tools::write_plots(out, results);
   const fs::path report = out / "report.md";
-  tools::write_text_file(report, tools::markdown_report(results, machine_description()));
+  tools::write_text_file(report,
+                         tools::markdown_report(results, machine_description(), experiment.mode));
 
   if (options.json) {
     nlohmann::ordered_json json;
     json["machine"] = machine_description();
+    json["response"] = tools::response_mode_name(experiment.mode.response);
+    json["contacts"] = tools::contact_set_name(experiment.mode.contacts);
     json["rows"] = nlohmann::ordered_json::array();
     std::vector<tools::RowSummary> summaries;
     for (const tools::RowResult& result : results) {
@@ -131,7 +148,7 @@ void run(const ExperimentCommandOptions& options) {
     std::cout << json.dump(2) << '\n';
     return;
   }
-  std::printf("%s", tools::comparison_text(results).c_str());
+  std::printf("%s", tools::comparison_text(results, experiment.mode).c_str());
   std::printf("\nmachine: %s\nreport: %s (with the per-frame CSVs%s in %s)\n",
               machine_description().c_str(), report.string().c_str(),
               plots.empty() ? "" : " and plots", out.string().c_str());
@@ -151,6 +168,13 @@ void add_experiment_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--ground", options->ground,
                   "octree: the paper's 5-level octree of a 16 m thin box; plane: the exact plane")
+      ->capture_default_str();
+  cmd->add_option("--mode", options->mode,
+                  "Collision response: paper (eq. 4, as published) or plausible (friction, "
+                  "penetration recovery, sleeping)")
+      ->capture_default_str();
+  cmd->add_option("--contacts", options->contacts,
+                  "Plausible mode: all (one per leaf pair) or reduced (a manifold per body pair)")
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print the results as JSON");
   cmd->add_flag("--no-plots", options->no_plots, "Skip the gnuplot PNGs");

@@ -1,8 +1,12 @@
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,6 +19,7 @@
 #include "sphys/error.h"
 #include "sphys/tools/build_world.h"
 #include "sphys/tools/csv_file.h"
+#include "sphys/tools/experiment.h"
 #include "sphys/tools/model.h"
 #include "sphys/tools/recording.h"
 #include "sphys/tools/scenarios.h"
@@ -31,6 +36,8 @@ struct SimulateOptions {
   std::optional<int> depth;
   std::optional<int> frames;
   std::optional<std::string> mode;
+  std::optional<std::string> contacts;
+  std::optional<int> substeps;
   std::optional<int> passes;
   std::optional<std::string> out;
   bool json = false;
@@ -38,10 +45,27 @@ struct SimulateOptions {
 };
 
 // Per-frame figures, one CSV column each.
-const std::vector<std::string> kFrameColumns = {
-    "frame",       "time_s",      "step_ms",        "broad_phase_ms",   "narrow_phase_ms",
-    "contacts_ms", "response_ms", "integration_ms", "candidate_pairs",  "sphere_tests",
-    "leaf_pairs",  "contacts",    "impulses",       "kinetic_energy_J", "deepest_penetration_m"};
+const std::vector<std::string> kFrameColumns = {"frame",
+                                                "time_s",
+                                                "step_ms",
+                                                "broad_phase_ms",
+                                                "narrow_phase_ms",
+                                                "contacts_ms",
+                                                "response_ms",
+                                                "integration_ms",
+                                                "candidate_pairs",
+                                                "sphere_tests",
+                                                "leaf_pairs",
+                                                "contacts",
+                                                "impulses",
+                                                "kinetic_energy_J",
+                                                "deepest_penetration_m",
+                                                "mean_penetration_m",
+                                                "bodies_at_rest",
+                                                "bodies_asleep",
+                                                "jitter_m_per_s",
+                                                "warm_started",
+                                                "islands"};
 
 std::vector<double> frame_row(int frame, double time, const StepStats& s) {
   return {static_cast<double>(frame),
@@ -58,7 +82,13 @@ std::vector<double> frame_row(int frame, double time, const StepStats& s) {
           static_cast<double>(s.contacts),
           static_cast<double>(s.impulses),
           s.kinetic_energy,
-          static_cast<double>(s.deepest_penetration)};
+          static_cast<double>(s.deepest_penetration),
+          s.mean_penetration,
+          static_cast<double>(s.bodies_at_rest),
+          static_cast<double>(s.bodies_asleep),
+          s.jitter,
+          static_cast<double>(s.warm_started),
+          static_cast<double>(s.islands)};
 }
 
 // A folder name from a scene name: "stacks:4x50" -> "stacks-4x50", "drop.json" -> "drop".
@@ -88,10 +118,9 @@ struct RunTotals {
   double broad = 0, narrow = 0, contacts_time = 0, response = 0, integration = 0, step = 0;
   double contacts = 0;
   std::uint32_t max_contacts = 0;
-  float deepest = 0.0f;
-  int deepest_frame = 0;
+  tools::PlausibilityMeter plausibility;
 
-  void add(int frame, const StepStats& s) {
+  void add(const StepStats& s) {
     step_ms.push_back(s.step_ms);
     broad += s.broad_phase_ms;
     narrow += s.narrow_phase_ms;
@@ -101,10 +130,7 @@ struct RunTotals {
     step += s.step_ms;
     contacts += s.contacts;
     max_contacts = std::max(max_contacts, s.contacts);
-    if (s.deepest_penetration > deepest) {
-      deepest = s.deepest_penetration;
-      deepest_frame = frame;
-    }
+    plausibility.add(s);
   }
   [[nodiscard]] double share(double part) const { return step > 0 ? 100.0 * part / step : 0.0; }
 };
@@ -144,19 +170,193 @@ std::string recorded_scene(tools::Scene scene) {
   return tools::scene_to_json(scene);
 }
 
-void run(const SimulateOptions& options) {
-  tools::Scene scene = tools::load_scene(options.scene);
+// The command line's settings over the scene's.
+void apply_options(const SimulateOptions& options, tools::Scene& scene) {
   if (options.frames) {
     if (*options.frames < 1) throw Error("--frames must be at least 1");
     scene.frames = *options.frames;
   }
   if (options.passes) scene.paper_passes = *options.passes;
-  if (options.mode) scene.response = tools::parse_response_mode(*options.mode);
+  if (options.mode) {
+    scene.response = parse_option("--mode", *options.mode, tools::parse_response_mode);
+  }
+  if (options.contacts) {
+    scene.solver.contacts = parse_option("--contacts", *options.contacts, tools::parse_contact_set);
+  }
+  if (options.substeps) {
+    if (*options.substeps < 1 || *options.substeps > tools::kMaxSubsteps) {
+      std::string message = "--substeps must be between 1 and ";
+      message += std::to_string(tools::kMaxSubsteps);
+      message += ", got ";
+      message += std::to_string(*options.substeps);
+      throw Error(message);
+    }
+    scene.substeps = *options.substeps;
+  }
   if (options.depth) {
     for (tools::BodySpec& body : scene.bodies) {
       if (!body.tree.sph_file) body.tree.depth = *options.depth;
     }
   }
+}
+
+// The longest bounding-box side of the largest body, the yardstick of penetrations. unit: m
+double largest_body_size(const tools::SimulationSetup& setup) {
+  double size = 0.0;
+  for (const tools::BodyShape& shape : setup.shapes) {
+    size = std::max(size, shape.body_mesh->bounds().sizes().maxCoeff());
+  }
+  return size;
+}
+
+// A number, or null where there is none (NaN, or no value).
+nlohmann::ordered_json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
+}
+
+// The state of the bodies at the end of the run.
+void add_end_state(nlohmann::ordered_json& summary, const tools::Scene& scene,
+                   const tools::SimulationSetup& setup, const tools::Plausibility& plausible) {
+  const double size = largest_body_size(setup);
+  const auto percent = [size](double depth) {
+    return number_or_null(size > 0.0 ? 100.0 * depth / size : std::nan(""));
+  };
+  summary["largest_body_size_m"] = size;
+  summary["deepest_penetration_m"] = plausible.deepest_penetration;
+  summary["deepest_penetration_percent_of_size"] = percent(plausible.deepest_penetration);
+  summary["deepest_penetration_frame"] = plausible.deepest_frame;
+  summary["mean_penetration_m"] = plausible.mean_penetration;
+  summary["mean_penetration_percent_of_size"] = percent(plausible.mean_penetration);
+  summary["penetrating_frames"] = plausible.penetrating_frames;
+  summary["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
+  summary["moving_bodies"] = plausible.moving_bodies;
+  summary["bodies_at_rest"] = plausible.bodies_at_rest;
+  summary["bodies_asleep"] = plausible.bodies_asleep;
+  const std::optional<int> settled = plausible.all_at_rest_frame;
+  summary["all_at_rest_from_frame"] =
+      settled ? nlohmann::ordered_json(*settled) : nlohmann::ordered_json();
+  summary["all_at_rest_from_s"] =
+      number_or_null(settled ? *settled * scene.time_step : std::nan(""));
+  summary["jitter_m_per_s"] = plausible.jitter;
+  std::uint32_t below = 0;
+  float lowest = std::numeric_limits<float>::infinity();
+  for (const BodyId body : setup.bodies) {
+    const float y = setup.world->body(body).pose.translation.y();
+    lowest = std::min(lowest, y);
+    if (scene.ground.kind != tools::GroundSpec::Kind::kNone &&
+        !(y >= static_cast<float>(scene.ground.height))) {
+      ++below;
+    }
+  }
+  summary["bodies_below_ground"] = below;
+  summary["lowest_center_y_m"] = lowest;
+}
+
+nlohmann::ordered_json summary_json(const tools::Scene& scene, const tools::SimulationSetup& setup,
+                                    const RunTotals& totals) {
+  const double frames = static_cast<double>(totals.step_ms.size());
+  const double mean_ms = totals.step / frames;
+  nlohmann::ordered_json summary;
+  summary["scene"] = scene.name;
+  summary["bodies"] = setup.bodies.size();
+  summary["sphere_trees"] = setup.shapes.empty() ? "" : setup.shapes.front().tree_source;
+  summary["response"] = tools::response_mode_name(scene.response);
+  summary["contact_set"] = tools::contact_set_name(scene.solver.contacts);
+  summary["substeps"] = scene.substeps;
+  summary["frames"] = totals.step_ms.size();
+  summary["time_step_s"] = scene.time_step;
+  summary["wall_s"] = totals.wall_s;
+  summary["steps_per_s"] = 1000.0 / mean_ms;
+  summary["step_ms"] = {{"mean", mean_ms}, {"median", median(totals.step_ms)}};
+  summary["contacts_per_frame"] = {{"mean", totals.contacts / frames},
+                                   {"max", totals.max_contacts}};
+  summary["time_share_percent"] = {{"broad_phase", totals.share(totals.broad)},
+                                   {"narrow_phase", totals.share(totals.narrow)},
+                                   {"contacts", totals.share(totals.contacts_time)},
+                                   {"response", totals.share(totals.response)},
+                                   {"integration", totals.share(totals.integration)}};
+  add_end_state(summary, scene, setup, totals.plausibility.result());
+  return summary;
+}
+
+// "0.42%", or "n/a" for a null figure.
+std::string percent_text(const nlohmann::ordered_json& value) {
+  if (value.is_null()) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", value.get<double>());
+  return text;
+}
+
+// "plausible, reduced contacts, 1 substep per frame"
+std::string response_text(const nlohmann::ordered_json& s) {
+  std::string text = s["response"].get<std::string>();
+  if (text == tools::response_mode_name(ResponseMode::kPlausible)) {
+    text += ", ";
+    text += s["contact_set"].get<std::string>();
+    text += " contacts";
+  }
+  const int substeps = s["substeps"].get<int>();
+  text += ", ";
+  text += std::to_string(substeps);
+  text += substeps == 1 ? " substep per frame" : " substeps per frame";
+  return text;
+}
+
+// "all from frame 95 (1.58 s) on" or "never all at rest".
+std::string settled_text(const nlohmann::ordered_json& s) {
+  if (s["all_at_rest_from_frame"].is_null()) return "never all at rest";
+  char text[64];
+  std::snprintf(text, sizeof text, "all from frame %d (%.2f s) on",
+                s["all_at_rest_from_frame"].get<int>(), s["all_at_rest_from_s"].get<double>());
+  return text;
+}
+
+void print_summary(const nlohmann::ordered_json& s) {
+  const double frames = s["frames"].get<double>();
+  std::printf("scene               %s (%zu bodies)\n", s["scene"].get<std::string>().c_str(),
+              s["bodies"].get<std::size_t>());
+  if (s["bodies"].get<std::size_t>() > 0) {
+    std::printf("sphere-trees        %s\n", s["sphere_trees"].get<std::string>().c_str());
+  }
+  std::printf("response            %s\n", response_text(s).c_str());
+  std::printf("frames              %.0f (%.2f s simulated, step %.6g s)\n", frames,
+              frames * s["time_step_s"].get<double>(), s["time_step_s"].get<double>());
+  std::printf("speed               %.1f steps/s (step mean %.3f ms, median %.3f ms; %.2f s wall)\n",
+              s["steps_per_s"].get<double>(), s["step_ms"]["mean"].get<double>(),
+              s["step_ms"]["median"].get<double>(), s["wall_s"].get<double>());
+  std::printf("contacts            %.1f per frame on average, %u at most\n",
+              s["contacts_per_frame"]["mean"].get<double>(),
+              s["contacts_per_frame"]["max"].get<unsigned>());
+  const auto& share = s["time_share_percent"];
+  std::printf(
+      "time share          broad %.1f%%, narrow %.1f%%, contacts %.1f%%, response %.1f%%, "
+      "integration %.1f%%\n",
+      share["broad_phase"].get<double>(), share["narrow_phase"].get<double>(),
+      share["contacts"].get<double>(), share["response"].get<double>(),
+      share["integration"].get<double>());
+  std::printf("deepest penetration %.4g m (%s of the largest body's %.4g m; frame %d)\n",
+              s["deepest_penetration_m"].get<double>(),
+              percent_text(s["deepest_penetration_percent_of_size"]).c_str(),
+              s["largest_body_size_m"].get<double>(), s["deepest_penetration_frame"].get<int>());
+  std::printf("mean penetration    %.4g m (%s; over the %d frames with overlaps)\n",
+              s["mean_penetration_m"].get<double>(),
+              percent_text(s["mean_penetration_percent_of_size"]).c_str(),
+              s["penetrating_frames"].get<int>());
+  std::printf("kinetic energy      %.6g J at the end\n", s["final_kinetic_energy_J"].get<double>());
+  std::printf("at rest             %u of %u moving bodies at the end, %u asleep; %s\n",
+              s["bodies_at_rest"].get<unsigned>(), s["moving_bodies"].get<unsigned>(),
+              s["bodies_asleep"].get<unsigned>(), settled_text(s).c_str());
+  std::printf("jitter              %.4g m/s (mean over the last %zu frames or fewer)\n",
+              s["jitter_m_per_s"].get<double>(), tools::kJitterFrames);
+  std::printf("below the ground    %u bodies (lowest centre of mass y = %.4g m)\n",
+              s["bodies_below_ground"].get<unsigned>(), s["lowest_center_y_m"].get<double>());
+  std::printf("wrote               %s, %s\n", s["csv"].get<std::string>().c_str(),
+              s["recording"].get<std::string>().c_str());
+}
+
+void run(const SimulateOptions& options) {
+  tools::Scene scene = tools::load_scene(options.scene);
+  apply_options(options, scene);
 
   tools::BuildWorldOptions build;
   build.tree_depth = options.depth;
@@ -192,7 +392,7 @@ void run(const SimulateOptions& options) {
         failure = non_finite_message(setup, *stats.non_finite_body, frame);
         break;
       }
-      totals.add(frame, stats);
+      totals.add(stats);
       rows.push_back(frame_row(frame, frame * scene.time_step, stats));
       recording.add_frame(poses(setup));
       bar.update(static_cast<double>(frame) / scene.frames);
@@ -203,71 +403,14 @@ void run(const SimulateOptions& options) {
   recording.finish();
   if (failure) throw Error(*failure + " (the frames before it are in " + out.string() + ")");
 
-  const double frames = static_cast<double>(totals.step_ms.size());
-  const double mean_ms = totals.step / frames;
-  double below = 0;
-  float lowest = std::numeric_limits<float>::infinity();
-  for (const BodyId body : setup.bodies) {
-    const float y = setup.world->body(body).pose.translation.y();
-    lowest = std::min(lowest, y);
-    if (scene.ground.kind != tools::GroundSpec::Kind::kNone &&
-        !(y >= static_cast<float>(scene.ground.height))) {
-      ++below;
-    }
-  }
-  const StepStats& last = setup.world->stats();
-
-  nlohmann::ordered_json summary;
-  summary["scene"] = scene.name;
-  summary["bodies"] = setup.bodies.size();
-  summary["sphere_trees"] = setup.shapes.empty() ? "" : setup.shapes.front().tree_source;
-  summary["response"] = tools::response_mode_name(scene.response);
-  summary["frames"] = totals.step_ms.size();
-  summary["time_step_s"] = scene.time_step;
-  summary["wall_s"] = totals.wall_s;
-  summary["steps_per_s"] = 1000.0 / mean_ms;
-  summary["step_ms"] = {{"mean", mean_ms}, {"median", median(totals.step_ms)}};
-  summary["contacts_per_frame"] = {{"mean", totals.contacts / frames},
-                                   {"max", totals.max_contacts}};
-  summary["time_share_percent"] = {{"broad_phase", totals.share(totals.broad)},
-                                   {"narrow_phase", totals.share(totals.narrow)},
-                                   {"contacts", totals.share(totals.contacts_time)},
-                                   {"response", totals.share(totals.response)},
-                                   {"integration", totals.share(totals.integration)}};
-  summary["deepest_penetration_m"] = totals.deepest;
-  summary["deepest_penetration_frame"] = totals.deepest_frame;
-  summary["final_kinetic_energy_J"] = last.kinetic_energy;
-  summary["bodies_below_ground"] = below;
-  summary["lowest_center_y_m"] = lowest;
+  nlohmann::ordered_json summary = summary_json(scene, setup, totals);
   summary["csv"] = csv_path.string();
   summary["recording"] = recording_path.string();
   if (options.json) {
     std::cout << summary.dump(2) << '\n';
     return;
   }
-  std::printf("scene               %s (%zu bodies)\n", scene.name.c_str(), setup.bodies.size());
-  if (!setup.shapes.empty()) {
-    std::printf("sphere-trees        %s\n", setup.shapes.front().tree_source.c_str());
-  }
-  std::printf("response            %s\n",
-              std::string(tools::response_mode_name(scene.response)).c_str());
-  std::printf("frames              %.0f (%.2f s simulated, step %.6g s)\n", frames,
-              frames * scene.time_step, scene.time_step);
-  std::printf("speed               %.1f steps/s (step mean %.3f ms, median %.3f ms; %.2f s wall)\n",
-              1000.0 / mean_ms, mean_ms, median(totals.step_ms), totals.wall_s);
-  std::printf("contacts            %.1f per frame on average, %u at most\n",
-              totals.contacts / frames, totals.max_contacts);
-  std::printf(
-      "time share          broad %.1f%%, narrow %.1f%%, contacts %.1f%%, response %.1f%%, "
-      "integration %.1f%%\n",
-      totals.share(totals.broad), totals.share(totals.narrow), totals.share(totals.contacts_time),
-      totals.share(totals.response), totals.share(totals.integration));
-  std::printf("deepest penetration %.4g m (frame %d)\n", totals.deepest, totals.deepest_frame);
-  std::printf("kinetic energy      %.6g J at the end\n", last.kinetic_energy);
-  std::printf("below the ground    %.0f bodies (lowest centre of mass y = %.4g m)\n", below,
-              lowest);
-  std::printf("wrote               %s, %s\n", csv_path.string().c_str(),
-              recording_path.string().c_str());
+  print_summary(summary);
 }
 
 }  // namespace
@@ -280,7 +423,13 @@ void add_simulate_command(CLI::App& app) {
       ->required();
   cmd->add_option("--depth", options->depth, "Sphere-tree depth of every body (levels, 1..6)");
   cmd->add_option("--frames", options->frames, "Frames to run (one step each)");
-  cmd->add_option("--mode", options->mode, "Collision response: paper");
+  cmd->add_option("--mode", options->mode,
+                  "Collision response, instead of the scene's: paper (eq. 4, as published) or "
+                  "plausible (friction, penetration recovery, sleeping)");
+  cmd->add_option("--contacts", options->contacts,
+                  "Plausible mode: all (one per leaf pair) or reduced (a manifold per body pair)");
+  cmd->add_option("--substeps", options->substeps,
+                  "Pipeline runs per frame, each over an equal share of the time step (1..64)");
   cmd->add_option("--passes", options->passes,
                   "Paper mode: passes over the contacts per step at most (see docs/experiment.md)");
   cmd->add_option("--out", options->out,

@@ -52,6 +52,9 @@ TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
   report << report_file.rdbuf();
   EXPECT_THAT(report.str(), HasSubstr("d2-8x10"));
   EXPECT_THAT(report.str(), HasSubstr("16381.50"));
+  // The paper's response unless asked otherwise, and the report says so at the top.
+  EXPECT_THAT(r.out, testing::StartsWith("Response: paper ("));
+  EXPECT_THAT(report.str(), HasSubstr("\n\nResponse: paper ("));
 
   const std::vector<std::string> csv = read_lines(out / "d2-8x10.csv");
   ASSERT_EQ(csv.size(), 4u);
@@ -82,8 +85,17 @@ TEST(ExperimentCommand, JsonHasTheRowAndItsFrames) {
   EXPECT_EQ(row["id"], "d2-8x10");
   EXPECT_EQ(row["frames"], 3);
   EXPECT_EQ(row["bodies"], 80);
+  EXPECT_EQ(json["response"], "paper");
+  EXPECT_EQ(json["contacts"], "reduced");
   EXPECT_EQ(row["stopped_non_finite"], false);
   EXPECT_EQ(row["bodies_below_plane"], 0);
+  // Three frames of falling: no body rests, none is asleep in paper mode.
+  EXPECT_GE(row["deepest_penetration_m"].get<double>(), 0.0);
+  EXPECT_GE(row["mean_penetration_m"].get<double>(), 0.0);
+  EXPECT_EQ(row["bodies_at_rest"], 0);
+  EXPECT_TRUE(row["all_at_rest_from_frame"].is_null());
+  EXPECT_GE(row["jitter_m_per_s"].get<double>(), 0.0);
+  EXPECT_GT(row["final_kinetic_energy_J"].get<double>(), 0.0);
   EXPECT_GE(row["contacts_per_frame"].get<double>(), 0.0);
   EXPECT_GT(row["fps"].get<double>(), 0.0);
   EXPECT_THAT(row["tree_builder"].get<std::string>(), HasSubstr("combined, branching 8"));
@@ -91,6 +103,33 @@ TEST(ExperimentCommand, JsonHasTheRowAndItsFrames) {
   EXPECT_GT(row["lowest_center_y_m"].get<double>(), 0.9);
   EXPECT_EQ(json["report"], (out / "report.md").string());
   EXPECT_TRUE(fs::exists(out / "d2-8x10.csv"));
+}
+
+TEST(ExperimentCommand, PlausibleModeIsRunAndReported) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "experiment";
+  const auto run = [&](const std::string& contacts) {
+    const test::CommandResult r =
+        sphys_cli({"experiment", "--only", "d2-8x10", "--frames", "30", "--no-plots", "--mode",
+                   "plausible", "--contacts", contacts, "--out", out.string(), "--json"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto all = run("all");
+  EXPECT_EQ(all["response"], "plausible");
+  EXPECT_EQ(all["contacts"], "all");
+  std::ifstream report_file(out / "report.md");
+  std::stringstream report;
+  report << report_file.rdbuf();
+  EXPECT_THAT(report.str(), HasSubstr("\nResponse: plausible ("));
+  EXPECT_THAT(report.str(), HasSubstr("\nContacts: all ("));
+  // By frame 30 the lowest bunnies have landed: a reduced manifold keeps at most 4 contacts per
+  // body pair, so the response sees fewer contacts than one per leaf pair.
+  const auto reduced = run("reduced");
+  EXPECT_EQ(reduced["contacts"], "reduced");
+  EXPECT_LT(reduced["rows"][0]["contacts_per_frame"].get<double>(),
+            all["rows"][0]["contacts_per_frame"].get<double>());
 }
 
 TEST(ExperimentCommand, BadOptionsExitWithCode2) {
@@ -106,6 +145,12 @@ TEST(ExperimentCommand, BadOptionsExitWithCode2) {
   expect_bad_input(
       {"experiment", "--only", "d2-8x10", "--ground", "bogus", "--out", out, "--no-cache"},
       "--ground must be octree or plane, got 'bogus'");
+  expect_bad_input(
+      {"experiment", "--only", "d2-8x10", "--mode", "bogus", "--out", out, "--no-cache"},
+      "--mode: unknown response mode 'bogus'; response modes: paper, plausible");
+  expect_bad_input(
+      {"experiment", "--only", "d2-8x10", "--contacts", "some", "--out", out, "--no-cache"},
+      "--contacts: unknown contact set 'some'; contact sets: all, reduced");
   // Refused before anything ran: no report.
   EXPECT_FALSE(fs::exists(fs::path(out) / "report.md"));
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -65,6 +66,10 @@ TEST(SimulateCommand, PresetRunWritesFramesAndRecording) {
   ASSERT_EQ(lines.size(), 6u);
   const std::vector<std::string> header = split(lines[0], ',');
   EXPECT_THAT(lines[0], StartsWith("frame,time_s,step_ms,"));
+  // The plausibility figures of each frame close the line.
+  EXPECT_THAT(lines[0],
+              testing::EndsWith(",deepest_penetration_m,mean_penetration_m,bodies_at_rest,"
+                                "bodies_asleep,jitter_m_per_s,warm_started,islands"));
   const auto contacts_column = std::find(header.begin(), header.end(), "contacts") - header.begin();
   ASSERT_LT(contacts_column, static_cast<std::ptrdiff_t>(header.size()));
   for (int frame = 1; frame <= 5; ++frame) {
@@ -129,7 +134,10 @@ TEST(SimulateCommand, JsonSummaryParses) {
   EXPECT_EQ(json["scene"], "stacks:1x2");
   EXPECT_EQ(json["frames"], 5);
   EXPECT_EQ(json["bodies"], 2);
-  EXPECT_EQ(json["response"], "paper");
+  // The runtime's defaults: a preset does not choose.
+  EXPECT_EQ(json["response"], "plausible");
+  EXPECT_EQ(json["contact_set"], "reduced");
+  EXPECT_EQ(json["substeps"], 1);
   EXPECT_EQ(json["time_step_s"].get<double>(), 1.0 / 60.0);
   EXPECT_GE(json["contacts_per_frame"]["mean"].get<double>(), 0.0);
   EXPECT_GE(json["contacts_per_frame"]["max"].get<double>(),
@@ -137,6 +145,20 @@ TEST(SimulateCommand, JsonSummaryParses) {
   EXPECT_GT(json["steps_per_s"].get<double>(), 0.0);
   EXPECT_GE(json["step_ms"]["mean"].get<double>(), 0.0);
   EXPECT_GE(json["deepest_penetration_m"].get<double>(), 0.0);
+  EXPECT_GE(json["mean_penetration_m"].get<double>(), 0.0);
+  EXPECT_LE(json["mean_penetration_m"].get<double>(), json["deepest_penetration_m"].get<double>());
+  // Two 1 m bunnies: penetrations are also given per cent of 1 m.
+  EXPECT_DOUBLE_EQ(json["largest_body_size_m"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(json["deepest_penetration_percent_of_size"].get<double>(),
+                   100.0 * json["deepest_penetration_m"].get<double>());
+  EXPECT_EQ(json["moving_bodies"], 2);
+  EXPECT_LE(json["bodies_at_rest"].get<int>(), 2);
+  EXPECT_LE(json["bodies_asleep"].get<int>(), json["bodies_at_rest"].get<int>());
+  // Five frames of falling: nothing rests yet.
+  EXPECT_TRUE(json["all_at_rest_from_frame"].is_null());
+  EXPECT_TRUE(json["all_at_rest_from_s"].is_null());
+  EXPECT_GT(json["final_kinetic_energy_J"].get<double>(), 0.0);
+  EXPECT_GE(json["jitter_m_per_s"].get<double>(), 0.0);
   EXPECT_EQ(json["bodies_below_ground"], 0);
   EXPECT_EQ(json["csv"], (out / "frames.csv").string());
   EXPECT_EQ(json["recording"], (out / "recording.sphysrec").string());
@@ -176,28 +198,39 @@ TEST(SimulateCommand, BadOptionsExitWithCode2) {
   const std::string out = (dir.path() / "out").string();
   expect_bad_input({"simulate", "stacks:4", "--out", out}, "unknown preset 'stacks:4'");
   expect_bad_input({"simulate", "stacks:0x5", "--out", out}, "unknown preset 'stacks:0x5'");
-  expect_bad_input({"simulate", "stacks:1x1", "--frames", "0", "--out", out},
-                   "--frames must be at least 1");
-  expect_bad_input({"simulate", "stacks:1x1", "--frames", "-3", "--out", out},
-                   "--frames must be at least 1");
-  expect_bad_input({"simulate", "stacks:1x1", "--depth", "7", "--no-cache", "--out", out},
-                   "depth must be 1 to 6, got 7");
-  expect_bad_input({"simulate", "stacks:1x1", "--mode", "bogus", "--no-cache", "--out", out},
-                   "unknown response mode 'bogus'");
+  // An option and its bad value on stacks:1x1, and what the message says.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--frames", "0"}, "--frames must be at least 1"},
+      {{"--frames", "-3"}, "--frames must be at least 1"},
+      {{"--depth", "7"}, "depth must be 1 to 6, got 7"},
+      {{"--mode", "bogus"},
+       "--mode: unknown response mode 'bogus'; response modes: paper, plausible"},
+      {{"--contacts", "some"},
+       "--contacts: unknown contact set 'some'; contact sets: all, reduced"},
+      {{"--substeps", "0"}, "--substeps must be between 1 and 64, got 0"},
+      {{"--substeps", "65"}, "--substeps must be between 1 and 64, got 65"},
+      {{"--substeps", "two"}, "--substeps"},
+  };
+  for (const auto& [option, message] : cases) {
+    std::vector<std::string> args = {"simulate", "stacks:1x1", "--no-cache", "--out", out};
+    args.insert(args.end(), option.begin(), option.end());
+    expect_bad_input(args, message);
+  }
   // Nothing was simulated, so nothing was written.
   EXPECT_FALSE(fs::exists(fs::path(out) / "frames.csv"));
 }
 
 // Runs a scene under gravity near the top of the single-precision range (-1e38 m/s²) with one
-// bunny at `position`, and returns the result; the frames go to `out`.
+// bunny at `position` in paper mode (unless `mode` says otherwise), and returns the result; the
+// frames go to `out`.
 test::CommandResult run_blowing_up(const test::TempDir& dir, const std::string& position,
-                                   const fs::path& out) {
+                                   const fs::path& out, const std::string& mode = "paper") {
   const fs::path scene =
       dir.write("blowup.json",
                 scene_text(R"("gravity": [0, -1e38, 0], "frames": 400, "ground": {"depth": 2},
                     "bodies": [{"position": )" +
                            position + R"(, "sphere_tree": {"method": "octree", "depth": 1}}])"));
-  return sphys_cli({"simulate", scene.string(), "--out", out.string()});
+  return sphys_cli({"simulate", scene.string(), "--mode", mode, "--out", out.string()});
 }
 
 TEST(SimulateCommand, ASceneThatBlowsUpNamesTheBodyAndTheFrame) {
@@ -205,8 +238,10 @@ TEST(SimulateCommand, ASceneThatBlowsUpNamesTheBodyAndTheFrame) {
   const test::TempDir dir;
   const fs::path out = dir.path() / "out";
   // Beside the ground, so nothing but gravity acts: the speed and the height overflow to
-  // infinity at frame 157. The octree ground is the world's body 0, so the scene's
-  // body 0 is the world's body 1 and the message has to map the index back.
+  // infinity at frame 157. (Plausible mode's speculative contacts would reach the ground from
+  // 42 m away at these speeds; paper mode makes contacts from overlaps only.) The octree ground is
+  // the world's body 0, so the scene's body 0 is the world's body 1 and the message has to map the
+  // index back.
   const test::CommandResult r = run_blowing_up(dir, "[50, 1, 0]", out);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_THAT(r.err, HasSubstr("non-finite: body 0 (/bodies/0) at frame "));
@@ -232,9 +267,84 @@ TEST(SimulateCommand, AnImpactTooViolentForSinglePrecisionIsReportedAsNonFinite)
   // Onto the ground at 1.7e36 m/s in the first step: the impulse spins the bunny so fast that its
   // orientation cannot be renormalised in single precision. The run must stop as a simulation
   // that went non-finite, naming the body, not fail later while writing the recording.
-  const test::CommandResult r = run_blowing_up(dir, "[0, 1, 0]", dir.path() / "out");
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_THAT(r.err, HasSubstr("non-finite: body 0 (/bodies/0) at frame "));
+  for (const std::string mode : {"paper", "plausible"}) {
+    const test::CommandResult r = run_blowing_up(dir, "[0, 1, 0]", dir.path() / "out", mode);
+    EXPECT_NE(r.exit_code, 0) << mode;
+    EXPECT_THAT(r.err, HasSubstr("non-finite: body 0 (/bodies/0) at frame ")) << mode;
+  }
+}
+
+// One bunny with the default tree dropped from 1 m onto the exact plane, run for 5 s in `mode`;
+// the summary as JSON.
+nlohmann::json dropped_bunny(const test::TempDir& dir, const std::string& mode) {
+  const fs::path scene =
+      dir.write("drop.json", scene_text(R"("frames": 300, "ground": {"type": "plane"},
+                                 "bodies": [{"position": [0, 1, 0]}])"));
+  const test::CommandResult r = sphys_cli({"simulate", scene.string(), "--mode", mode, "--out",
+                                           (dir.path() / mode).string(), "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+TEST(SimulateCommand, PlausibleModeBringsADroppedBunnyToRestOnThePlane) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const nlohmann::json plausible = dropped_bunny(dir, "plausible");
+  EXPECT_EQ(plausible["response"], "plausible");
+  // It lands within half a second and settles soon after (seen: at rest and asleep from frame
+  // 84 of 300), then stays at rest to the end.
+  EXPECT_EQ(plausible["moving_bodies"], 1);
+  EXPECT_EQ(plausible["bodies_at_rest"], 1);
+  EXPECT_EQ(plausible["bodies_asleep"], 1);
+  ASSERT_FALSE(plausible["all_at_rest_from_frame"].is_null());
+  EXPECT_LT(plausible["all_at_rest_from_frame"].get<int>(), 180);
+  EXPECT_DOUBLE_EQ(plausible["all_at_rest_from_s"].get<double>(),
+                   plausible["all_at_rest_from_frame"].get<int>() / 60.0);
+  EXPECT_LT(plausible["final_kinetic_energy_J"].get<double>(), 1e-3);
+  EXPECT_LT(plausible["jitter_m_per_s"].get<double>(), 0.01);
+  // It never sinks by 1% of its 1 m (seen: 0.26% at most, 0.06% on average).
+  EXPECT_GT(plausible["deepest_penetration_m"].get<double>(), 0.0);
+  EXPECT_LT(plausible["deepest_penetration_percent_of_size"].get<double>(), 1.0);
+  EXPECT_LT(plausible["mean_penetration_percent_of_size"].get<double>(),
+            plausible["deepest_penetration_percent_of_size"].get<double>());
+  EXPECT_GT(plausible["lowest_center_y_m"].get<double>(), 0.0);
+
+  // The paper's response lets the same bunny sink deeper (seen: 2.2% of its size) and never
+  // quite stops it.
+  const nlohmann::json paper = dropped_bunny(dir, "paper");
+  EXPECT_EQ(paper["response"], "paper");
+  EXPECT_GT(paper["deepest_penetration_m"].get<double>(),
+            plausible["deepest_penetration_m"].get<double>());
+}
+
+TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const fs::path scene = dir.write(
+      "fall.json", scene_text(R"("frames": 2, "response": "plausible", "ground": {"type": "none"},
+                                 "bodies": [)" +
+                              std::string(kQuickBody) + "]"));
+  const fs::path out = dir.path() / "out";
+  const test::CommandResult r =
+      sphys_cli({"simulate", scene.string(), "--mode", "paper", "--contacts", "all", "--substeps",
+                 "3", "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("response            paper, 3 substeps per frame\n"));
+  EXPECT_THAT(r.out, HasSubstr("\nmean penetration    0 m (0%; over the 0 frames with overlaps)"));
+  EXPECT_THAT(r.out, HasSubstr("\nat rest             0 of 1 moving bodies at the end, 0 asleep; "
+                               "never all at rest\n"));
+  // The recording keeps the scene as run.
+  const auto recorded =
+      nlohmann::json::parse(tools::read_recording(out / "recording.sphysrec").metadata);
+  EXPECT_EQ(recorded["response"], "paper");
+  EXPECT_EQ(recorded["contacts"], "all");
+  EXPECT_EQ(recorded["substeps"], 3);
+
+  const test::CommandResult plausible =
+      sphys_cli({"simulate", scene.string(), "--contacts", "all", "--out", out.string()});
+  ASSERT_EQ(plausible.exit_code, 0) << plausible.err;
+  EXPECT_THAT(plausible.out,
+              HasSubstr("response            plausible, all contacts, 1 substep per frame\n"));
 }
 
 }  // namespace

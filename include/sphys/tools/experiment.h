@@ -3,11 +3,16 @@
 // The paper's evaluation (§5): its eight experiments, its published figures, and the summaries and
 // statistics we compute to set ours beside them. Running the rows: sphys/tools/run_experiment.h.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "sphys/step_stats.h"
+#include "sphys/world.h"
 
 namespace sphys::tools {
 
@@ -56,6 +61,52 @@ struct FrameSample {
   std::uint32_t contacts = 0;
 };
 
+// How far bodies sank into one another over a run and whether they came to rest: what makes an
+// animation look plausible, from the world's StepStats frame by frame.
+struct Plausibility {
+  float deepest_penetration = 0.0f;  // largest overlap of two leaf spheres. unit: m
+  int deepest_frame = 0;             // the frame (from 1) of that overlap; 0: none overlapped
+  // Mean of StepStats::mean_penetration over the frames with overlapping leaf pairs; 0 when none
+  // had any. unit: m
+  double mean_penetration = 0.0;
+  int penetrating_frames = 0;  // frames with overlapping leaf pairs
+  // At the end of the run: bodies that are not static, and those at rest or asleep among them.
+  std::uint32_t moving_bodies = 0;
+  std::uint32_t bodies_at_rest = 0;
+  std::uint32_t bodies_asleep = 0;
+  // The first frame (from 1) from which every moving body stayed at rest to the end; unset when
+  // some body still moved in the last frame.
+  std::optional<int> all_at_rest_frame;
+  // Mean of StepStats::jitter over the last kJitterFrames frames (all, when fewer). unit: m/s
+  double jitter = 0.0;
+  double final_kinetic_energy = 0.0;  // unit: J
+};
+
+// The frames at the end of a run whose jitter is averaged: one second at 60 frames per second,
+// long enough to smooth single frames, short enough to leave out the settling.
+inline constexpr std::size_t kJitterFrames = 60;
+
+// Gathers a run's Plausibility from the StepStats of each frame, in order.
+class PlausibilityMeter {
+ public:
+  void add(const StepStats& stats);
+  [[nodiscard]] Plausibility result() const;
+
+ private:
+  Plausibility figures_;
+  int frames_ = 0;
+  double penetration_sum_ = 0.0;  // of StepStats::mean_penetration. unit: m
+  std::vector<double> jitter_;    // per frame, the last kJitterFrames. unit: m/s
+  std::size_t next_jitter_ = 0;   // where the next frame's jitter goes in jitter_
+};
+
+// How the rows are run: the paper's response unless asked otherwise.
+struct ExperimentMode {
+  ResponseMode response = ResponseMode::kPaper;
+  // The contacts plausible mode responds to; paper mode responds to every leaf-pair contact.
+  ContactSet contacts = SolverSettings{}.contacts;
+};
+
 struct RowResult {
   ExperimentRow row;
   std::vector<FrameSample> frames;
@@ -64,7 +115,7 @@ struct RowResult {
   std::uint32_t bodies = 0;
   std::uint32_t bodies_below_plane = 0;  // centre of mass below y = 0 at the end
   float lowest_center_y = 0.0f;          // lowest centre of mass at the end. unit: m
-  float deepest_penetration = 0.0f;      // largest contact depth over the run. unit: m
+  Plausibility plausibility;
   bool stopped_non_finite = false;
 };
 
@@ -87,12 +138,13 @@ struct RowSummary {
 [[nodiscard]] double pearson(std::span<const double> x, std::span<const double> y);
 
 // Table 1 with the paper's figures beside ours, then the §5 statistics, as plain text for a
-// terminal.
-[[nodiscard]] std::string comparison_text(std::span<const RowResult> results);
+// terminal; the first lines say how the rows were run.
+[[nodiscard]] std::string comparison_text(std::span<const RowResult> results,
+                                          const ExperimentMode& mode);
 // The same as a Markdown report (with the machine description and notes), for report.md. It links
 // the plots by file name (plot_files), so it belongs in the directory given to write_plots.
 [[nodiscard]] std::string markdown_report(std::span<const RowResult> results,
-                                          const std::string& machine);
+                                          const std::string& machine, const ExperimentMode& mode);
 // Per-frame CSV of one row: frame (from 1), step_ms, detection_ms, response_ms, contacts.
 void write_row_csv(const std::filesystem::path& path, const RowResult& result);
 // The PNGs write_plots draws for a row, by file name: "<id>-frame-time.png", "<id>-contacts.png".

@@ -17,6 +17,8 @@ struct ExperimentOptions {
   // The paper's 5-level octree of a thin box (kOctreeBox), or the exact plane (kPlane) to see
   // what the ground's sphere bumps and finite extent do to the results.
   GroundSpec::Kind ground = GroundSpec::Kind::kOctreeBox;
+  // The paper's response by default, so that the rows run as published.
+  ExperimentMode mode;
   std::optional<std::filesystem::path> cache_dir;
   // Called with the fraction of the row simulated (0..1).
   std::function<void(double)> progress;

@@ -28,7 +28,8 @@ class SplitMix64 {
 inline constexpr std::uint64_t kStacksSeed = 2008;
 
 // S stacks of N bunnies with sphere-trees of the given depth (Combined, branching 8) over the
-// 5-level octree ground. Throws sphys::Error when a count or the depth is out of range.
+// 5-level octree ground, with the runtime's default response (plausible; run_experiment_row sets
+// the paper's). Throws sphys::Error when a count or the depth is out of range.
 [[nodiscard]] Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth);
 
 // True when `text` names a preset ("stacks:..."), whether or not it is well formed.

@@ -3,6 +3,8 @@
 // A scene: what a simulation starts from. Read from JSON scene files (docs/scenes.md,
 // docs/scene.schema.json) or made by the built-in presets (sphys/tools/scenarios.h).
 
+#include <array>
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -37,8 +39,8 @@ struct BodySpec {
   Vec3 angular_velocity = Vec3::Zero();  // unit: rad/s
   double density = 1000.0;               // unit: kg/m³
   std::optional<double> mass;            // overrides density·volume (inertia scales). unit: kg
-  float restitution = 0.3f;
-  float friction = 0.5f;
+  float restitution = BodyDesc{}.restitution;
+  float friction = BodyDesc{}.friction;
   bool is_static = false;
 };
 
@@ -53,24 +55,45 @@ struct GroundSpec {
   double size = 16.0;      // side of the box's top face (kOctreeBox). unit: m
   double thickness = 0.5;  // unit: m
   int depth = 5;           // levels of the box's octree
-  float restitution = 0.3f;
-  float friction = 0.5f;
+  float restitution = WorldSettings{}.ground_restitution;
+  float friction = WorldSettings{}.ground_friction;
 };
 
-// "paper" and the other response modes by name, as scene files and the command line write them.
+// The friction and restitution of contacts between two of the scene's bodies
+// (World::set_pair_material), instead of the mix of their own.
+struct PairMaterialSpec {
+  std::array<std::size_t, 2> bodies{};  // indices into Scene::bodies, different
+  PairMaterial material;
+};
+
+// "paper", "plausible": the response modes by name, as scene files and the command line write
+// them.
 [[nodiscard]] std::string_view response_mode_name(ResponseMode mode);
 // Throws sphys::Error listing the valid names.
 [[nodiscard]] ResponseMode parse_response_mode(std::string_view name);
+// "all", "reduced": the contact sets by name.
+[[nodiscard]] std::string_view contact_set_name(ContactSet contacts);
+// Throws sphys::Error listing the valid names.
+[[nodiscard]] ContactSet parse_contact_set(std::string_view name);
 
+// The most substeps a scene may ask for: World refuses more (WorldSettings::substeps).
+inline constexpr int kMaxSubsteps = 64;
+
+// The world's settings start from a default WorldSettings, so that a scene that leaves a key out
+// runs as the runtime would by default.
 struct Scene {
-  std::string name;                         // the file name or the preset, for reports
-  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);  // unit: m/s²
-  double time_step = 1.0 / 60.0;            // unit: s
-  int frames = 880;                         // one step per frame
-  ResponseMode response = ResponseMode::kPaper;
-  int paper_passes = 1;  // WorldSettings::paper_passes
+  std::string name;                        // the file name or the preset, for reports
+  Vec3 gravity = WorldSettings{}.gravity;  // unit: m/s²
+  double time_step = 1.0 / 60.0;           // unit: s
+  int frames = 880;                        // one step per frame
+  ResponseMode response = WorldSettings{}.response;
+  int paper_passes = static_cast<int>(WorldSettings{}.paper_passes);
+  int substeps = static_cast<int>(WorldSettings{}.substeps);  // 1..kMaxSubsteps
+  SolverSettings solver;  // plausible mode; solver.contacts is the scene's "contacts"
+  SleepSettings sleep;    // plausible mode
   GroundSpec ground;
   std::vector<BodySpec> bodies;
+  std::vector<PairMaterialSpec> pair_materials;
   // Folder that relative mesh and .sph paths are taken from.
   std::filesystem::path base_directory;
 };

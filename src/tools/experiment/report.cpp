@@ -11,6 +11,7 @@
 
 #include "sphys/tools/csv_file.h"
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/scene.h"
 
 namespace sphys::tools {
 namespace {
@@ -68,6 +69,11 @@ struct Table {
   std::vector<std::vector<std::string>> rows;
 };
 
+// "3 of 80": a count of the row's bunnies.
+std::string of_bodies(std::uint32_t count, const RowResult& result) {
+  return std::to_string(count) + " of " + std::to_string(result.bodies);
+}
+
 Table table1(std::span<const RowResult> results) {
   Table table;
   table.columns = {
@@ -81,9 +87,15 @@ Table table1(std::span<const RowResult> results) {
       {"frame sd (ms)", "ours", "frame sd ms (ours)", true},
       {"ours only", "bodies below plane", "bodies below plane", true},
       {"ours only", "deepest penetration (m)", "deepest penetration (m)", true},
+      {"ours only", "mean penetration (m)", "mean penetration (m)", true},
+      {"ours only", "at rest at the end", "bodies at rest at the end", true},
+      {"ours only", "all at rest from frame", "all at rest from frame", true},
+      {"ours only", "jitter (m/s)", "jitter, last 60 frames (m/s)", true},
+      {"ours only", "final KE (J)", "final kinetic energy (J)", true},
   };
   for (const RowResult* result : in_paper_order(results)) {
     const RowSummary ours = summarize(*result);
+    const Plausibility& plausible = result->plausibility;
     const PaperRow* paper = find_paper_row(result->row);
     const auto paper_figure = [&](double PaperRow::*figure) {
       return paper == nullptr ? std::string("-") : fixed(paper->*figure, 2);
@@ -97,8 +109,13 @@ Table table1(std::span<const RowResult> results) {
         fixed(ours.fps, 2),
         paper_figure(&PaperRow::frame_time_sd_ms),
         fixed(ours.frame_time_sd_ms, 2),
-        std::to_string(result->bodies_below_plane) + " of " + std::to_string(result->bodies),
-        fixed(result->deepest_penetration, 4),
+        of_bodies(result->bodies_below_plane, *result),
+        fixed(plausible.deepest_penetration, 4),
+        fixed(plausible.mean_penetration, 4),
+        of_bodies(plausible.bodies_at_rest, *result),
+        plausible.all_at_rest_frame ? std::to_string(*plausible.all_at_rest_frame) : "never",
+        fixed(plausible.jitter, 4),
+        fixed(plausible.final_kinetic_energy, 3),
     });
   }
   return table;
@@ -299,17 +316,41 @@ std::string plots_section(std::span<const RowResult> results) {
   return "\n## Plots\n\nThe physics step's time (ms) and the contacts, frame by frame.\n" + out;
 }
 
+// How the rows were run, one line each for the response and the contacts it saw: the figures of
+// the two modes differ, and reduced contacts count fewer per frame.
+std::string mode_lines(const ExperimentMode& mode) {
+  std::string out = "Response: ";
+  out += response_mode_name(mode.response);
+  if (mode.response == ResponseMode::kPaper) {
+    out += " (the impulse of eq. 4 per contact, no friction, as published)\n";
+    out += "Contacts: every overlapping leaf pair (the contacts setting, ";
+    out += contact_set_name(mode.contacts);
+    out += ", applies to plausible mode only)\n";
+    return out;
+  }
+  out += " (sequential impulses with friction, penetration recovery and sleeping)\n";
+  out += "Contacts: ";
+  out += contact_set_name(mode.contacts);
+  out += mode.contacts == ContactSet::kReduced
+             ? " (a small manifold per body pair; contacts/frame counts the manifolds' points)\n"
+             : " (one per overlapping leaf pair, as the paper makes them)\n";
+  return out;
+}
+
 }  // namespace
 
-std::string comparison_text(std::span<const RowResult> results) {
-  return "Table 1: the paper's figures beside ours (our FPS: the physics step only, no "
+std::string comparison_text(std::span<const RowResult> results, const ExperimentMode& mode) {
+  return mode_lines(mode) +
+         "\nTable 1: the paper's figures beside ours (our FPS: the physics step only, no "
          "rendering)\n\n" +
          text_table(table1(results)) + "\n" + text_table(statistics_table(results));
 }
 
-std::string markdown_report(std::span<const RowResult> results, const std::string& machine) {
+std::string markdown_report(std::span<const RowResult> results, const std::string& machine,
+                            const ExperimentMode& mode) {
   std::string out = "# Table 1 of Rocha & Rodrigues (SAC 2008), reproduced\n\n";
   out += "Machine: " + machine + "\n\n";
+  out += mode_lines(mode) + "\n";
   out +=
       "Our frames per second count the physics step alone, run headless with no rendering; the "
       "paper's frames included rendering, so its FPS and frame time figures cover more work than "

@@ -16,6 +16,8 @@ RowResult run_experiment_row(const ExperimentRow& row, const ExperimentOptions& 
   }
   Scene scene = bunny_stacks_scene(row.stacks, row.per_stack, row.depth);
   scene.ground.kind = options.ground;
+  scene.response = options.mode.response;
+  scene.solver.contacts = options.mode.contacts;
   BuildWorldOptions build;
   build.tree_depth = row.depth;
   build.cache_dir = options.cache_dir;
@@ -32,6 +34,7 @@ RowResult run_experiment_row(const ExperimentRow& row, const ExperimentOptions& 
   result.bodies = static_cast<std::uint32_t>(setup.bodies.size());
   result.frames.reserve(static_cast<std::size_t>(options.frames));
   const auto dt = static_cast<float>(scene.time_step);
+  PlausibilityMeter plausibility;
   for (int frame = 0; frame < options.frames; ++frame) {
     const StepStats& stats = world.step(dt);
     if (stats.non_finite_body) {
@@ -40,9 +43,10 @@ RowResult run_experiment_row(const ExperimentRow& row, const ExperimentOptions& 
     }
     result.frames.push_back(
         {stats.step_ms, stats.detection_ms(), stats.response_ms, stats.contacts});
-    result.deepest_penetration = std::max(result.deepest_penetration, stats.deepest_penetration);
+    plausibility.add(stats);
     if (options.progress) options.progress(static_cast<double>(frame + 1) / options.frames);
   }
+  result.plausibility = plausibility.result();
 
   result.lowest_center_y = std::numeric_limits<float>::infinity();
   for (const BodyId body : setup.bodies) {

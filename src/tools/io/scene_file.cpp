@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <numbers>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sphys/error.h"
+#include "sphys/material.h"
 #include "sphys/tools/model.h"
 
 namespace sphys::tools {
@@ -47,11 +49,25 @@ constexpr double kUnitTolerance = 1e-6;
 // Longer values are cut short in messages.
 constexpr std::size_t kMaxShown = 40;
 
-constexpr std::array<std::string_view, 10> kSceneKeys = {
-    "format",   "version",      "gravity", "time_step", "frames",
-    "response", "paper_passes", "ground",  "defaults",  "bodies"};
+constexpr std::array<std::string_view, 15> kSceneKeys = {
+    "format",   "version",      "gravity",  "time_step", "frames",
+    "response", "paper_passes", "contacts", "substeps",  "solver",
+    "sleep",    "ground",       "defaults", "bodies",    "pair_materials"};
 // Passes over the contacts per step in paper mode, at most.
 constexpr long long kMaxPaperPasses = 1000;
+// Solver passes per step, at most: far beyond what converges, short of hanging a step.
+constexpr long long kMaxIterations = 1000;
+// Contacts kept per body pair when reduced, at most: World refuses more
+// (SolverSettings::manifold_points).
+constexpr long long kMaxManifoldPoints = 8;
+// Every integer up to here is exact in a double, as a JSON number is read.
+constexpr long long kMaxExactInteger = 9'007'199'254'740'992;  // 2^53
+constexpr std::array<std::string_view, 10> kSolverKeys = {
+    "velocity_iterations", "position_iterations", "warm_starting",        "restitution_threshold",
+    "linear_slop",         "position_correction", "max_correction_speed", "manifold_points",
+    "contact_margin",      "speculative_contacts"};
+constexpr std::array<std::string_view, 3> kSleepKeys = {"enabled", "speed", "time"};
+constexpr std::array<std::string_view, 3> kPairMaterialKeys = {"bodies", "friction", "restitution"};
 constexpr std::array<std::string_view, 7> kGroundKeys = {
     "type", "height", "size", "thickness", "depth", "restitution", "friction"};
 constexpr std::array<std::string_view, 13> kBodyKeys = {"mesh",
@@ -79,8 +95,13 @@ constexpr std::array<std::string_view, 7> kOrientationKeys = {
 template <typename Enum, std::size_t N>
 using NameTable = std::array<std::pair<Enum, std::string_view>, N>;
 
-constexpr NameTable<ResponseMode, 1> kResponseNames{{
+constexpr NameTable<ResponseMode, 2> kResponseNames{{
     {ResponseMode::kPaper, "paper"},
+    {ResponseMode::kPlausible, "plausible"},
+}};
+constexpr NameTable<ContactSet, 2> kContactSets{{
+    {ContactSet::kAll, "all"},
+    {ContactSet::kReduced, "reduced"},
 }};
 constexpr NameTable<GroundSpec::Kind, 3> kGroundKinds{{
     {GroundSpec::Kind::kOctreeBox, "octree-box"},
@@ -423,6 +444,14 @@ float to_single(const Node& node, double value) {
   return static_cast<float>(value);
 }
 
+// A friction coefficient, a speed, a length: a single-precision figure that must not be negative.
+float read_non_negative_single(const Node& node) {
+  return to_single(node, read_non_negative(node));
+}
+
+// A restitution or another fraction from 0 to 1, in single precision.
+float read_fraction(const Node& node) { return static_cast<float>(read_between(node, 0.0, 1.0)); }
+
 // An integral number (2 and 2.0 alike, as JSON Schema has it) within [low, high].
 long long read_integer(const Node& node, long long low, long long high) {
   const double value = read_number(node);
@@ -630,10 +659,8 @@ void read_body(const Node& node, BodySpec& body) {
   if (const auto n = node.find("angular_velocity")) body.angular_velocity = read_vec3(*n);
   if (const auto n = node.find("density")) body.density = read_positive(*n);
   if (const auto n = node.find("mass")) body.mass = read_optional_positive(*n);
-  if (const auto n = node.find("restitution")) {
-    body.restitution = to_single(*n, read_between(*n, 0.0, 1.0));
-  }
-  if (const auto n = node.find("friction")) body.friction = to_single(*n, read_non_negative(*n));
+  if (const auto n = node.find("restitution")) body.restitution = read_fraction(*n);
+  if (const auto n = node.find("friction")) body.friction = read_non_negative_single(*n);
   if (const auto n = node.find("static")) body.is_static = read_bool(*n);
 }
 
@@ -660,11 +687,105 @@ GroundSpec read_ground(const Node& node) {
   if (const auto n = node.find("depth")) {
     ground.depth = static_cast<int>(read_integer(*n, 1, kMaxGroundDepth));
   }
-  if (const auto n = node.find("restitution")) {
-    ground.restitution = to_single(*n, read_between(*n, 0.0, 1.0));
-  }
-  if (const auto n = node.find("friction")) ground.friction = to_single(*n, read_non_negative(*n));
+  if (const auto n = node.find("restitution")) ground.restitution = read_fraction(*n);
+  if (const auto n = node.find("friction")) ground.friction = read_non_negative_single(*n);
   return ground;
+}
+
+std::uint32_t read_count(const Node& node, long long low, long long high) {
+  return static_cast<std::uint32_t>(read_integer(node, low, high));
+}
+
+// Applies the keys of "solver" over `solver`, which holds the runtime's defaults.
+void read_solver(const Node& node, SolverSettings& solver) {
+  check_keys(node, kSolverKeys);
+  if (const auto n = node.find("velocity_iterations")) {
+    solver.velocity_iterations = read_count(*n, 1, kMaxIterations);
+  }
+  if (const auto n = node.find("position_iterations")) {
+    solver.position_iterations = read_count(*n, 0, kMaxIterations);
+  }
+  if (const auto n = node.find("warm_starting")) solver.warm_starting = read_bool(*n);
+  if (const auto n = node.find("restitution_threshold")) {
+    solver.restitution_threshold = read_non_negative_single(*n);
+  }
+  if (const auto n = node.find("linear_slop")) solver.linear_slop = read_non_negative_single(*n);
+  if (const auto n = node.find("position_correction")) {
+    solver.position_correction = read_fraction(*n);
+  }
+  if (const auto n = node.find("max_correction_speed")) {
+    solver.max_correction_speed = read_non_negative_single(*n);
+  }
+  if (const auto n = node.find("manifold_points")) {
+    solver.manifold_points = read_count(*n, 1, kMaxManifoldPoints);
+  }
+  if (const auto n = node.find("contact_margin")) {
+    solver.contact_margin = read_non_negative_single(*n);
+  }
+  if (const auto n = node.find("speculative_contacts")) {
+    solver.speculative_contacts = read_bool(*n);
+  }
+}
+
+void read_sleep(const Node& node, SleepSettings& sleep) {
+  check_keys(node, kSleepKeys);
+  if (const auto n = node.find("enabled")) sleep.enabled = read_bool(*n);
+  if (const auto n = node.find("speed")) sleep.speed = read_non_negative_single(*n);
+  if (const auto n = node.find("time")) sleep.time = read_non_negative_single(*n);
+}
+
+// An index into the scene's bodies.
+std::size_t read_body_index(const Node& node, std::size_t body_count) {
+  const auto index = static_cast<std::size_t>(read_integer(node, 0, kMaxExactInteger));
+  if (index >= body_count) {
+    node.fail("no body " + std::to_string(index) + "; /bodies has " + std::to_string(body_count) +
+              " (indices from 0)");
+  }
+  return index;
+}
+
+std::array<std::size_t, 2> read_body_pair(const Node& node, std::size_t body_count) {
+  if (!node.json().is_array()) fail_type(node, "an array of 2 body indices [i, j]");
+  if (node.json().size() != 2) {
+    node.fail("expected 2 body indices [i, j], got " + std::to_string(node.json().size()));
+  }
+  const std::array<std::size_t, 2> pair = {read_body_index(node.element(0), body_count),
+                                           read_body_index(node.element(1), body_count)};
+  if (pair[0] == pair[1]) node.fail("a pair needs two different bodies, got " + shown(node.json()));
+  return pair;
+}
+
+// Each pair's material, defaulting to the mix of the two bodies' own. A pair given twice (in
+// either order) is refused: the runtime would keep the last silently, hiding a slip.
+std::vector<PairMaterialSpec> read_pair_materials(const Node& node,
+                                                  const std::vector<BodySpec>& bodies) {
+  if (!node.json().is_array()) fail_type(node, "an array of pair materials");
+  std::vector<PairMaterialSpec> pairs;
+  for (std::size_t k = 0; k < node.json().size(); ++k) {
+    const Node entry = node.element(k);
+    check_keys(entry, kPairMaterialKeys);
+    const Node bodies_node = required(entry, "bodies", "a pair material names its two bodies");
+    PairMaterialSpec pair;
+    pair.bodies = read_body_pair(bodies_node, bodies.size());
+    const auto same_pair = [&](const PairMaterialSpec& other) {
+      return std::is_permutation(other.bodies.begin(), other.bodies.end(), pair.bodies.begin());
+    };
+    if (const auto earlier = std::find_if(pairs.begin(), pairs.end(), same_pair);
+        earlier != pairs.end()) {
+      bodies_node.fail("this pair already has a material, at /pair_materials/" +
+                       std::to_string(earlier - pairs.begin()));
+    }
+    const BodySpec& a = bodies[pair.bodies[0]];
+    const BodySpec& b = bodies[pair.bodies[1]];
+    pair.material = {mix_friction(a.friction, b.friction),
+                     mix_restitution(a.restitution, b.restitution)};
+    if (const auto n = entry.find("friction")) {
+      pair.material.friction = read_non_negative_single(*n);
+    }
+    if (const auto n = entry.find("restitution")) pair.material.restitution = read_fraction(*n);
+    pairs.push_back(pair);
+  }
+  return pairs;
 }
 
 void read_header(const Node& root) {
@@ -707,6 +828,12 @@ Scene read_scene(const Json& document, const fs::path& name) {
   if (const auto n = root.find("paper_passes")) {
     scene.paper_passes = static_cast<int>(read_integer(*n, 1, kMaxPaperPasses));
   }
+  if (const auto n = root.find("contacts")) scene.solver.contacts = read_choice(*n, kContactSets);
+  if (const auto n = root.find("substeps")) {
+    scene.substeps = static_cast<int>(read_integer(*n, 1, kMaxSubsteps));
+  }
+  if (const auto n = root.find("solver")) read_solver(*n, scene.solver);
+  if (const auto n = root.find("sleep")) read_sleep(*n, scene.sleep);
   if (const auto n = root.find("ground")) scene.ground = read_ground(*n);
 
   const BodySpec defaults =
@@ -717,6 +844,9 @@ Scene read_scene(const Json& document, const fs::path& name) {
     BodySpec body = defaults;
     read_body(bodies.element(i), body);
     scene.bodies.push_back(std::move(body));
+  }
+  if (const auto n = root.find("pair_materials")) {
+    scene.pair_materials = read_pair_materials(*n, scene.bodies);
   }
   return scene;
 }
@@ -783,6 +913,49 @@ Json ground_json(const GroundSpec& ground) {
   return out;
 }
 
+Json solver_json(const SolverSettings& solver) {
+  return {{"velocity_iterations", solver.velocity_iterations},
+          {"position_iterations", solver.position_iterations},
+          {"warm_starting", solver.warm_starting},
+          {"restitution_threshold", written(solver.restitution_threshold)},
+          {"linear_slop", written(solver.linear_slop)},
+          {"position_correction", written(solver.position_correction)},
+          {"max_correction_speed", written(solver.max_correction_speed)},
+          {"manifold_points", solver.manifold_points},
+          {"contact_margin", written(solver.contact_margin)},
+          {"speculative_contacts", solver.speculative_contacts}};
+}
+
+Json sleep_json(const SleepSettings& sleep) {
+  return {
+      {"enabled", sleep.enabled}, {"speed", written(sleep.speed)}, {"time", written(sleep.time)}};
+}
+
+Json pair_material_json(const PairMaterialSpec& pair) {
+  return {{"bodies", Json::array({pair.bodies[0], pair.bodies[1]})},
+          {"friction", written(pair.material.friction)},
+          {"restitution", written(pair.material.restitution)}};
+}
+
+// "unknown <what> '<name>'; <what>s: a, b", for names given on the command line.
+template <typename Enum, std::size_t N>
+Enum parse_name(std::string_view name, const NameTable<Enum, N>& table, std::string_view what) {
+  for (const auto& [value, known] : table) {
+    if (known == name) return value;
+  }
+  std::vector<std::string_view> names;
+  for (const auto& entry : table) names.push_back(entry.second);
+  std::string message = "unknown ";
+  message += what;
+  message += " '";
+  message += name;
+  message += "'; ";
+  message += what;
+  message += "s: ";
+  message += joined(names);
+  throw Error(message);
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const fs::path& name) {
@@ -806,12 +979,13 @@ Scene read_scene_file(const fs::path& path) {
 std::string_view response_mode_name(ResponseMode mode) { return name_of(mode, kResponseNames); }
 
 ResponseMode parse_response_mode(std::string_view name) {
-  for (const auto& [mode, known] : kResponseNames) {
-    if (known == name) return mode;
-  }
-  std::vector<std::string_view> names;
-  for (const auto& entry : kResponseNames) names.push_back(entry.second);
-  throw Error("unknown response mode '" + std::string(name) + "'; modes: " + joined(names));
+  return parse_name(name, kResponseNames, "response mode");
+}
+
+std::string_view contact_set_name(ContactSet contacts) { return name_of(contacts, kContactSets); }
+
+ContactSet parse_contact_set(std::string_view name) {
+  return parse_name(name, kContactSets, "contact set");
 }
 
 std::string scene_to_json(const Scene& scene) {
@@ -823,10 +997,19 @@ std::string scene_to_json(const Scene& scene) {
   out["frames"] = scene.frames;
   out["response"] = name_of(scene.response, kResponseNames);
   out["paper_passes"] = scene.paper_passes;
+  out["contacts"] = name_of(scene.solver.contacts, kContactSets);
+  out["substeps"] = scene.substeps;
+  out["solver"] = solver_json(scene.solver);
+  out["sleep"] = sleep_json(scene.sleep);
   out["ground"] = ground_json(scene.ground);
   Json bodies = Json::array();
   for (const BodySpec& body : scene.bodies) bodies.push_back(body_json(body));
   out["bodies"] = std::move(bodies);
+  Json pairs = Json::array();
+  for (const PairMaterialSpec& pair : scene.pair_materials) {
+    pairs.push_back(pair_material_json(pair));
+  }
+  out["pair_materials"] = std::move(pairs);
   return out.dump(2) + "\n";
 }
 

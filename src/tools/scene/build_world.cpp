@@ -1,5 +1,7 @@
 #include "sphys/tools/build_world.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <tuple>
@@ -84,15 +86,33 @@ BodyShape make_shape(const Scene& scene, const BodySpec& body, const TreeSpec& t
   return shape;
 }
 
-void add_ground(const Scene& scene, WorldSettings& settings, SimulationSetup& setup) {
+// A negative count becomes 0, which World refuses by name.
+std::uint32_t count(int value) { return static_cast<std::uint32_t>(std::max(value, 0)); }
+
+WorldSettings world_settings(const Scene& scene) {
+  WorldSettings settings;
+  settings.gravity = scene.gravity;
+  settings.response = scene.response;
+  settings.paper_passes = count(scene.paper_passes);
+  settings.substeps = count(scene.substeps);
+  settings.solver = scene.solver;
+  settings.sleep = scene.sleep;
+  // The exact plane's material; the octree ground is a body and carries its own.
+  settings.ground_restitution = scene.ground.restitution;
+  settings.ground_friction = scene.ground.friction;
+  return settings;
+}
+
+// The world with its ground: the detector's plane or a static octree body.
+void make_world(const Scene& scene, SimulationSetup& setup) {
+  WorldSettings settings = world_settings(scene);
   const GroundSpec& ground = scene.ground;
   switch (ground.kind) {
     case GroundSpec::Kind::kNone:
+      setup.world = std::make_unique<World>(settings);
       return;
     case GroundSpec::Kind::kPlane:
       settings.collision.ground_plane_height = static_cast<float>(ground.height);
-      settings.ground_restitution = ground.restitution;
-      settings.ground_friction = ground.friction;
       setup.world = std::make_unique<World>(settings);
       return;
     case GroundSpec::Kind::kOctreeBox: {
@@ -110,6 +130,24 @@ void add_ground(const Scene& scene, WorldSettings& settings, SimulationSetup& se
   }
 }
 
+// Scene body indices to the world's bodies. A scene made in code may name a body it lacks or a
+// material the world refuses; the message names the pair's JSON path, as for a body.
+void set_pair_materials(const Scene& scene, const SimulationSetup& setup) {
+  for (std::size_t k = 0; k < scene.pair_materials.size(); ++k) {
+    const PairMaterialSpec& pair = scene.pair_materials[k];
+    const std::string where = scene.name + ": /pair_materials/" + std::to_string(k) + ": ";
+    for (const std::size_t index : pair.bodies) {
+      if (index >= setup.bodies.size()) throw Error(where + "no body " + std::to_string(index));
+    }
+    try {
+      setup.world->set_pair_material(setup.bodies[pair.bodies[0]], setup.bodies[pair.bodies[1]],
+                                     pair.material);
+    } catch (const Error& error) {
+      throw Error(where + error.what());
+    }
+  }
+}
+
 }  // namespace
 
 SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options) {
@@ -117,12 +155,7 @@ SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options
     throw Error("the sphere-tree depth must be 1 to 6, got " + std::to_string(*options.tree_depth));
   }
   SimulationSetup setup;
-  WorldSettings settings;
-  settings.gravity = scene.gravity;
-  settings.response = scene.response;
-  settings.paper_passes = static_cast<std::uint32_t>(std::max(scene.paper_passes, 0));
-  add_ground(scene, settings, setup);
-  if (!setup.world) setup.world = std::make_unique<World>(settings);
+  make_world(scene, setup);
 
   std::map<ShapeKey, std::uint32_t> shape_of_key;
   std::vector<MassProperties> unit_density;  // per shape, at density 1
@@ -165,6 +198,7 @@ SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options
       options.progress(static_cast<double>(i + 1) / static_cast<double>(scene.bodies.size()));
     }
   }
+  set_pair_materials(scene, setup);
   return setup;
 }
 

@@ -46,10 +46,19 @@ std::vector<RowResult> sample_results() {
   extra.stopped_non_finite = true;
   RowResult deep = result_for({3, 8, 20}, {{10.0, 2.0, 4.0, 1000}, {30.0, 6.0, 12.0, 3000}});
   deep.bodies_below_plane = 2;
-  deep.deepest_penetration = 0.0125f;
+  deep.plausibility.deepest_penetration = 0.0125f;
+  deep.plausibility.mean_penetration = 0.0031;
+  deep.plausibility.bodies_at_rest = 150;
+  deep.plausibility.jitter = 0.25;
+  deep.plausibility.final_kinetic_energy = 1234.5;
   deep.lowest_center_y = -0.25f;
   RowResult shallow = result_for({2, 4, 25}, {{2.0, 0.5, 1.0, 100}, {4.0, 1.0, 1.5, 200}});
-  shallow.deepest_penetration = 0.001f;
+  shallow.plausibility.deepest_penetration = 0.001f;
+  shallow.plausibility.mean_penetration = 0.0004;
+  shallow.plausibility.bodies_at_rest = 100;
+  shallow.plausibility.all_at_rest_frame = 2;
+  shallow.plausibility.jitter = 0.0012;
+  shallow.plausibility.final_kinetic_energy = 0.5;
   shallow.lowest_center_y = 0.5f;
   shallow.tree_builder = "octree | branching 8";
   shallow.ground = "exact plane";
@@ -133,15 +142,23 @@ std::string plot_error(const fs::path& directory, const std::vector<RowResult>& 
 }
 
 TEST(ExperimentComparison, SetsThePapersFiguresBesideOursRowByRow) {
-  const std::string text = comparison_text(sample_results());
+  const std::string text = comparison_text(sample_results(), {});
   EXPECT_THAT(line_with(text, "4 × 25"),
               AllOf(StartsWith("    2"), HasSubstr(" 4216.81 "), HasSubstr(" 150.00 "),
                     HasSubstr(" 57.47 "), HasSubstr(" 333.33 "), HasSubstr(" 5.89 "),
-                    HasSubstr(" 1.41 "), HasSubstr(" 0 of 100 "), HasSubstr(" 0.0010")));
+                    HasSubstr(" 1.41 "), HasSubstr(" 0 of 100 "), HasSubstr(" 0.0010 ")));
   EXPECT_THAT(line_with(text, "8 × 20"),
               AllOf(StartsWith("    3"), HasSubstr(" 265562.60 "), HasSubstr(" 2000.00 "),
                     HasSubstr(" 6.91 "), HasSubstr(" 50.00 "), HasSubstr(" 69.29 "),
-                    HasSubstr(" 14.14 "), HasSubstr(" 2 of 160 "), HasSubstr(" 0.0125")));
+                    HasSubstr(" 14.14 "), HasSubstr(" 2 of 160 "), HasSubstr(" 0.0125 ")));
+  // Ours only: mean penetration, bodies at rest at the end, the frame from which all were at
+  // rest (the Markdown test checks the cell), the jitter of the last frames and the kinetic
+  // energy at the end.
+  EXPECT_THAT(line_with(text, "4 × 25"), AllOf(HasSubstr(" 0.0004 "), HasSubstr(" 100 of 100 "),
+                                               HasSubstr(" 0.0012 "), HasSubstr(" 0.500")));
+  EXPECT_THAT(line_with(text, "8 × 20"),
+              AllOf(HasSubstr(" 0.0031 "), HasSubstr(" 150 of 160 "), HasSubstr(" never "),
+                    HasSubstr(" 0.2500 "), HasSubstr(" 1234.500")));
   // A row the paper did not run: no paper figures, and ours n/a without frames.
   EXPECT_THAT(line_with(text, "2 × 3"), AllOf(HasSubstr(" - "), HasSubstr(" n/a ")));
   // Rows the results lack are left out.
@@ -149,7 +166,7 @@ TEST(ExperimentComparison, SetsThePapersFiguresBesideOursRowByRow) {
 }
 
 TEST(ExperimentComparison, ListsRowsInThePapersOrderThenTheOthers) {
-  const std::string text = comparison_text(sample_results());
+  const std::string text = comparison_text(sample_results(), {});
   const std::size_t first = text.find("4 × 25");
   const std::size_t second = text.find("8 × 20");
   const std::size_t third = text.find("2 × 3");
@@ -159,24 +176,25 @@ TEST(ExperimentComparison, ListsRowsInThePapersOrderThenTheOthers) {
 }
 
 TEST(ExperimentComparison, AlignsTheColumnsOfTable1) {
-  const std::vector<std::string> lines = lines_of(comparison_text(sample_results()));
-  // The title, a blank line, the group line, then names, a rule and three rows, all numbers
-  // right-aligned to the same end; "×" counts as one column.
-  ASSERT_GE(lines.size(), 8u);
-  EXPECT_THAT(lines[3], StartsWith("depth  objects"));
-  const std::size_t width = columns_of(lines[4]);
-  EXPECT_EQ(lines[4], std::string(width, '-'));
-  for (std::size_t i = 3; i < 8; ++i) EXPECT_EQ(columns_of(lines[i]), width) << lines[i];
+  const std::vector<std::string> lines = lines_of(comparison_text(sample_results(), {}));
+  // The mode's two lines and a blank one, the title, a blank line, the group line, then names,
+  // a rule and three rows, all numbers right-aligned to the same end; "×" counts as one column.
+  ASSERT_GE(lines.size(), 11u);
+  EXPECT_THAT(lines[3], StartsWith("Table 1: "));
+  EXPECT_THAT(lines[6], StartsWith("depth  objects"));
+  const std::size_t width = columns_of(lines[7]);
+  EXPECT_EQ(lines[7], std::string(width, '-'));
+  for (std::size_t i = 6; i < 11; ++i) EXPECT_EQ(columns_of(lines[i]), width) << lines[i];
   // Each paper figure ends where the header "paper" above it ends.
-  const std::size_t paper_end = column_after(lines[3], "paper");
-  EXPECT_EQ(column_after(lines[5], "4216.81"), paper_end);
-  EXPECT_EQ(column_after(lines[6], "265562.60"), paper_end);
+  const std::size_t paper_end = column_after(lines[6], "paper");
+  EXPECT_EQ(column_after(lines[8], "4216.81"), paper_end);
+  EXPECT_EQ(column_after(lines[9], "265562.60"), paper_end);
 }
 
 TEST(ExperimentComparison, SetsTheSection5StatisticsBesideOurs) {
   std::vector<RowResult> results = sample_results();
   results.erase(results.begin());  // the row without frames would make every statistic n/a
-  const std::string text = comparison_text(results);
+  const std::string text = comparison_text(results, {});
   // Contacts rise as FPS falls and the frame time spread grows: r = -1 and +1 with two rows.
   EXPECT_THAT(line_with(text, "contacts vs FPS"), AllOf(HasSubstr("+0.75"), HasSubstr("-1.00")));
   EXPECT_THAT(line_with(text, "contacts vs frame time sd"),
@@ -196,21 +214,26 @@ TEST(ExperimentComparison, SetsTheSection5StatisticsBesideOurs) {
 
 TEST(ExperimentComparison, WritesNaForStatisticsItCannotCompute) {
   const std::vector<RowResult> one = {result_for({2, 4, 25}, {{2.0, 0.5, 1.0, 100}})};
-  const std::string text = comparison_text(one);
+  const std::string text = comparison_text(one, {});
   EXPECT_THAT(line_with(text, "contacts vs FPS"), AllOf(HasSubstr("+0.75"), HasSubstr("n/a")));
   EXPECT_THAT(line_with(text, "detection share sd"), HasSubstr("n/a"));
   EXPECT_THAT(line_with(text, "detection share of frame time"), HasSubstr("25.00"));
 }
 
 TEST(ExperimentMarkdown, HasTheMachineTheNotesAndBothTables) {
-  const std::string md = markdown_report(sample_results(), "Test machine: 2 cores");
+  const std::string md = markdown_report(sample_results(), "Test machine: 2 cores", {});
   EXPECT_THAT(md, StartsWith("# "));
   EXPECT_THAT(md, HasSubstr("\nMachine: Test machine: 2 cores\n"));
   EXPECT_THAT(md, AllOf(HasSubstr("headless"), HasSubstr("rendering")));
   EXPECT_THAT(md, HasSubstr("\n## Table 1\n\n| depth | objects | contacts/frame (paper) |"));
+  EXPECT_THAT(md,
+              HasSubstr("| bodies below plane | deepest penetration (m) | mean penetration (m) | "
+                        "bodies at rest at the end | all at rest from frame | jitter, last 60 "
+                        "frames (m/s) | final kinetic energy (J) |\n"));
   EXPECT_THAT(md, HasSubstr("\n| 2 | 4 × 25 | 4216.81 | 150.00 | 57.47 | 333.33 | 5.89 | 1.41 | "
-                            "0 of 100 | 0.0010 |\n"));
-  EXPECT_THAT(md, HasSubstr("\n| 4 | 2 × 3 | - | n/a | - | n/a | - | n/a | 0 of 6 | 0.0000 |\n"));
+                            "0 of 100 | 0.0010 | 0.0004 | 100 of 100 | 2 | 0.0012 | 0.500 |\n"));
+  EXPECT_THAT(md, HasSubstr("\n| 4 | 2 × 3 | - | n/a | - | n/a | - | n/a | 0 of 6 | 0.0000 | "
+                            "0.0000 | 0 of 6 | never | 0.0000 | 0.000 |\n"));
   EXPECT_LT(md.find("| 4 × 25 |"), md.find("| 8 × 20 |"));
   EXPECT_THAT(md, HasSubstr("\n## Statistics (§5)\n\n| statistic | paper | ours |\n"));
   EXPECT_THAT(md, HasSubstr("\n| detection share of frame time (%) | 23.00 | n/a |\n"));
@@ -218,8 +241,26 @@ TEST(ExperimentMarkdown, HasTheMachineTheNotesAndBothTables) {
   EXPECT_THAT(md, HasSubstr("Table 1 gives r = -0.75"));
 }
 
+TEST(ExperimentMarkdown, StatesTheResponseModeAndTheContactsInItsHeader) {
+  const auto header = [](const ExperimentMode& mode) {
+    const std::string md = markdown_report(sample_results(), "m", mode);
+    return md.substr(0, md.find("\n## Table 1"));
+  };
+  // The paper's response sees every leaf pair, whatever the contacts setting says.
+  EXPECT_THAT(header({}), AllOf(HasSubstr("\nResponse: paper ("),
+                                HasSubstr("\nContacts: every overlapping leaf pair (the contacts "
+                                          "setting, reduced, applies to plausible mode only)\n")));
+  EXPECT_THAT(header({ResponseMode::kPlausible, ContactSet::kReduced}),
+              AllOf(HasSubstr("\nResponse: plausible ("), HasSubstr("\nContacts: reduced (")));
+  EXPECT_THAT(header({ResponseMode::kPlausible, ContactSet::kAll}),
+              HasSubstr("\nContacts: all (one per overlapping leaf pair"));
+  // The terminal's table opens with the same lines.
+  EXPECT_THAT(comparison_text(sample_results(), {ResponseMode::kPlausible, ContactSet::kAll}),
+              StartsWith("Response: plausible ("));
+}
+
 TEST(ExperimentMarkdown, ReportsEachRunsBuilderAndEndState) {
-  const std::string md = markdown_report(sample_results(), "m");
+  const std::string md = markdown_report(sample_results(), "m", {});
   EXPECT_THAT(md, HasSubstr("\n## Runs\n"));
   // '|' in a builder's name is escaped so that it does not split the cell.
   EXPECT_THAT(md, HasSubstr("\n| d2-4x25 | octree \\| branching 8 | exact plane | 2 | yes | "
@@ -233,7 +274,7 @@ TEST(ExperimentMarkdown, ReportsEachRunsBuilderAndEndState) {
 }
 
 TEST(ExperimentMarkdown, LinksThePlotsWritePlotsDraws) {
-  const std::string md = markdown_report(sample_results(), "m");
+  const std::string md = markdown_report(sample_results(), "m", {});
   const PlotFiles files = plot_files({2, 4, 25});
   EXPECT_EQ(files.frame_time, "d2-4x25-frame-time.png");
   EXPECT_EQ(files.contacts, "d2-4x25-contacts.png");

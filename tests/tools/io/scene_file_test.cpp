@@ -95,6 +95,36 @@ void expect_same_body(const BodySpec& a, const BodySpec& b) {
   EXPECT_EQ(a.is_static, b.is_static);
 }
 
+void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
+  EXPECT_EQ(a.velocity_iterations, b.velocity_iterations);
+  EXPECT_EQ(a.position_iterations, b.position_iterations);
+  EXPECT_EQ(a.warm_starting, b.warm_starting);
+  EXPECT_EQ(bits(a.restitution_threshold), bits(b.restitution_threshold));
+  EXPECT_EQ(bits(a.linear_slop), bits(b.linear_slop));
+  EXPECT_EQ(bits(a.position_correction), bits(b.position_correction));
+  EXPECT_EQ(bits(a.max_correction_speed), bits(b.max_correction_speed));
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.manifold_points, b.manifold_points);
+  EXPECT_EQ(bits(a.contact_margin), bits(b.contact_margin));
+  EXPECT_EQ(a.speculative_contacts, b.speculative_contacts);
+}
+
+void expect_same_sleep(const SleepSettings& a, const SleepSettings& b) {
+  EXPECT_EQ(a.enabled, b.enabled);
+  EXPECT_EQ(bits(a.speed), bits(b.speed));
+  EXPECT_EQ(bits(a.time), bits(b.time));
+}
+
+void expect_same_pairs(const std::vector<PairMaterialSpec>& a,
+                       const std::vector<PairMaterialSpec>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].bodies, b[k].bodies) << "pair " << k;
+    EXPECT_EQ(bits(a[k].material.friction), bits(b[k].material.friction)) << "pair " << k;
+    EXPECT_EQ(bits(a[k].material.restitution), bits(b[k].material.restitution)) << "pair " << k;
+  }
+}
+
 void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.base_directory, b.base_directory);
@@ -103,6 +133,10 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.frames, b.frames);
   EXPECT_EQ(a.response, b.response);
   EXPECT_EQ(a.paper_passes, b.paper_passes);
+  EXPECT_EQ(a.substeps, b.substeps);
+  expect_same_solver(a.solver, b.solver);
+  expect_same_sleep(a.sleep, b.sleep);
+  expect_same_pairs(a.pair_materials, b.pair_materials);
   EXPECT_EQ(a.ground.kind, b.ground.kind);
   EXPECT_EQ(bits(a.ground.height), bits(b.ground.height));
   EXPECT_EQ(bits(a.ground.size), bits(b.ground.size));
@@ -131,6 +165,13 @@ constexpr std::string_view kFullScene = R"({
   "frames": 1200,
   "response": "paper",
   "paper_passes": 7,
+  "contacts": "all",
+  "substeps": 4,
+  "solver": {"velocity_iterations": 12, "position_iterations": 0, "warm_starting": false,
+             "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
+             "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
+             "speculative_contacts": false},
+  "sleep": {"enabled": false, "speed": 0.1, "time": 2},
   "ground": {"type": "plane", "height": -1.5, "size": 20, "thickness": 0.75, "depth": 4,
              "restitution": 0.8, "friction": 0.9},
   "defaults": {"density": 500, "friction": 0.2},
@@ -141,7 +182,8 @@ constexpr std::string_view kFullScene = R"({
      "linear_velocity": [4, 5, 6], "angular_velocity": [-1, 0.5, 2], "density": 250,
      "mass": 12.5, "restitution": 0.1, "friction": 0.7, "static": true},
     {"mesh": "bunny", "triangles": 800, "size": 2.5, "sphere_tree": "trees/bunny.sph"}
-  ]
+  ],
+  "pair_materials": [{"bodies": [1, 0], "friction": 1.25, "restitution": 0.05}]
 })";
 
 class SceneFileOnDisk : public testing::Test {
@@ -168,6 +210,22 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   EXPECT_EQ(scene.frames, 1200);
   EXPECT_EQ(scene.response, ResponseMode::kPaper);
   EXPECT_EQ(scene.paper_passes, 7);
+  EXPECT_EQ(scene.substeps, 4);
+  SolverSettings solver;
+  solver.velocity_iterations = 12;
+  solver.position_iterations = 0;
+  solver.warm_starting = false;
+  solver.restitution_threshold = 0.5f;
+  solver.linear_slop = 0.01f;
+  solver.position_correction = 0.4f;
+  solver.max_correction_speed = 2.0f;
+  solver.contacts = ContactSet::kAll;
+  solver.manifold_points = 6;
+  solver.contact_margin = 0.05f;
+  solver.speculative_contacts = false;
+  expect_same_solver(scene.solver, solver);
+  expect_same_sleep(scene.sleep, {.enabled = false, .speed = 0.1f, .time = 2.0f});
+  expect_same_pairs(scene.pair_materials, {{.bodies = {1, 0}, .material = {1.25f, 0.05f}}});
   EXPECT_EQ(scene.ground.kind, GroundSpec::Kind::kPlane);
   EXPECT_EQ(scene.ground.height, -1.5);
   EXPECT_EQ(scene.ground.size, 20.0);
@@ -222,6 +280,46 @@ TEST(SceneFile, SmallestSceneTakesEveryDefault) {
   expect_same_scene(scene, expected);
   // The header and an empty body list make a scene too.
   EXPECT_TRUE(parse_scene(scene_text(R"("bodies": [])"), "s.json").bodies.empty());
+}
+
+TEST(SceneFile, WorldSettingsLeftOutAreTheRuntimesDefaults) {
+  const Scene scene = parse_scene(scene_text(R"("bodies": [{}])"), "s.json");
+  const WorldSettings runtime;
+  EXPECT_EQ(scene.response, ResponseMode::kPlausible);
+  EXPECT_EQ(scene.response, runtime.response);
+  EXPECT_EQ(scene.paper_passes, static_cast<int>(runtime.paper_passes));
+  EXPECT_EQ(scene.substeps, static_cast<int>(runtime.substeps));
+  EXPECT_EQ(scene.solver.contacts, ContactSet::kReduced);
+  expect_same_solver(scene.solver, runtime.solver);
+  expect_same_sleep(scene.sleep, runtime.sleep);
+  expect_same(scene.gravity, runtime.gravity, "gravity");
+  EXPECT_EQ(scene.ground.restitution, runtime.ground_restitution);
+  EXPECT_EQ(scene.ground.friction, runtime.ground_friction);
+  EXPECT_TRUE(scene.pair_materials.empty());
+}
+
+TEST(SceneFile, SolverAndSleepObjectsSetOnlyTheKeysTheyHave) {
+  const Scene scene = parse_scene(scene_text(R"("contacts": "all", "substeps": 64,
+      "solver": {"manifold_points": 8}, "sleep": {"time": 0}, "bodies": [])"),
+                                  "s.json");
+  EXPECT_EQ(scene.substeps, 64);
+  SolverSettings solver;
+  solver.contacts = ContactSet::kAll;
+  solver.manifold_points = 8;
+  expect_same_solver(scene.solver, solver);
+  expect_same_sleep(scene.sleep, {.enabled = true, .speed = SleepSettings{}.speed, .time = 0.0f});
+}
+
+TEST(SceneFile, APairMaterialLeftPartlyOpenTakesTheMixOfItsBodies) {
+  const Scene scene = parse_scene(scene_text(R"(
+    "bodies": [{"friction": 0.2, "restitution": 0.1}, {"friction": 0.8, "restitution": 0.6}, {}],
+    "pair_materials": [{"bodies": [0, 1]}, {"bodies": [2, 0], "friction": 0},
+                       {"bodies": [1, 2], "restitution": 1}])"),
+                                  "s.json");
+  expect_same_pairs(scene.pair_materials,
+                    {{.bodies = {0, 1}, .material = {mix_friction(0.2f, 0.8f), 0.6f}},
+                     {.bodies = {2, 0}, .material = {0.0f, 0.3f}},
+                     {.bodies = {1, 2}, .material = {mix_friction(0.8f, 0.5f), 1.0f}}});
 }
 
 TEST(SceneFile, BodyKeysOverrideTheDefaults) {
@@ -318,6 +416,11 @@ class RandomScene {
     scene.time_step = std::uniform_real_distribution<double>(1e-9, 1.0)(rng_);
     scene.frames = std::uniform_int_distribution<int>(1, 10'000'000)(rng_);
     scene.paper_passes = std::uniform_int_distribution<int>(1, 1000)(rng_);
+    scene.response = pick(std::array{ResponseMode::kPaper, ResponseMode::kPlausible});
+    scene.substeps = std::uniform_int_distribution<int>(1, 64)(rng_);
+    scene.solver = solver();
+    scene.sleep = {
+        .enabled = coin(), .speed = std::abs(any_float()), .time = std::abs(any_float())};
     scene.ground.kind = pick(std::array{GroundSpec::Kind::kNone, GroundSpec::Kind::kPlane,
                                         GroundSpec::Kind::kOctreeBox});
     scene.ground.height = any_double();
@@ -328,10 +431,34 @@ class RandomScene {
     scene.ground.friction = std::abs(any_float());
     const int bodies = std::uniform_int_distribution<int>(0, 4)(rng_);
     for (int i = 0; i < bodies; ++i) scene.bodies.push_back(body());
+    for (std::size_t i = 0; i + 1 < scene.bodies.size(); ++i) {
+      if (!coin()) continue;
+      PairMaterialSpec pair;
+      pair.bodies =
+          coin() ? std::array<std::size_t, 2>{i, i + 1} : std::array<std::size_t, 2>{i + 1, i};
+      pair.material = {std::abs(any_float()), unit_float()};
+      scene.pair_materials.push_back(pair);
+    }
     return scene;
   }
 
  private:
+  SolverSettings solver() {
+    SolverSettings solver;
+    solver.velocity_iterations = std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
+    solver.position_iterations = std::uniform_int_distribution<std::uint32_t>(0, 1000)(rng_);
+    solver.warm_starting = coin();
+    solver.restitution_threshold = std::abs(any_float());
+    solver.linear_slop = std::abs(any_float());
+    solver.position_correction = unit_float();
+    solver.max_correction_speed = std::abs(any_float());
+    solver.contacts = pick(std::array{ContactSet::kAll, ContactSet::kReduced});
+    solver.manifold_points = std::uniform_int_distribution<std::uint32_t>(1, 8)(rng_);
+    solver.contact_margin = std::abs(any_float());
+    solver.speculative_contacts = coin();
+    return solver;
+  }
+
   BodySpec body() {
     BodySpec body;
     body.mesh = coin() ? "bunny" : "meshes/box.obj";
@@ -516,8 +643,10 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
       {scene_text(R"("ground": {"thickness": 0}, "bodies": [])"), "/ground/thickness",
        "must be positive, got 0"},
       // Enumerations list their values.
-      {scene_text(R"("response": "plausible", "bodies": [])"), "/response",
-       "unknown value \"plausible\" (valid: \"paper\")"},
+      {scene_text(R"("response": "bogus", "bodies": [])"), "/response",
+       "unknown value \"bogus\" (valid: \"paper\", \"plausible\")"},
+      {scene_text(R"("contacts": "some", "bodies": [])"), "/contacts",
+       "unknown value \"some\" (valid: \"all\", \"reduced\")"},
       {scene_text(R"("ground": {"type": "box"}, "bodies": [])"), "/ground/type",
        "unknown value \"box\" (valid: \"octree-box\", \"plane\", \"none\")"},
       {scene_text(R"("bodies": [{"sphere_tree": {"method": "best"}}])"),
@@ -547,6 +676,71 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
       {R"({"format": "sphys-scene", "version": "1", "bodies": []})", "/version",
        "expected a number, got a string \"1\""},
       {scene_text(R"("frames": 10)"), "/bodies", "missing"},
+      // The world's settings.
+      {scene_text(R"("substeps": 0, "bodies": [])"), "/substeps",
+       "must be between 1 and 64, got 0"},
+      {scene_text(R"("substeps": 65, "bodies": [])"), "/substeps",
+       "must be between 1 and 64, got 65"},
+      {scene_text(R"("substeps": 1.5, "bodies": [])"), "/substeps", "must be an integer, got 1.5"},
+      {scene_text(R"("solver": [], "bodies": [])"), "/solver", "expected an object, got an array"},
+      {scene_text(R"("solver": {"velocity_iteration": 3}, "bodies": [])"),
+       "/solver/velocity_iteration", "unknown key; did you mean \"velocity_iterations\"?"},
+      {scene_text(R"("solver": {"velocity_iterations": 0}, "bodies": [])"),
+       "/solver/velocity_iterations", "must be between 1 and 1000, got 0"},
+      {scene_text(R"("solver": {"position_iterations": -1}, "bodies": [])"),
+       "/solver/position_iterations", "must be between 0 and 1000, got -1"},
+      {scene_text(R"("solver": {"warm_starting": "yes"}, "bodies": [])"), "/solver/warm_starting",
+       "expected true or false, got a string \"yes\""},
+      {scene_text(R"("solver": {"restitution_threshold": -1}, "bodies": [])"),
+       "/solver/restitution_threshold", "must not be negative, got -1"},
+      {scene_text(R"("solver": {"linear_slop": -0.01}, "bodies": [])"), "/solver/linear_slop",
+       "must not be negative, got -0.01"},
+      {scene_text(R"("solver": {"position_correction": 1.5}, "bodies": [])"),
+       "/solver/position_correction", "must be between 0 and 1, got 1.5"},
+      {scene_text(R"("solver": {"max_correction_speed": 1e39}, "bodies": [])"),
+       "/solver/max_correction_speed", "does not fit in single precision, got 1e+39"},
+      {scene_text(R"("solver": {"manifold_points": 9}, "bodies": [])"), "/solver/manifold_points",
+       "must be between 1 and 8, got 9"},
+      {scene_text(R"("solver": {"contact_margin": "wide"}, "bodies": [])"),
+       "/solver/contact_margin", "expected a number, got a string \"wide\""},
+      {scene_text(R"("solver": {"speculative_contacts": 1}, "bodies": [])"),
+       "/solver/speculative_contacts", "expected true or false, got a number 1"},
+      {scene_text(R"("sleep": {"enable": false}, "bodies": [])"), "/sleep/enable",
+       "unknown key; did you mean \"enabled\"?"},
+      {scene_text(R"("sleep": {"speed": -0.05}, "bodies": [])"), "/sleep/speed",
+       "must not be negative, got -0.05"},
+      {scene_text(R"("sleep": {"time": null}, "bodies": [])"), "/sleep/time",
+       "expected a number, got null"},
+      // Pair materials.
+      {scene_text(R"("bodies": [], "pair_materials": {})"), "/pair_materials",
+       "expected an array of pair materials, got an object"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"friction": 1}])"),
+       "/pair_materials/0/bodies", "missing; a pair material names its two bodies"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1], "frction": 1}])"),
+       "/pair_materials/0/frction", "unknown key; did you mean \"friction\"?"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1, 1]}])"),
+       "/pair_materials/0/bodies", "expected 2 body indices [i, j], got 3"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": 1}])"),
+       "/pair_materials/0/bodies", "expected an array of 2 body indices [i, j], got a number 1"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 2]}])"),
+       "/pair_materials/0/bodies/1", "no body 2; /bodies has 2 (indices from 0)"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [-1, 0]}])"),
+       "/pair_materials/0/bodies/0", "must be between 0 and 9007199254740992, got -1"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0.5, 1]}])"),
+       "/pair_materials/0/bodies/0", "must be an integer, got 0.5"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [1, 1]}])"),
+       "/pair_materials/0/bodies", "a pair needs two different bodies, got [1,1]"},
+      {scene_text(R"("bodies": [{}, {}, {}],
+          "pair_materials": [{"bodies": [0, 1]}, {"bodies": [1, 2]}, {"bodies": [1, 0]}])"),
+       "/pair_materials/2/bodies", "this pair already has a material, at /pair_materials/0"},
+      {scene_text(R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1], "friction": -1}])"),
+       "/pair_materials/0/friction", "must not be negative, got -1"},
+      {scene_text(
+           R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1], "restitution": 1.5}])"),
+       "/pair_materials/0/restitution", "must be between 0 and 1, got 1.5"},
+      {scene_text(
+           R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1], "restitution": -0.1}])"),
+       "/pair_materials/0/restitution", "must be between 0 and 1, got -0.1"},
       // Duplicate keys would otherwise be resolved silently.
       {scene_text(R"("bodies": [{"density": 1, "density": 2}])"), "/bodies/0/density",
        "duplicate key"},
@@ -572,6 +766,13 @@ TEST(SceneFile, NonFiniteNumbersAreNamedWithLineAndColumn) {
                              ",\n  \"time_step\": " + value + ",\n  \"bodies\": []\n}\n";
     EXPECT_THAT(parse_error(text), StartsWith(message)) << text;
   }
+}
+
+TEST(SceneFile, NonFiniteNumbersAreRefusedAtAnyDepth) {
+  const std::string text = std::string("{\n  ") + std::string(kHeader) +
+                           ",\n  \"solver\": {\"linear_slop\": NaN},\n  \"bodies\": []\n}\n";
+  EXPECT_THAT(parse_error(text),
+              StartsWith("scene.json:3: column 29: NaN is not a number in JSON"));
 }
 
 TEST(SceneFile, TextThatIsNotJsonNamesLineAndColumn) {
@@ -670,6 +871,10 @@ TEST(SceneFileDocs, TheExampleReadsAsDescribed) {
   const float half = std::sqrt(0.5f);
   expect_rotation(last.orientation, Vec3(half, 0.0f, half), Vec3(half, 0.0f, half));
   expect_rotation(last.orientation, Vec3::UnitY(), Vec3(-0.5f, half, 0.5f));
+  // The second and third bunnies grip harder; their restitution stays the mix of their own.
+  EXPECT_EQ(scene.response, ResponseMode::kPlausible);
+  EXPECT_EQ(scene.sleep.time, 1.0f);
+  expect_same_pairs(scene.pair_materials, {{.bodies = {1, 2}, .material = {0.9f, 0.3f}}});
 }
 
 TEST(SceneFileSchema, ListsTheKeysOfTheFormat) {
@@ -690,7 +895,30 @@ TEST(SceneFileSchema, ListsTheKeysOfTheFormat) {
   EXPECT_EQ(property_names(defs.at("sphere_tree_build")),
             object_keys(full.at("bodies").at(0).at("sphere_tree")));
   EXPECT_EQ(property_names(defs.at("body")), (std::set<std::string>{"position", "orientation"}));
+  EXPECT_EQ(property_names(defs.at("solver")), object_keys(full.at("solver")));
+  EXPECT_EQ(property_names(defs.at("sleep")), object_keys(full.at("sleep")));
+  EXPECT_EQ(property_names(defs.at("pair_material")), object_keys(full.at("pair_materials").at(0)));
   EXPECT_EQ(schema.at("required"), nlohmann::json({"format", "version", "bodies"}));
+}
+
+// The defaults the schema gives for the world's settings: a default WorldSettings's.
+TEST(SceneFileSchema, WorldSettingsDefaultsAreTheRuntimes) {
+  const nlohmann::json schema = read_schema();
+  const nlohmann::json& properties = schema.at("properties");
+  const nlohmann::json& defs = schema.at("$defs");
+  const Scene defaults = parse_scene(scene_text(R"("bodies": [])"), "s.json");
+  const nlohmann::json written = nlohmann::json::parse(scene_to_json(defaults));
+  for (const char* key : {"response", "paper_passes", "contacts", "substeps"}) {
+    EXPECT_EQ(properties.at(key).at("default"), written.at(key)) << key;
+  }
+  const auto expect_defaults = [&](const char* def, const char* key) {
+    for (const auto& item : defs.at(def).at("properties").items()) {
+      EXPECT_EQ(item.value().at("default"), written.at(key).at(item.key()))
+          << def << "/" << item.key();
+    }
+  };
+  expect_defaults("solver", "solver");
+  expect_defaults("sleep", "sleep");
 }
 
 TEST(SceneFileSchema, TheParserReadsEveryKeyItLists) {
@@ -710,7 +938,17 @@ TEST(SceneFileSchema, TheParserReadsEveryKeyItLists) {
                       Not(HasSubstr("unknown key"))));
   };
   for (const std::string& key : property_names(schema)) {
-    if (key != "format" && key != "version") expect_read("", key, "\"frames\": 1");
+    if (key != "format" && key != "version") expect_read("", key, R"("bodies": [])");
+  }
+  for (const std::string& key : property_names(defs.at("solver"))) {
+    expect_read("/solver", key, R"("solver": {}, "bodies": [])");
+  }
+  for (const std::string& key : property_names(defs.at("sleep"))) {
+    expect_read("/sleep", key, R"("sleep": {}, "bodies": [])");
+  }
+  for (const std::string& key : property_names(defs.at("pair_material"))) {
+    expect_read("/pair_materials/0", key,
+                R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1]}])");
   }
   for (const std::string& key : property_names(defs.at("ground"))) {
     expect_read("/ground", key, R"("ground": {}, "bodies": [])");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 namespace sphys::tools {
 namespace {
 
+using testing::AllOf;
 using testing::ElementsAre;
 using testing::HasSubstr;
 
@@ -256,17 +258,6 @@ TEST(BuildWorld, PlaneGroundIsTheDetectorsGroundPlane) {
   EXPECT_FALSE(none.world->settings().collision.ground_plane_height.has_value());
 }
 
-TEST(BuildWorld, SceneSettingsReachTheWorld) {
-  Scene scene = scene_without_ground({});
-  scene.gravity = Vec3(0.0f, -1.62f, 0.5f);
-  scene.paper_passes = 4;
-  const SimulationSetup setup = build_world(scene);
-  EXPECT_EQ(setup.world->settings().gravity, Vec3(0.0f, -1.62f, 0.5f));
-  EXPECT_EQ(setup.world->settings().paper_passes, 4u);
-  EXPECT_TRUE(setup.bodies.empty());
-  EXPECT_TRUE(setup.shapes.empty());
-}
-
 // The message of the Error that building `scene` throws.
 std::string build_error(const Scene& scene) {
   try {
@@ -276,6 +267,117 @@ std::string build_error(const Scene& scene) {
   }
   ADD_FAILURE() << "no error for " << scene.name;
   return "";
+}
+
+TEST(BuildWorld, SceneSettingsReachTheWorld) {
+  Scene scene = scene_without_ground({});
+  scene.gravity = Vec3(0.0f, -1.62f, 0.5f);
+  scene.response = ResponseMode::kPaper;
+  scene.paper_passes = 4;
+  scene.substeps = 3;
+  scene.solver.velocity_iterations = 17;
+  scene.solver.position_iterations = 0;
+  scene.solver.warm_starting = false;
+  scene.solver.restitution_threshold = 0.25f;
+  scene.solver.linear_slop = 0.01f;
+  scene.solver.position_correction = 0.6f;
+  scene.solver.max_correction_speed = 1.5f;
+  scene.solver.contacts = ContactSet::kAll;
+  scene.solver.manifold_points = 7;
+  scene.solver.contact_margin = 0.04f;
+  scene.solver.speculative_contacts = false;
+  scene.sleep = {.enabled = false, .speed = 0.2f, .time = 1.25f};
+  const SimulationSetup setup = build_world(scene);
+  const WorldSettings& settings = setup.world->settings();
+  EXPECT_EQ(settings.gravity, Vec3(0.0f, -1.62f, 0.5f));
+  EXPECT_EQ(settings.response, ResponseMode::kPaper);
+  EXPECT_EQ(settings.paper_passes, 4u);
+  EXPECT_EQ(settings.substeps, 3u);
+  const SolverSettings& solver = settings.solver;
+  EXPECT_EQ(solver.velocity_iterations, 17u);
+  EXPECT_EQ(solver.position_iterations, 0u);
+  EXPECT_FALSE(solver.warm_starting);
+  EXPECT_EQ(solver.restitution_threshold, 0.25f);
+  EXPECT_EQ(solver.linear_slop, 0.01f);
+  EXPECT_EQ(solver.position_correction, 0.6f);
+  EXPECT_EQ(solver.max_correction_speed, 1.5f);
+  EXPECT_EQ(solver.contacts, ContactSet::kAll);
+  EXPECT_EQ(solver.manifold_points, 7u);
+  EXPECT_EQ(solver.contact_margin, 0.04f);
+  EXPECT_FALSE(solver.speculative_contacts);
+  EXPECT_FALSE(settings.sleep.enabled);
+  EXPECT_EQ(settings.sleep.speed, 0.2f);
+  EXPECT_EQ(settings.sleep.time, 1.25f);
+  EXPECT_TRUE(setup.bodies.empty());
+  EXPECT_TRUE(setup.shapes.empty());
+}
+
+TEST(BuildWorld, ADefaultSceneMakesADefaultWorld) {
+  const WorldSettings built = build_world(scene_without_ground({})).world->settings();
+  const WorldSettings runtime;
+  EXPECT_EQ(built.response, ResponseMode::kPlausible);
+  EXPECT_EQ(built.response, runtime.response);
+  EXPECT_EQ(built.gravity, runtime.gravity);
+  EXPECT_EQ(built.paper_passes, runtime.paper_passes);
+  EXPECT_EQ(built.substeps, runtime.substeps);
+  EXPECT_EQ(built.solver.velocity_iterations, runtime.solver.velocity_iterations);
+  EXPECT_EQ(built.solver.linear_slop, runtime.solver.linear_slop);
+  EXPECT_EQ(built.solver.contacts, runtime.solver.contacts);
+  EXPECT_EQ(built.solver.manifold_points, runtime.solver.manifold_points);
+  EXPECT_EQ(built.sleep.enabled, runtime.sleep.enabled);
+  EXPECT_EQ(built.sleep.time, runtime.sleep.time);
+  EXPECT_EQ(built.ground_restitution, runtime.ground_restitution);
+  EXPECT_EQ(built.ground_friction, runtime.ground_friction);
+}
+
+TEST(BuildWorld, WorldSettingsTheWorldRefusesAreReported) {
+  Scene scene = scene_without_ground({});
+  scene.substeps = 0;
+  EXPECT_THROW((void)build_world(scene), Error);
+  scene.substeps = 1;
+  scene.solver.manifold_points = 9;
+  EXPECT_THROW((void)build_world(scene), Error);
+}
+
+// The fastest upward speed of a box dropped onto a static box, whose pair has `material` if
+// given (else the mix of their own restitutions, 0.3).
+float rebound_speed(const test::TempDir& dir, std::optional<PairMaterial> material) {
+  const auto box = dir.write("cube.obj", obj_text(make_box({1.0, 1.0, 1.0})));
+  BodySpec floor = octree_body(box.string(), 2);
+  floor.is_static = true;
+  BodySpec falling = octree_body(box.string(), 2);
+  falling.position = Vec3(0.0f, 1.5f, 0.0f);
+  Scene scene = scene_without_ground({floor, falling});
+  if (material) scene.pair_materials.push_back({.bodies = {1, 0}, .material = *material});
+  const SimulationSetup setup = build_world(scene);
+  float rebound = 0.0f;
+  for (int frame = 0; frame < 60; ++frame) {
+    (void)setup.world->step(1.0f / 60.0f);
+    rebound = std::max(rebound, setup.world->body(setup.bodies[1]).linear_velocity.y());
+  }
+  return rebound;
+}
+
+TEST(BuildWorld, PairMaterialsReachTheWorld) {
+  const test::TempDir dir;
+  // The box lands at about 1.9 m/s, above the restitution threshold: a pair restitution of 1
+  // sends it back up about as fast, their own 0.3 at about a third of that, 0 hardly at all.
+  EXPECT_GT(rebound_speed(dir, PairMaterial{.friction = 0.5f, .restitution = 1.0f}), 1.5f);
+  const float own = rebound_speed(dir, std::nullopt);
+  EXPECT_GT(own, 0.3f);
+  EXPECT_LT(own, 1.0f);
+  EXPECT_LT(rebound_speed(dir, PairMaterial{.friction = 0.5f, .restitution = 0.0f}), 0.1f);
+}
+
+TEST(BuildWorld, APairMaterialTheWorldCannotTakeIsNamedByItsJsonPath) {
+  Scene scene = scene_without_ground({octree_body("bunny", 1), octree_body("bunny", 1)});
+  scene.pair_materials.push_back({.bodies = {0, 1}, .material = {}});
+  scene.pair_materials.push_back({.bodies = {1, 2}, .material = {}});
+  EXPECT_THAT(build_error(scene), HasSubstr("test scene: /pair_materials/1: no body 2"));
+  scene.pair_materials[1] = {.bodies = {1, 0},
+                             .material = {.friction = -1.0f, .restitution = 0.3f}};
+  EXPECT_THAT(build_error(scene),
+              AllOf(HasSubstr("test scene: /pair_materials/1: "), HasSubstr("friction")));
 }
 
 TEST(BuildWorld, ABodyThatCannotBeBuiltIsNamedByItsJsonPath) {
