@@ -30,6 +30,7 @@ struct StepStats {
   std::uint32_t impulses = 0;
   // Paper mode: passes over the contacts. Plausible mode: velocity iterations.
   std::uint32_t response_passes = 0;
+  std::uint32_t substeps = 1;      // pipeline runs in this step (WorldSettings::max_substeps)
   std::uint32_t warm_started = 0;  // contacts whose impulses came from the previous step
   std::uint32_t bounces = 0;       // contacts given restitution (plausible mode)
   std::uint32_t pairs_cut_short = 0;

@@ -35,9 +35,15 @@ enum class ContactSet {
 
 // The plausible mode's solver. See docs/dynamics.md for what each figure does and why.
 struct SolverSettings {
-  std::uint32_t velocity_iterations = 10;  // passes over the contacts for velocities
+  std::uint32_t velocity_iterations = 20;  // passes over the contacts for velocities
   std::uint32_t position_iterations = 4;   // passes for the split-impulse penetration recovery
   bool warm_starting = true;               // start from the previous step's impulses
+  // After the passes, solve the contacts once more level by level from the ground up, each level
+  // against the one below held fixed, so that no body of a pile is left sinking into its support.
+  bool shock_propagation = true;
+  // Shock propagation acts on contacts still closing faster than this after the passes (a blow
+  // passed on through a pile), and leaves slower ones (resting contacts) to the solver. unit: m/s
+  float shock_speed = 0.5f;
   // Approach speeds below this get no restitution, so resting contacts do not bounce. unit: m/s
   float restitution_threshold = 1.0f;
   // Penetration left alone, so that resting contacts keep touching. unit: m
@@ -46,6 +52,11 @@ struct SolverSettings {
   float position_correction = 0.2f;
   // Largest speed of the penetration recovery. unit: m/s
   float max_correction_speed = 3.0f;
+  // Rolling resistance: each contact resists the relative turning of its bodies (rolling and
+  // spinning) with a torque up to this arm times its normal force, as a soft tyre or a dent in
+  // the ground does. Round bodies on a rounded sphere-tree would otherwise rock and roll for
+  // ever. unit: m, >= 0
+  float rolling_resistance = 0.01f;
   ContactSet contacts = ContactSet::kReduced;
   std::uint32_t manifold_points = 4;  // per body pair when reduced, 1..8
   // Contacts are made this far before spheres touch, plus how far each pair can close in a step
@@ -73,8 +84,15 @@ struct WorldSettings {
   std::uint32_t paper_passes = 1;
   SolverSettings solver;
   SleepSettings sleep;
-  // Each step(dt) runs the whole pipeline this many times with dt / substeps. 1..64
+  // Each step(dt) runs the whole pipeline at least this many times with dt / substeps. 1..64
   std::uint32_t substeps = 1;
+  // Plausible mode: more substeps in a step where bodies move fast, up to this many, so that no
+  // moving body's fastest point (|v| + |ω| · its bounding radius) travels more than
+  // `substep_travel` of its bounding radius in one. Speculative contacts see straight motion
+  // only; a body spinning through a pile meets contacts they did not foresee. 1..64; at most
+  // `substeps` turns it off.
+  std::uint32_t max_substeps = 8;
+  float substep_travel = 0.15f;  // unit: bounding radii per substep, > 0
   // In plausible mode the world sets collision.contact_margin and collision.speculative from
   // `solver`; in paper mode it turns them off, as the paper makes contacts from overlaps only.
   CollisionSettings collision;
@@ -142,7 +160,10 @@ class World {
   [[nodiscard]] const CollisionDetector& detector() const { return detector_; }
 
  private:
+  [[nodiscard]] std::uint32_t substeps_for(float dt) const;
   void substep(float dt, StepStats& stats);
+  void detect(StepStats& stats);
+  void reduce_contacts();
   void respond(float dt, StepStats& stats);
   void integrate_positions(float dt, bool plausible);
   void measure_rest(StepStats& stats);

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "dynamics/contact_levels.h"
 
 namespace sphys {
 namespace {
@@ -21,6 +24,10 @@ void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
   }
   t2 = n.cross(t1);
 }
+
+// Gauss–Seidel passes over the contacts of one level in shock propagation: a level's contacts
+// among themselves need a few to agree; more changes little as the velocity passes came first.
+constexpr std::uint32_t kShockPasses = 4;
 
 // A gap this small counts as touching, so that a body stopped at the surface by a gap contact
 // bounces in the next step despite rounding. As a fraction of the linear slop.
@@ -95,6 +102,11 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     c.normal_mass = effective_mass(c.normal);
     c.tangent1_mass = effective_mass(c.tangent1);
     c.tangent2_mass = effective_mass(c.tangent2);
+    if (settings.rolling_resistance > 0.0f) {
+      const Mat3 inverse_inertia = inverse_inertia_[c.a] + inverse_inertia_[c.b];
+      // A body with no inverse inertia at all (a point mass) cannot be turned.
+      if (inverse_inertia.determinant() > 0.0f) c.rolling_mass = inverse_inertia.inverse();
+    }
     c.friction = materials[k].friction;
     c.restitution = materials[k].restitution;
     c.depth = contact.depth;
@@ -110,6 +122,7 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
       if (settings.warm_starting && it != previous_.end() && it->bodies == c.bodies_key &&
           it->leaves == c.leaves_key) {
         c.normal_impulse = it->normal_impulse;
+        c.previous_solved = it->solved_impulse;
         c.tangent1_impulse = it->friction_impulse.dot(c.tangent1);
         c.tangent2_impulse = it->friction_impulse.dot(c.tangent2);
         ++stats.warm_started;
@@ -163,6 +176,22 @@ void ContactSolver::solve_velocities(const SolverSettings& settings) {
             linear_, angular_);
       c.tangent1_impulse = t1;
       c.tangent2_impulse = t2;
+
+      // Rolling resistance: a torque against the bodies' relative turning (rolling and
+      // spinning), at most the resistance arm times the normal impulse.
+      if (settings.rolling_resistance > 0.0f) {
+        const Vec3 turning = angular_[c.b] - angular_[c.a];
+        Vec3 rolling = c.rolling_impulse - c.rolling_mass * turning;
+        const float rolling_limit = settings.rolling_resistance * c.normal_impulse;
+        const float rolling_length = rolling.norm();
+        if (rolling_length > rolling_limit) {
+          rolling *= rolling_length > 0.0f ? rolling_limit / rolling_length : 0.0f;
+        }
+        const Vec3 change = rolling - c.rolling_impulse;
+        angular_[c.a] -= inverse_inertia_[c.a] * change;
+        angular_[c.b] += inverse_inertia_[c.b] * change;
+        c.rolling_impulse = rolling;
+      }
     }
   }
 }
@@ -183,6 +212,76 @@ void ContactSolver::bounce(const SolverSettings& settings, ContactSolverStats& s
     apply(c, (normal_total - c.normal_impulse) * c.normal, linear_, angular_);
     c.normal_impulse = normal_total;
     ++stats.bounces;
+  }
+}
+
+// Shock propagation (Guendelman, Bridson & Fedkiw 2003), after the velocity passes and the
+// bounce. Sequential impulses pass a blow on through a pile one body per pass, so a body landing
+// on a pile of fifty pushes the top of the pile into the rest faster than ten passes can stop.
+// Here the contacts are solved level by level from what cannot move upwards, each level against
+// the bodies below it held fixed: no supported contact is left approaching, whatever the pile's
+// height. Only pushes are added (a contact that separates, or closes no faster than its gap
+// allows, is left alone), and bodies no contact path joins to something immovable are untouched,
+// so free bodies keep their momentum.
+void ContactSolver::propagate_shock(const SolverSettings& settings) {
+  const std::size_t slots = linear_.size();
+  std::vector<std::uint8_t> immovable(slots);
+  for (std::size_t i = 0; i < slots; ++i) immovable[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  pairs.reserve(constraints_.size());
+  for (const Constraint& c : constraints_) pairs.emplace_back(c.a, c.b);
+  const std::vector<std::uint32_t> level = contact_levels(immovable, pairs);
+
+  // (level of the upper body, constraint), by level.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> order;
+  order.reserve(constraints_.size());
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    const Constraint& c = constraints_[k];
+    const std::uint32_t top = std::max(level[c.a], level[c.b]);
+    if (top != kUnsupported) order.emplace_back(top, static_cast<std::uint32_t>(k));
+  }
+  std::sort(order.begin(), order.end());
+
+  const auto share = [&](std::uint32_t body, const Vec3& r, const Vec3& n) {
+    const Vec3 rn = r.cross(n);
+    return inverse_mass_[body] + rn.dot(inverse_inertia_[body] * rn);
+  };
+  const auto push = [&](std::uint32_t body, const Vec3& r, const Vec3& impulse) {
+    linear_[body] += inverse_mass_[body] * impulse;
+    angular_[body] += inverse_inertia_[body] * r.cross(impulse);
+  };
+  // What this pass gave each contact so far, so that a later sweep may take back what an earlier
+  // one gave too much (pushes at the corners of a face overshoot one by one).
+  std::vector<float> given(order.size(), 0.0f);
+  // Contacts struck by a blow: closing faster than shock_speed beyond their target when met.
+  // Those are stopped at their target. What the velocity passes leave of a resting contact's
+  // approach is let be: pushing it to zero at one corner of a face and then another only rocks
+  // the body, and a stack of boxes leans.
+  std::vector<std::uint8_t> struck(order.size(), 0);
+  for (std::size_t begin = 0; begin < order.size();) {
+    const std::uint32_t top = order[begin].first;
+    std::size_t end = begin;
+    while (end < order.size() && order[end].first == top) ++end;
+    for (std::uint32_t pass = 0; pass < kShockPasses; ++pass) {
+      for (std::size_t i = 0; i < end - begin; ++i) {
+        const std::size_t k = pass % 2 == 0 ? begin + i : end - 1 - i;
+        const Constraint& c = constraints_[order[k].second];
+        const bool move_a = level[c.a] == top;
+        const bool move_b = level[c.b] == top;
+        const float k_inverse = (move_a ? share(c.a, c.ra, c.normal) : 0.0f) +
+                                (move_b ? share(c.b, c.rb, c.normal) : 0.0f);
+        if (!(k_inverse > 0.0f)) continue;
+        const float normal_speed = c.normal.dot(relative_velocity(c, linear_, angular_));
+        if (normal_speed < c.target_speed - settings.shock_speed) struck[k] = 1;
+        if (struck[k] == 0) continue;
+        const float total = std::max(given[k] + (c.target_speed - normal_speed) / k_inverse, 0.0f);
+        const Vec3 impulse = (total - given[k]) * c.normal;
+        given[k] = total;
+        if (move_a) push(c.a, c.ra, -impulse);
+        if (move_b) push(c.b, c.rb, impulse);
+      }
+    }
+    begin = end;
   }
 }
 
@@ -210,8 +309,16 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
   const float touching = -kTouchingFraction * settings.linear_slop;
   previous_.clear();
   for (const Constraint& c : constraints_) {
-    Kept kept{c.bodies_key, c.leaves_key, c.normal_impulse,
-              c.tangent1_impulse * c.tangent1 + c.tangent2_impulse * c.tangent2};
+    // A step starts from this step's impulse, but at most twice the last step's plus what
+    // gravity adds in a step: a blow (a body landing, or what it sends down a pile) lasts one
+    // step, and starting the next from it throws the pile back up faster than the passes can
+    // take it back. A pile's resting impulses still build up within a few steps.
+    const float before = std::max(c.previous_solved, 0.0f);
+    const float start =
+        std::min(c.normal_impulse, 2.0f * before + c.normal_mass * gravity_step.norm());
+    const float share = c.normal_impulse > 0.0f ? start / c.normal_impulse : 0.0f;
+    Kept kept{c.bodies_key, c.leaves_key, start, c.normal_impulse,
+              share * (c.tangent1_impulse * c.tangent1 + c.tangent2_impulse * c.tangent2)};
     // A gap contact that had to stop its bodies short: they meet in the next step, at the speed
     // they had when the gap closed. Gravity acted for the whole step but they fell only the gap,
     // a fraction of the way: the part of gravity's speed for the rest is taken back, so that the
@@ -239,6 +346,7 @@ ContactSolverStats ContactSolver::solve(std::span<RigidBody> bodies,
   prepare(contacts, materials, settings, dt, stats);
   solve_velocities(settings);
   bounce(settings, stats);
+  if (settings.shock_propagation) propagate_shock(settings);
   recover_penetration(settings, dt);
   keep_impulses(settings, gravity * dt, dt);
   for (std::size_t i = 0; i < bodies.size(); ++i) {

@@ -2,7 +2,7 @@
 
 // The plausible mode's response: sequential impulses (Catto 2005; Box2D, Bullet, Jolt) over all
 // contacts of a step, with warm starting, Coulomb friction, restitution above a threshold and
-// split-impulse penetration recovery. See docs/dynamics.md.
+// split-impulse penetration recovery, and shock propagation through piles. See docs/dynamics.md.
 
 #include <cstdint>
 #include <span>
@@ -57,10 +57,16 @@ class ContactSolver {
     float tangent2_mass = 0.0f;
     float friction = 0.0f;
     float restitution = 0.0f;
+    // Inverse of the sum of the two bodies' inverse world inertias: the angular impulse that
+    // stops their relative turning. unit: kg m²
+    Mat3 rolling_mass = Mat3::Zero();
+    Vec3 rolling_impulse = Vec3::Zero();  // angular, on body b. unit: N m s
     float depth = 0.0f;
     float target_speed = 0.0f;  // normal speed the velocity pass aims at (≤ 0 for a gap)
     float approach = 0.0f;      // relative normal speed before the solve, for the bounce
     float normal_impulse = 0.0f;
+    // The normal impulse this contact ended the last step with; negative when it is new.
+    float previous_solved = -1.0f;
     float tangent1_impulse = 0.0f;
     float tangent2_impulse = 0.0f;
     float position_impulse = 0.0f;
@@ -69,9 +75,10 @@ class ContactSolver {
   };
   // Accumulated impulses of one contact, kept for the next step's warm start.
   struct Kept {
-    std::uint64_t bodies = 0;  // (body_a, body_b)
-    std::uint64_t leaves = 0;  // (leaf_a, leaf_b)
-    float normal_impulse = 0.0f;
+    std::uint64_t bodies = 0;              // (body_a, body_b)
+    std::uint64_t leaves = 0;              // (leaf_a, leaf_b)
+    float normal_impulse = 0.0f;           // to start the next step from
+    float solved_impulse = 0.0f;           // what the step ended with
     Vec3 friction_impulse = Vec3::Zero();  // world frame, in the contact's tangent plane
     // Approach speed when a gap contact stopped the bodies short, so that the bounce when they
     // touch in the next step uses the speed they really had. unit: m/s (negative: approaching)
@@ -92,6 +99,7 @@ class ContactSolver {
                const SolverSettings& settings, float dt, ContactSolverStats& stats);
   void solve_velocities(const SolverSettings& settings);
   void bounce(const SolverSettings& settings, ContactSolverStats& stats);
+  void propagate_shock(const SolverSettings& settings);
   void recover_penetration(const SolverSettings& settings, float dt);
   void keep_impulses(const SolverSettings& settings, const Vec3& gravity_step, float dt);
 

@@ -49,6 +49,14 @@ void check_settings(const WorldSettings& settings) {
   if (settings.substeps < 1 || settings.substeps > 64) {
     throw Error("substeps must be between 1 and 64, got " + std::to_string(settings.substeps));
   }
+  if (settings.max_substeps < 1 || settings.max_substeps > 64) {
+    throw Error("max_substeps must be between 1 and 64, got " +
+                std::to_string(settings.max_substeps));
+  }
+  if (!(settings.substep_travel > 0.0f) || !std::isfinite(settings.substep_travel)) {
+    throw Error("substep_travel must be positive and finite, got " +
+                std::to_string(settings.substep_travel));
+  }
   const SolverSettings& solver = settings.solver;
   if (solver.velocity_iterations < 1) throw Error("velocity_iterations must be at least 1");
   if (solver.manifold_points < 1 || solver.manifold_points > kMaxManifoldPoints) {
@@ -67,6 +75,8 @@ void check_settings(const WorldSettings& settings) {
   non_negative(solver.linear_slop, "linear_slop");
   non_negative(solver.max_correction_speed, "max_correction_speed");
   non_negative(solver.contact_margin, "contact_margin");
+  non_negative(solver.shock_speed, "shock_speed");
+  non_negative(solver.rolling_resistance, "rolling_resistance");
   non_negative(settings.sleep.speed, "the sleep speed");
   non_negative(settings.sleep.time, "the sleep time");
   if (!(solver.position_correction >= 0.0f && solver.position_correction <= 1.0f)) {
@@ -219,6 +229,25 @@ float World::fastest_point_speed(std::uint32_t index) const {
   return body.linear_velocity.norm() + body.angular_velocity.norm() * extent_[index];
 }
 
+std::uint32_t World::substeps_for(float dt) const {
+  const std::uint32_t fewest = settings_.substeps;
+  const std::uint32_t most = std::max(fewest, settings_.max_substeps);
+  if (settings_.response != ResponseMode::kPlausible || most == fewest) return fewest;
+  // The speed at the end of the step under gravity alone, an upper bound for a falling body.
+  const float gravity_speed = settings_.gravity.norm() * dt;
+  float needed = 0.0f;  // substeps, fractional
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (alive_[i] == 0 || bodies_[i].is_static || sleep_->asleep(i) || !(extent_[i] > 0.0f)) {
+      continue;
+    }
+    const float travel = (fastest_point_speed(i) + gravity_speed) * dt;
+    needed = std::max(needed, travel / (settings_.substep_travel * extent_[i]));
+  }
+  // A non-finite speed is left to the step to find and report.
+  if (!(needed <= static_cast<float>(most))) return needed > 0.0f ? most : fewest;
+  return std::clamp(static_cast<std::uint32_t>(std::ceil(needed)), fewest, most);
+}
+
 const StepStats& World::step(float dt) {
   if (!(dt > 0.0f) || !std::isfinite(dt)) {
     throw Error("the time step must be positive and finite, got " + std::to_string(dt));
@@ -226,12 +255,38 @@ const StepStats& World::step(float dt) {
   if (stopped_) return stats_;
   const Clock::time_point step_start = Clock::now();
   StepStats stats;
-  const float substep_dt = dt / static_cast<float>(settings_.substeps);
-  for (std::uint32_t i = 0; i < settings_.substeps && !stopped_; ++i) substep(substep_dt, stats);
+  const std::uint32_t substeps = substeps_for(dt);
+  stats.substeps = substeps;
+  const float substep_dt = dt / static_cast<float>(substeps);
+  for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
   measure_rest(stats);
   stats.step_ms = elapsed_ms(step_start);
   stats_ = stats;
   return stats_;
+}
+
+// Leaf-pair contacts into leaf_contacts_, with the detector's figures and the penetration added
+// to the step's.
+void World::detect(StepStats& stats) {
+  const CollisionStats& detection = detector_.detect(leaf_contacts_);
+  stats.broad_phase_ms += detection.broad_phase_ms;
+  stats.narrow_phase_ms += detection.narrow_phase_ms;
+  stats.contacts_ms += detection.contacts_ms;
+  stats.bodies = detection.bodies;
+  stats.candidate_pairs += detection.candidate_pairs;
+  stats.sphere_tests += detection.sphere_tests;
+  stats.leaf_pairs += detection.leaf_pairs;
+  stats.pairs_cut_short += detection.pairs_cut_short;
+  stats.coincident_centres += detection.coincident_centres;
+  double depth_sum = stats.mean_penetration * stats.penetrating_contacts;
+  for (const Contact& contact : leaf_contacts_) {
+    if (contact.depth <= 0.0f) continue;
+    stats.deepest_penetration = std::max(stats.deepest_penetration, contact.depth);
+    depth_sum += contact.depth;
+    ++stats.penetrating_contacts;
+  }
+  stats.mean_penetration =
+      stats.penetrating_contacts > 0 ? depth_sum / stats.penetrating_contacts : 0.0;
 }
 
 // Figures of one substep are added to the step's: times and counts summed, extremes kept.
@@ -256,25 +311,7 @@ void World::substep(float dt, StepStats& stats) {
   }
   stats.integration_ms += elapsed_ms(velocities_start);
 
-  const CollisionStats& detection = detector_.detect(leaf_contacts_);
-  stats.broad_phase_ms += detection.broad_phase_ms;
-  stats.narrow_phase_ms += detection.narrow_phase_ms;
-  stats.contacts_ms += detection.contacts_ms;
-  stats.bodies = detection.bodies;
-  stats.candidate_pairs += detection.candidate_pairs;
-  stats.sphere_tests += detection.sphere_tests;
-  stats.leaf_pairs += detection.leaf_pairs;
-  stats.pairs_cut_short += detection.pairs_cut_short;
-  stats.coincident_centres += detection.coincident_centres;
-  double depth_sum = stats.mean_penetration * stats.penetrating_contacts;
-  for (const Contact& contact : leaf_contacts_) {
-    if (contact.depth <= 0.0f) continue;
-    stats.deepest_penetration = std::max(stats.deepest_penetration, contact.depth);
-    depth_sum += contact.depth;
-    ++stats.penetrating_contacts;
-  }
-  stats.mean_penetration =
-      stats.penetrating_contacts > 0 ? depth_sum / stats.penetrating_contacts : 0.0;
+  detect(stats);
 
   const Clock::time_point response_start = Clock::now();
   if (plausible) {
@@ -321,7 +358,8 @@ void World::substep(float dt, StepStats& stats) {
 }
 
 // Plausible mode: contact reduction, islands and waking, then the sequential-impulse solver.
-void World::respond(float dt, StepStats& stats) {
+// The response's contacts from leaf_contacts_: all of them, or a manifold per body pair.
+void World::reduce_contacts() {
   const SolverSettings& solver = settings_.solver;
   if (solver.contacts == ContactSet::kReduced) {
     contacts_.clear();
@@ -329,13 +367,27 @@ void World::respond(float dt, StepStats& stats) {
   } else {
     contacts_.swap(leaf_contacts_);
   }
+}
 
-  sleep_->build_islands(contacts_, dynamic_);
-  sleep_changes_.clear();
-  sleep_->wake_disturbed(settings_.sleep, sleep_changes_);
-  for (const std::uint32_t body : sleep_changes_) {
-    detector_.set_asleep({body}, false);
-    moving_[body] = 1;
+void World::respond(float dt, StepStats& stats) {
+  const SolverSettings& solver = settings_.solver;
+  reduce_contacts();
+
+  // Wake the sleeping islands a restless body touches. The detector skipped the pairs of bodies
+  // that slept until now: without their contacts a blow on a sleeping pile would pass through
+  // its top body unopposed for a step. So detect again with them awake, which may show them
+  // touching other sleeping islands, until nothing more wakes.
+  for (;;) {
+    sleep_->build_islands(contacts_, dynamic_);
+    sleep_changes_.clear();
+    sleep_->wake_disturbed(settings_.sleep, sleep_changes_);
+    if (sleep_changes_.empty()) break;
+    for (const std::uint32_t body : sleep_changes_) {
+      detector_.set_asleep({body}, false);
+      moving_[body] = 1;
+    }
+    detect(stats);
+    reduce_contacts();
   }
 
   materials_.resize(contacts_.size());

@@ -69,7 +69,7 @@ TEST(SimulateCommand, PresetRunWritesFramesAndRecording) {
   // The plausibility figures of each frame close the line.
   EXPECT_THAT(lines[0],
               testing::EndsWith(",deepest_penetration_m,mean_penetration_m,bodies_at_rest,"
-                                "bodies_asleep,jitter_m_per_s,warm_started,islands"));
+                                "bodies_asleep,jitter_m_per_s,warm_started,islands,substeps"));
   const auto contacts_column = std::find(header.begin(), header.end(), "contacts") - header.begin();
   ASSERT_LT(contacts_column, static_cast<std::ptrdiff_t>(header.size()));
   for (int frame = 1; frame <= 5; ++frame) {
@@ -108,7 +108,7 @@ TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
   const test::TempDir dir;
   const fs::path scene =
       dir.write("fall.json", scene_text(R"("gravity": [0, -6, 0], "time_step": 0.1, "frames": 4,
-                                "ground": {"type": "none"}, "bodies": [)" +
+                                "max_substeps": 1, "ground": {"type": "none"}, "bodies": [)" +
                                         std::string(kQuickBody) + "]"));
   const fs::path out = dir.path() / "out";
   const test::CommandResult r = sphys_cli({"simulate", scene.string(), "--out", out.string()});
@@ -210,6 +210,7 @@ TEST(SimulateCommand, BadOptionsExitWithCode2) {
       {{"--substeps", "0"}, "--substeps must be between 1 and 64, got 0"},
       {{"--substeps", "65"}, "--substeps must be between 1 and 64, got 65"},
       {{"--substeps", "two"}, "--substeps"},
+      {{"--ground", "box"}, "--ground must be octree or plane, got 'box'"},
   };
   for (const auto& [option, message] : cases) {
     std::vector<std::string> args = {"simulate", "stacks:1x1", "--no-cache", "--out", out};
@@ -327,7 +328,7 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
   const fs::path out = dir.path() / "out";
   const test::CommandResult r =
       sphys_cli({"simulate", scene.string(), "--mode", "paper", "--contacts", "all", "--substeps",
-                 "3", "--out", out.string()});
+                 "3", "--ground", "plane", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("response            paper, 3 substeps per frame\n"));
   EXPECT_THAT(r.out, HasSubstr("\nmean penetration    0 m (0%; over the 0 frames with overlaps)"));
@@ -339,6 +340,7 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
   EXPECT_EQ(recorded["response"], "paper");
   EXPECT_EQ(recorded["contacts"], "all");
   EXPECT_EQ(recorded["substeps"], 3);
+  EXPECT_EQ(recorded["ground"]["type"], "plane");
 
   const test::CommandResult plausible =
       sphys_cli({"simulate", scene.string(), "--contacts", "all", "--out", out.string()});

@@ -88,7 +88,9 @@ struct Scene {
   int frames = 880;                        // one step per frame
   ResponseMode response = WorldSettings{}.response;
   int paper_passes = static_cast<int>(WorldSettings{}.paper_passes);
-  int substeps = static_cast<int>(WorldSettings{}.substeps);  // 1..kMaxSubsteps
+  int substeps = static_cast<int>(WorldSettings{}.substeps);          // 1..kMaxSubsteps
+  int max_substeps = static_cast<int>(WorldSettings{}.max_substeps);  // 1..kMaxSubsteps
+  float substep_travel = WorldSettings{}.substep_travel;              // > 0
   SolverSettings solver;  // plausible mode; solver.contacts is the scene's "contacts"
   SleepSettings sleep;    // plausible mode
   GroundSpec ground;

@@ -49,10 +49,10 @@ constexpr double kUnitTolerance = 1e-6;
 // Longer values are cut short in messages.
 constexpr std::size_t kMaxShown = 40;
 
-constexpr std::array<std::string_view, 15> kSceneKeys = {
-    "format",   "version",      "gravity",  "time_step", "frames",
-    "response", "paper_passes", "contacts", "substeps",  "solver",
-    "sleep",    "ground",       "defaults", "bodies",    "pair_materials"};
+constexpr std::array<std::string_view, 17> kSceneKeys = {
+    "format",       "version",  "gravity",  "time_step",    "frames",         "response",
+    "paper_passes", "contacts", "substeps", "max_substeps", "substep_travel", "solver",
+    "sleep",        "ground",   "defaults", "bodies",       "pair_materials"};
 // Passes over the contacts per step in paper mode, at most.
 constexpr long long kMaxPaperPasses = 1000;
 // Solver passes per step, at most: far beyond what converges, short of hanging a step.
@@ -62,10 +62,11 @@ constexpr long long kMaxIterations = 1000;
 constexpr long long kMaxManifoldPoints = 8;
 // Every integer up to here is exact in a double, as a JSON number is read.
 constexpr long long kMaxExactInteger = 9'007'199'254'740'992;  // 2^53
-constexpr std::array<std::string_view, 10> kSolverKeys = {
-    "velocity_iterations", "position_iterations", "warm_starting",        "restitution_threshold",
-    "linear_slop",         "position_correction", "max_correction_speed", "manifold_points",
-    "contact_margin",      "speculative_contacts"};
+constexpr std::array<std::string_view, 13> kSolverKeys = {
+    "velocity_iterations",  "position_iterations",   "warm_starting",   "shock_propagation",
+    "shock_speed",          "restitution_threshold", "linear_slop",     "position_correction",
+    "max_correction_speed", "rolling_resistance",    "manifold_points", "contact_margin",
+    "speculative_contacts"};
 constexpr std::array<std::string_view, 3> kSleepKeys = {"enabled", "speed", "time"};
 constexpr std::array<std::string_view, 3> kPairMaterialKeys = {"bodies", "friction", "restitution"};
 constexpr std::array<std::string_view, 7> kGroundKeys = {
@@ -706,6 +707,11 @@ void read_solver(const Node& node, SolverSettings& solver) {
     solver.position_iterations = read_count(*n, 0, kMaxIterations);
   }
   if (const auto n = node.find("warm_starting")) solver.warm_starting = read_bool(*n);
+  if (const auto n = node.find("shock_propagation")) solver.shock_propagation = read_bool(*n);
+  if (const auto n = node.find("shock_speed")) solver.shock_speed = read_non_negative_single(*n);
+  if (const auto n = node.find("rolling_resistance")) {
+    solver.rolling_resistance = read_non_negative_single(*n);
+  }
   if (const auto n = node.find("restitution_threshold")) {
     solver.restitution_threshold = read_non_negative_single(*n);
   }
@@ -832,6 +838,12 @@ Scene read_scene(const Json& document, const fs::path& name) {
   if (const auto n = root.find("substeps")) {
     scene.substeps = static_cast<int>(read_integer(*n, 1, kMaxSubsteps));
   }
+  if (const auto n = root.find("max_substeps")) {
+    scene.max_substeps = static_cast<int>(read_integer(*n, 1, kMaxSubsteps));
+  }
+  if (const auto n = root.find("substep_travel")) {
+    scene.substep_travel = to_single(*n, read_positive(*n));
+  }
   if (const auto n = root.find("solver")) read_solver(*n, scene.solver);
   if (const auto n = root.find("sleep")) read_sleep(*n, scene.sleep);
   if (const auto n = root.find("ground")) scene.ground = read_ground(*n);
@@ -917,6 +929,9 @@ Json solver_json(const SolverSettings& solver) {
   return {{"velocity_iterations", solver.velocity_iterations},
           {"position_iterations", solver.position_iterations},
           {"warm_starting", solver.warm_starting},
+          {"shock_propagation", solver.shock_propagation},
+          {"shock_speed", written(solver.shock_speed)},
+          {"rolling_resistance", written(solver.rolling_resistance)},
           {"restitution_threshold", written(solver.restitution_threshold)},
           {"linear_slop", written(solver.linear_slop)},
           {"position_correction", written(solver.position_correction)},
@@ -999,6 +1014,8 @@ std::string scene_to_json(const Scene& scene) {
   out["paper_passes"] = scene.paper_passes;
   out["contacts"] = name_of(scene.solver.contacts, kContactSets);
   out["substeps"] = scene.substeps;
+  out["max_substeps"] = scene.max_substeps;
+  out["substep_travel"] = written(scene.substep_travel);
   out["solver"] = solver_json(scene.solver);
   out["sleep"] = sleep_json(scene.sleep);
   out["ground"] = ground_json(scene.ground);

@@ -95,6 +95,8 @@ WorldSettings world_settings(const Scene& scene) {
   settings.response = scene.response;
   settings.paper_passes = count(scene.paper_passes);
   settings.substeps = count(scene.substeps);
+  settings.max_substeps = count(scene.max_substeps);
+  settings.substep_travel = scene.substep_travel;
   settings.solver = scene.solver;
   settings.sleep = scene.sleep;
   // The exact plane's material; the octree ground is a body and carries its own.

@@ -99,6 +99,9 @@ void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
   EXPECT_EQ(a.velocity_iterations, b.velocity_iterations);
   EXPECT_EQ(a.position_iterations, b.position_iterations);
   EXPECT_EQ(a.warm_starting, b.warm_starting);
+  EXPECT_EQ(a.shock_propagation, b.shock_propagation);
+  EXPECT_EQ(bits(a.shock_speed), bits(b.shock_speed));
+  EXPECT_EQ(bits(a.rolling_resistance), bits(b.rolling_resistance));
   EXPECT_EQ(bits(a.restitution_threshold), bits(b.restitution_threshold));
   EXPECT_EQ(bits(a.linear_slop), bits(b.linear_slop));
   EXPECT_EQ(bits(a.position_correction), bits(b.position_correction));
@@ -134,6 +137,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.response, b.response);
   EXPECT_EQ(a.paper_passes, b.paper_passes);
   EXPECT_EQ(a.substeps, b.substeps);
+  EXPECT_EQ(a.max_substeps, b.max_substeps);
+  EXPECT_EQ(bits(a.substep_travel), bits(b.substep_travel));
   expect_same_solver(a.solver, b.solver);
   expect_same_sleep(a.sleep, b.sleep);
   expect_same_pairs(a.pair_materials, b.pair_materials);
@@ -167,9 +172,12 @@ constexpr std::string_view kFullScene = R"({
   "paper_passes": 7,
   "contacts": "all",
   "substeps": 4,
+  "max_substeps": 12,
+  "substep_travel": 0.25,
   "solver": {"velocity_iterations": 12, "position_iterations": 0, "warm_starting": false,
-             "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
+             "shock_propagation": false, "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
              "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
+             "shock_speed": 0.75, "rolling_resistance": 0.02,
              "speculative_contacts": false},
   "sleep": {"enabled": false, "speed": 0.1, "time": 2},
   "ground": {"type": "plane", "height": -1.5, "size": 20, "thickness": 0.75, "depth": 4,
@@ -211,14 +219,19 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   EXPECT_EQ(scene.response, ResponseMode::kPaper);
   EXPECT_EQ(scene.paper_passes, 7);
   EXPECT_EQ(scene.substeps, 4);
+  EXPECT_EQ(scene.max_substeps, 12);
+  EXPECT_EQ(scene.substep_travel, 0.25f);
   SolverSettings solver;
   solver.velocity_iterations = 12;
   solver.position_iterations = 0;
   solver.warm_starting = false;
+  solver.shock_propagation = false;
   solver.restitution_threshold = 0.5f;
   solver.linear_slop = 0.01f;
   solver.position_correction = 0.4f;
   solver.max_correction_speed = 2.0f;
+  solver.shock_speed = 0.75f;
+  solver.rolling_resistance = 0.02f;
   solver.contacts = ContactSet::kAll;
   solver.manifold_points = 6;
   solver.contact_margin = 0.05f;
@@ -418,6 +431,8 @@ class RandomScene {
     scene.paper_passes = std::uniform_int_distribution<int>(1, 1000)(rng_);
     scene.response = pick(std::array{ResponseMode::kPaper, ResponseMode::kPlausible});
     scene.substeps = std::uniform_int_distribution<int>(1, 64)(rng_);
+    scene.max_substeps = std::uniform_int_distribution<int>(1, 64)(rng_);
+    scene.substep_travel = std::abs(any_float()) + 1e-30f;
     scene.solver = solver();
     scene.sleep = {
         .enabled = coin(), .speed = std::abs(any_float()), .time = std::abs(any_float())};
@@ -448,6 +463,9 @@ class RandomScene {
     solver.velocity_iterations = std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
     solver.position_iterations = std::uniform_int_distribution<std::uint32_t>(0, 1000)(rng_);
     solver.warm_starting = coin();
+    solver.shock_propagation = coin();
+    solver.shock_speed = std::abs(any_float());
+    solver.rolling_resistance = std::abs(any_float());
     solver.restitution_threshold = std::abs(any_float());
     solver.linear_slop = std::abs(any_float());
     solver.position_correction = unit_float();
@@ -691,6 +709,16 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
        "/solver/position_iterations", "must be between 0 and 1000, got -1"},
       {scene_text(R"("solver": {"warm_starting": "yes"}, "bodies": [])"), "/solver/warm_starting",
        "expected true or false, got a string \"yes\""},
+      {scene_text(R"("solver": {"shock_propagation": 0}, "bodies": [])"),
+       "/solver/shock_propagation", "expected true or false, got a number 0"},
+      {scene_text(R"("solver": {"shock_speed": -0.5}, "bodies": [])"), "/solver/shock_speed",
+       "must not be negative, got -0.5"},
+      {scene_text(R"("solver": {"rolling_resistance": "none"}, "bodies": [])"),
+       "/solver/rolling_resistance", "expected a number, got a string \"none\""},
+      {scene_text(R"("max_substeps": 0, "bodies": [])"), "/max_substeps",
+       "must be between 1 and 64, got 0"},
+      {scene_text(R"("substep_travel": 0, "bodies": [])"), "/substep_travel",
+       "must be positive, got 0"},
       {scene_text(R"("solver": {"restitution_threshold": -1}, "bodies": [])"),
        "/solver/restitution_threshold", "must not be negative, got -1"},
       {scene_text(R"("solver": {"linear_slop": -0.01}, "bodies": [])"), "/solver/linear_slop",

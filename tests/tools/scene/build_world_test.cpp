@@ -275,9 +275,12 @@ TEST(BuildWorld, SceneSettingsReachTheWorld) {
   scene.response = ResponseMode::kPaper;
   scene.paper_passes = 4;
   scene.substeps = 3;
+  scene.max_substeps = 5;
+  scene.substep_travel = 0.3f;
   scene.solver.velocity_iterations = 17;
   scene.solver.position_iterations = 0;
   scene.solver.warm_starting = false;
+  scene.solver.shock_propagation = false;
   scene.solver.restitution_threshold = 0.25f;
   scene.solver.linear_slop = 0.01f;
   scene.solver.position_correction = 0.6f;
@@ -293,10 +296,13 @@ TEST(BuildWorld, SceneSettingsReachTheWorld) {
   EXPECT_EQ(settings.response, ResponseMode::kPaper);
   EXPECT_EQ(settings.paper_passes, 4u);
   EXPECT_EQ(settings.substeps, 3u);
+  EXPECT_EQ(settings.max_substeps, 5u);
+  EXPECT_EQ(settings.substep_travel, 0.3f);
   const SolverSettings& solver = settings.solver;
   EXPECT_EQ(solver.velocity_iterations, 17u);
   EXPECT_EQ(solver.position_iterations, 0u);
   EXPECT_FALSE(solver.warm_starting);
+  EXPECT_FALSE(solver.shock_propagation);
   EXPECT_EQ(solver.restitution_threshold, 0.25f);
   EXPECT_EQ(solver.linear_slop, 0.01f);
   EXPECT_EQ(solver.position_correction, 0.6f);
