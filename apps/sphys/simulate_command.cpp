@@ -21,6 +21,7 @@
 #include "sphys/tools/csv_file.h"
 #include "sphys/tools/experiment.h"
 #include "sphys/tools/model.h"
+#include "sphys/tools/overlap.h"
 #include "sphys/tools/recording.h"
 #include "sphys/tools/scenarios.h"
 #include "sphys/tools/scene_file.h"
@@ -121,6 +122,8 @@ struct RunTotals {
   double broad = 0, narrow = 0, contacts_time = 0, response = 0, integration = 0, step = 0;
   double contacts = 0;
   std::uint32_t max_contacts = 0;
+  double substeps = 0;  // summed over the frames
+  std::uint32_t max_substeps = 0;
   tools::PlausibilityMeter plausibility;
 
   void add(const StepStats& s) {
@@ -133,6 +136,8 @@ struct RunTotals {
     step += s.step_ms;
     contacts += s.contacts;
     max_contacts = std::max(max_contacts, s.contacts);
+    substeps += s.substeps;
+    max_substeps = std::max(max_substeps, s.substeps);
     plausibility.add(s);
   }
   [[nodiscard]] double share(double part) const { return step > 0 ? 100.0 * part / step : 0.0; }
@@ -260,6 +265,15 @@ void add_end_state(nlohmann::ordered_json& summary, const tools::Scene& scene,
       ++below;
     }
   }
+  // The world does not test bodies asleep together against each other, so StepStats says
+  // nothing of a sleeping pile: counted afresh over every pair.
+  const std::optional<float> plane =
+      scene.ground.kind == tools::GroundSpec::Kind::kPlane
+          ? std::optional<float>(static_cast<float>(scene.ground.height))
+          : std::nullopt;
+  const tools::Overlap end_overlap = tools::deepest_overlap(setup, plane);
+  summary["end_overlap_m"] = end_overlap.depth;
+  summary["end_overlap_percent_of_size"] = percent(end_overlap.depth);
   summary["bodies_below_ground"] = below;
   summary["lowest_center_y_m"] = lowest;
 }
@@ -275,6 +289,9 @@ nlohmann::ordered_json summary_json(const tools::Scene& scene, const tools::Simu
   summary["response"] = tools::response_mode_name(scene.response);
   summary["contact_set"] = tools::contact_set_name(scene.solver.contacts);
   summary["substeps"] = scene.substeps;
+  summary["max_substeps"] = scene.max_substeps;
+  summary["substeps_per_frame"] = {{"mean", totals.substeps / frames},
+                                   {"max", totals.max_substeps}};
   summary["frames"] = totals.step_ms.size();
   summary["time_step_s"] = scene.time_step;
   summary["wall_s"] = totals.wall_s;
@@ -307,11 +324,21 @@ std::string response_text(const nlohmann::ordered_json& s) {
     text += s["contact_set"].get<std::string>();
     text += " contacts";
   }
-  const int substeps = s["substeps"].get<int>();
-  text += ", ";
-  text += std::to_string(substeps);
-  text += substeps == 1 ? " substep per frame" : " substeps per frame";
-  return text;
+  const int fewest = s["substeps"].get<int>();
+  const int most = std::max(fewest, s["max_substeps"].get<int>());
+  const bool adaptive =
+      s["response"] == tools::response_mode_name(ResponseMode::kPlausible) && most > fewest;
+  char counts[96];
+  if (adaptive) {
+    std::snprintf(counts, sizeof counts,
+                  ", %d to %d substeps per frame (%.2f on average, %u at most)", fewest, most,
+                  s["substeps_per_frame"]["mean"].get<double>(),
+                  s["substeps_per_frame"]["max"].get<unsigned>());
+  } else {
+    std::snprintf(counts, sizeof counts, ", %d substep%s per frame", fewest,
+                  fewest == 1 ? "" : "s");
+  }
+  return text + counts;
 }
 
 // "all from frame 95 (1.58 s) on" or "never all at rest".
@@ -354,6 +381,9 @@ void print_summary(const nlohmann::ordered_json& s) {
               s["mean_penetration_m"].get<double>(),
               percent_text(s["mean_penetration_percent_of_size"]).c_str(),
               s["penetrating_frames"].get<int>());
+  std::printf("overlap at the end  %.4g m (%s; every pair of bodies, sleeping ones included)\n",
+              s["end_overlap_m"].get<double>(),
+              percent_text(s["end_overlap_percent_of_size"]).c_str());
   std::printf("kinetic energy      %.6g J at the end\n", s["final_kinetic_energy_J"].get<double>());
   std::printf("at rest             %u of %u moving bodies at the end, %u asleep; %s\n",
               s["bodies_at_rest"].get<unsigned>(), s["moving_bodies"].get<unsigned>(),

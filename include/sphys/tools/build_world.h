@@ -44,7 +44,8 @@ struct SimulationSetup {
   std::vector<BodyId> bodies;             // the scene's bodies, in order
   std::vector<std::uint32_t> body_shape;  // index into shapes, per scene body
   std::vector<BodyShape> shapes;
-  std::optional<BodyId> ground;  // the octree ground's static body, if any
+  std::optional<BodyId> ground;                   // the octree ground's static body, if any
+  std::shared_ptr<const SphereTree> ground_tree;  // its sphere-tree
 };
 
 // Throws sphys::Error naming the body (its JSON path in the scene, e.g. "/bodies/3") for a mesh

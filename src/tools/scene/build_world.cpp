@@ -127,6 +127,7 @@ void make_world(const Scene& scene, SimulationSetup& setup) {
       desc.friction = ground.friction;
       desc.is_static = true;
       setup.ground = setup.world->add_body(desc);
+      setup.ground_tree = desc.tree;
       return;
     }
   }
