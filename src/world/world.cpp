@@ -305,8 +305,16 @@ void World::substep(float dt, StepStats& stats) {
     RigidBody& body = bodies_[i];
     integrate_velocity(body, settings_.gravity, dt);
     if (plausible) {
-      detector_.set_motion({i}, body.linear_velocity * dt,
-                           body.angular_velocity.norm() * dt * extent_[i]);
+      const Vec3 displacement = body.linear_velocity * dt;
+      const float turn_reach = body.angular_velocity.norm() * dt * extent_[i];
+      // Speeds whose squares overflow single precision leave no bound on the motion to detect
+      // with: the simulation has gone non-finite in all but name.
+      if (!std::isfinite(displacement.norm()) || !std::isfinite(turn_reach)) {
+        stats.non_finite_body = i;
+        stopped_ = true;
+        return;
+      }
+      detector_.set_motion({i}, displacement, turn_reach);
     }
   }
   stats.integration_ms += elapsed_ms(velocities_start);

@@ -26,7 +26,7 @@ TEST(BunnyPile, FourStacksOfFiftyComeToRestWithoutSinkingIn) {
   scene.ground.kind = GroundSpec::Kind::kPlane;
   // Under the sanitizers the fall and the impacts only: that run looks for memory errors, and
   // the release run checks the whole scene.
-  const int frames = test::sanitized_run() ? 240 : scene.frames;
+  const int frames = test::sanitized_run() ? 120 : scene.frames;
   const SimulationSetup setup = build_world(scene);
   World& world = *setup.world;
   ASSERT_EQ(setup.bodies.size(), 200u);
