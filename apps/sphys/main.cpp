@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   sphys::cli::add_tree_info_command(app);
   sphys::cli::add_simulate_command(app);
   sphys::cli::add_experiment_command(app);
+  sphys::cli::add_export_command(app);
 
   try {
     app.parse(argc, argv);

@@ -47,7 +47,7 @@ CommandResult run_command(const std::string& program, const std::vector<std::str
 
   pid_t pid = 0;
   const int spawn_error =
-      posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+      posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawn_error != 0) throw std::runtime_error("cannot start " + program);
 

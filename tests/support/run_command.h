@@ -11,7 +11,8 @@ struct CommandResult {
   std::string err;  // standard error
 };
 
-// Runs a program with arguments (no shell), capturing its output streams and exit code.
+// Runs a program with arguments (no shell; a name without a slash is looked up in PATH),
+// capturing its output streams and exit code.
 CommandResult run_command(const std::string& program, const std::vector<std::string>& args);
 
 }  // namespace sphys::test

@@ -9,8 +9,7 @@
 #include "sphys/error.h"
 #include "sphys/tools/ground.h"
 #include "sphys/tools/mass_properties.h"
-#include "sphys/tools/model.h"
-#include "sphys/tools/normalize.h"
+#include "sphys/tools/scene_meshes.h"
 #include "sphys/tools/sph_file.h"
 #include "sphys/tools/tree_cache.h"
 
@@ -32,17 +31,6 @@ ShapeKey shape_key(const BodySpec& body, const TreeSpec& tree) {
 
 std::filesystem::path resolve(const Scene& scene, const std::filesystem::path& path) {
   return path.is_absolute() || scene.base_directory.empty() ? path : scene.base_directory / path;
-}
-
-// The mesh scaled to its size and moved so that its centre of mass is the origin.
-TriangleMesh body_frame_mesh(const Scene& scene, const BodySpec& body) {
-  const std::string source =
-      body.mesh == kBunnyName ? body.mesh : resolve(scene, body.mesh).string();
-  TriangleMesh mesh = load_model(source, body.triangles);
-  if (body.size) return normalize(mesh, *body.size).mesh;
-  const Vec3d center = compute_mass_properties(mesh).center_of_mass;
-  for (Vec3d& vertex : mesh.vertices) vertex -= center;
-  return mesh;
 }
 
 std::shared_ptr<const SphereTree> body_tree(const Scene& scene, const TriangleMesh& mesh,

@@ -1,0 +1,36 @@
+#pragma once
+
+// A recording as glTF 2.0 binary (.glb): the bodies' meshes, the ground, and the bodies' motion
+// as one animation, so that Blender and web viewers play it.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "sphys/tools/recording.h"
+#include "sphys/tools/scene.h"
+
+namespace sphys::tools {
+
+// Which frames go in: first, first + every, ... up to last (inclusive).
+struct GltfExportOptions {
+  std::uint32_t first = 0;
+  std::optional<std::uint32_t> last;  // unset: the recording's last frame
+  std::uint32_t every = 1;
+};
+
+struct GltfExportSummary {
+  std::uint32_t frames = 0;  // exported
+  std::uint32_t bodies = 0;
+  std::uint32_t meshes = 0;  // distinct body meshes, the ground not counted
+  std::uint64_t bytes = 0;   // of the file
+};
+
+// `scene` is the recording's (its metadata), for the meshes and the ground. The file is written
+// whole or not at all. Throws sphys::Error for a frame range outside the recording, every = 0, a
+// recording whose body count is not the scene's, a mesh that cannot be loaded, and a file that
+// cannot be written.
+GltfExportSummary write_gltf(const std::filesystem::path& path, const Recording& recording,
+                             const Scene& scene, const GltfExportOptions& options = {});
+
+}  // namespace sphys::tools
