@@ -27,6 +27,7 @@ auto parse_option(std::string_view option, std::string_view value, Parse parse) 
 // throws sphys::Error for bad input (exit code 2) and anything else for internal errors (1).
 void add_mesh_info_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 void add_build_tree_command(CLI::App& app);
 void add_tree_info_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);

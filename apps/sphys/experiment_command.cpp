@@ -87,9 +87,7 @@ void run(const ExperimentCommandOptions& options) {
   } else {
     for (const tools::PaperRow& paper : tools::paper_table()) rows.push_back(paper.row);
   }
-  if (options.ground != "octree" && options.ground != "plane") {
-    throw Error("--ground must be octree or plane, got '" + options.ground + "'");
-  }
+  const tools::GroundSpec::Kind ground = tools::parse_ground_option(options.ground);
   tools::ExperimentOptions experiment;
   experiment.mode.response = parse_option("--mode", options.mode, tools::parse_response_mode);
   experiment.mode.contacts = parse_option("--contacts", options.contacts, tools::parse_contact_set);
@@ -99,7 +97,7 @@ void run(const ExperimentCommandOptions& options) {
   if (ec) throw Error::in_file(out, "cannot create the output folder: " + ec.message());
 
   experiment.frames = options.frames;
-  if (options.ground == "plane") experiment.ground = tools::GroundSpec::Kind::kPlane;
+  experiment.ground = ground;
 
   if (!options.no_cache) experiment.cache_dir = tools::default_cache_dir();
   std::vector<tools::RowResult> results;

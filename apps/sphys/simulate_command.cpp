@@ -185,15 +185,7 @@ void apply_options(const SimulateOptions& options, tools::Scene& scene) {
     scene.frames = *options.frames;
   }
   if (options.passes) scene.paper_passes = *options.passes;
-  if (options.ground) {
-    if (*options.ground == "octree") {
-      scene.ground.kind = tools::GroundSpec::Kind::kOctreeBox;
-    } else if (*options.ground == "plane") {
-      scene.ground.kind = tools::GroundSpec::Kind::kPlane;
-    } else {
-      throw Error("--ground must be octree or plane, got '" + *options.ground + "'");
-    }
-  }
+  if (options.ground) scene.ground.kind = tools::parse_ground_option(*options.ground);
   if (options.mode) {
     scene.response = parse_option("--mode", *options.mode, tools::parse_response_mode);
   }

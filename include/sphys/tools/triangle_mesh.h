@@ -31,4 +31,8 @@ struct TriangleMesh {
   [[nodiscard]] Vec3d area_normal(std::size_t triangle) const;
 };
 
+// Per vertex, the unit normal averaged over its triangles weighted by their areas (smooth
+// shading); +y for a vertex no triangle with an area uses.
+[[nodiscard]] std::vector<Vec3d> vertex_normals(const TriangleMesh& mesh);
+
 }  // namespace sphys::tools

@@ -91,18 +91,13 @@ int add_material(tinygltf::Model& model, const std::string& name, double r, doub
 // indices.
 int add_mesh(tinygltf::Model& model, Builder& builder, const TriangleMesh& mesh,
              const std::string& name, int material) {
-  std::vector<Vec3d> normals(mesh.vertices.size(), Vec3d::Zero());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Vec3d normal = mesh.area_normal(t);
-    for (const std::uint32_t v : mesh.triangles[t]) normals[v] += normal;
-  }
+  const std::vector<Vec3d> normals = vertex_normals(mesh);
   std::vector<float> positions;
   std::vector<float> normal_values;
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    const Vec3d n = normals[v].norm() > 0.0 ? normals[v].normalized() : Vec3d::UnitY();
     for (int c = 0; c < 3; ++c) {
       positions.push_back(static_cast<float>(mesh.vertices[v][c]));
-      normal_values.push_back(static_cast<float>(n[c]));
+      normal_values.push_back(static_cast<float>(normals[v][c]));
     }
   }
   std::vector<std::uint32_t> indices;

@@ -997,6 +997,15 @@ ResponseMode parse_response_mode(std::string_view name) {
   return parse_name(name, kResponseNames, "response mode");
 }
 
+GroundSpec::Kind parse_ground_option(std::string_view name) {
+  if (name == "octree") return GroundSpec::Kind::kOctreeBox;
+  if (name == "plane") return GroundSpec::Kind::kPlane;
+  std::string message = "--ground must be octree or plane, got '";
+  message += name;
+  message += "'";
+  throw Error(message);
+}
+
 std::string_view contact_set_name(ContactSet contacts) { return name_of(contacts, kContactSets); }
 
 ContactSet parse_contact_set(std::string_view name) {

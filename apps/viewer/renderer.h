@@ -1,0 +1,48 @@
+#pragma once
+
+// Draws triangle meshes with OpenGL 3.3 core: one shader with a sun, a sky-and-ground ambient
+// term and distance haze, opaque or see-through. Needs a current context (GLFW + libepoxy).
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sphys/tools/triangle_mesh.h"
+
+namespace sphys::viewer {
+
+class Renderer {
+ public:
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Uploads a mesh; the handle is what draw() takes.
+  std::uint32_t add_mesh(const tools::TriangleMesh& mesh);
+
+  // Clears the frame and sets the camera for the draws that follow.
+  void begin(const Eigen::Matrix4f& view, const Eigen::Matrix4f& projection,
+             const Eigen::Vector3f& eye);
+  // `model` places the mesh in the world; alpha < 1 draws it see-through (draw those last).
+  void draw(std::uint32_t mesh, const Eigen::Matrix4f& model, const Eigen::Vector3f& color,
+            float alpha = 1.0f);
+
+ private:
+  struct Mesh {
+    unsigned vertex_array = 0;
+    unsigned vertex_buffer = 0;
+    unsigned index_buffer = 0;
+    int index_count = 0;
+  };
+  unsigned program_ = 0;
+  int model_location_ = -1;
+  int view_projection_location_ = -1;
+  int color_location_ = -1;
+  int alpha_location_ = -1;
+  int eye_location_ = -1;
+  std::vector<Mesh> meshes_;
+};
+
+}  // namespace sphys::viewer
