@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <imgui.h>
 #include <memory>
@@ -42,6 +43,9 @@ const Eigen::Vector3f kBodyColour(0.86f, 0.72f, 0.52f);
 const Eigen::Vector3f kAsleepColour(0.55f, 0.62f, 0.80f);
 const Eigen::Vector3f kGroundColour(0.50f, 0.53f, 0.50f);
 const Eigen::Vector3f kSphereColour(0.25f, 0.55f, 0.95f);
+// The shadow under a body on the ground, and the height at which it has faded out. unit: m
+constexpr float kShadowAlpha = 0.45f;
+constexpr float kShadowFade = 12.0f;
 
 Eigen::Matrix4f model_matrix(const Transform& pose, float scale = 1.0f) {
   Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
@@ -133,13 +137,38 @@ OrbitCamera frame_scene(const tools::Scene& scene) {
   return camera;
 }
 
+// A soft dark disc on the ground under each body, fading with the body's height: enough to tell
+// how high a body is and where it will land, at the cost of one flat sphere per body.
+void draw_shadows(Renderer& renderer, const SceneGraphics& graphics, const Simulation& simulation) {
+  const tools::GroundSpec& ground = simulation.scene.ground;
+  const auto top = static_cast<float>(ground.height);
+  const double half =
+      ground.kind == tools::GroundSpec::Kind::kOctreeBox ? ground.size / 2.0 : kPlaneSize / 2.0;
+  const tools::SimulationSetup& setup = simulation.setup;
+  for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
+    const Vec3& position = setup.world->body(setup.bodies[i]).pose.translation;
+    if (std::abs(position.x()) > half || std::abs(position.z()) > half) continue;
+    const float height = position.y() - top;
+    if (!(height > 0.0f)) continue;
+    const float alpha = kShadowAlpha * std::max(0.0f, 1.0f - height / kShadowFade);
+    if (alpha <= 0.0f) continue;
+    const auto radius =
+        static_cast<float>(0.8 * setup.shapes[setup.body_shape[i]].max_vertex_distance);
+    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+    model.diagonal() << radius, 0.002f, radius, 1.0f;
+    model.block<3, 1>(0, 3) = Eigen::Vector3f(position.x(), top + 0.01f, position.z());
+    renderer.draw(graphics.sphere, model, Eigen::Vector3f::Zero(), alpha);
+  }
+}
+
 void draw_scene(Renderer& renderer, const SceneGraphics& graphics, const Simulation& simulation,
                 const OrbitCamera& camera, float aspect, int sphere_level) {
   renderer.begin(camera.view(), camera.projection(aspect), camera.eye());
+  const tools::SimulationSetup& setup = simulation.setup;
   if (graphics.ground) {
     renderer.draw(*graphics.ground, Eigen::Matrix4f::Identity(), kGroundColour);
+    draw_shadows(renderer, graphics, simulation);
   }
-  const tools::SimulationSetup& setup = simulation.setup;
   for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
     const BodyId body = setup.bodies[i];
     const Eigen::Vector3f& colour = setup.world->asleep(body) ? kAsleepColour : kBodyColour;
