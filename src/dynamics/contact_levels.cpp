@@ -2,44 +2,42 @@
 
 namespace sphys {
 
-std::vector<std::uint32_t> contact_levels(
+std::span<const std::uint32_t> ContactLevels::compute(
     std::span<const std::uint8_t> immovable,
     std::span<const std::pair<std::uint32_t, std::uint32_t>> contacts) {
   const std::size_t bodies = immovable.size();
-  // The graph in compressed rows: the neighbours of body i are neighbours[first[i], first[i+1]).
-  std::vector<std::uint32_t> first(bodies + 1, 0);
+  first_.assign(bodies + 1, 0);
   for (const auto& [a, b] : contacts) {
-    ++first[a + 1];
-    ++first[b + 1];
+    ++first_[a + 1];
+    ++first_[b + 1];
   }
-  for (std::size_t i = 0; i < bodies; ++i) first[i + 1] += first[i];
-  std::vector<std::uint32_t> neighbours(first[bodies]);
-  std::vector<std::uint32_t> filled(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < bodies; ++i) first_[i + 1] += first_[i];
+  neighbours_.resize(first_[bodies]);
+  filled_.assign(first_.begin(), first_.end() - 1);
   for (const auto& [a, b] : contacts) {
-    neighbours[filled[a]++] = b;
-    neighbours[filled[b]++] = a;
+    neighbours_[filled_[a]++] = b;
+    neighbours_[filled_[b]++] = a;
   }
 
   // Breadth first from every immovable body at once.
-  std::vector<std::uint32_t> level(bodies, kUnsupported);
-  std::vector<std::uint32_t> queue;
-  queue.reserve(bodies);
+  level_.assign(bodies, kUnsupported);
+  queue_.clear();
   for (std::uint32_t i = 0; i < bodies; ++i) {
     if (immovable[i] != 0) {
-      level[i] = 0;
-      queue.push_back(i);
+      level_[i] = 0;
+      queue_.push_back(i);
     }
   }
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const std::uint32_t body = queue[head];
-    for (std::uint32_t k = first[body]; k < first[body + 1]; ++k) {
-      const std::uint32_t next = neighbours[k];
-      if (level[next] != kUnsupported) continue;
-      level[next] = level[body] + 1;
-      queue.push_back(next);
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const std::uint32_t body = queue_[head];
+    for (std::uint32_t k = first_[body]; k < first_[body + 1]; ++k) {
+      const std::uint32_t next = neighbours_[k];
+      if (level_[next] != kUnsupported) continue;
+      level_[next] = level_[body] + 1;
+      queue_.push_back(next);
     }
   }
-  return level;
+  return level_;
 }
 
 }  // namespace sphys

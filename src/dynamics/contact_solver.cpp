@@ -225,16 +225,15 @@ void ContactSolver::bounce(const SolverSettings& settings, ContactSolverStats& s
 // so free bodies keep their momentum.
 void ContactSolver::propagate_shock(const SolverSettings& settings) {
   const std::size_t slots = linear_.size();
-  std::vector<std::uint8_t> immovable(slots);
-  for (std::size_t i = 0; i < slots; ++i) immovable[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  pairs.reserve(constraints_.size());
-  for (const Constraint& c : constraints_) pairs.emplace_back(c.a, c.b);
-  const std::vector<std::uint32_t> level = contact_levels(immovable, pairs);
+  immovable_.resize(slots);
+  for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
+  pairs_.clear();
+  for (const Constraint& c : constraints_) pairs_.emplace_back(c.a, c.b);
+  const std::span<const std::uint32_t> level = levels_.compute(immovable_, pairs_);
 
   // (level of the upper body, constraint), by level.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> order;
-  order.reserve(constraints_.size());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& order = order_;
+  order.clear();
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     const Constraint& c = constraints_[k];
     const std::uint32_t top = std::max(level[c.a], level[c.b]);
@@ -252,12 +251,14 @@ void ContactSolver::propagate_shock(const SolverSettings& settings) {
   };
   // What this pass gave each contact so far, so that a later sweep may take back what an earlier
   // one gave too much (pushes at the corners of a face overshoot one by one).
-  std::vector<float> given(order.size(), 0.0f);
+  std::vector<float>& given = given_;
+  given.assign(order.size(), 0.0f);
   // Contacts struck by a blow: closing faster than shock_speed beyond their target when met.
   // Those are stopped at their target. What the velocity passes leave of a resting contact's
   // approach is let be: pushing it to zero at one corner of a face and then another only rocks
   // the body, and a stack of boxes leans.
-  std::vector<std::uint8_t> struck(order.size(), 0);
+  std::vector<std::uint8_t>& struck = struck_;
+  struck.assign(order.size(), 0);
   for (std::size_t begin = 0; begin < order.size();) {
     const std::uint32_t top = order[begin].first;
     std::size_t end = begin;

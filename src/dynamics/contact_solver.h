@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "dynamics/contact_levels.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/math.h"
@@ -113,6 +114,13 @@ class ContactSolver {
   std::vector<Mat3> inverse_inertia_;
   std::vector<Vec3> pseudo_linear_;
   std::vector<Vec3> pseudo_angular_;
+  // Shock propagation's buffers, kept so that a step does not allocate them anew.
+  ContactLevels levels_;
+  std::vector<std::uint8_t> immovable_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // each constraint's bodies
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> order_;  // (level, constraint), sorted
+  std::vector<float> given_;
+  std::vector<std::uint8_t> struck_;
 };
 
 }  // namespace sphys

@@ -365,7 +365,6 @@ void World::substep(float dt, StepStats& stats) {
   }
 }
 
-// Plausible mode: contact reduction, islands and waking, then the sequential-impulse solver.
 // The response's contacts from leaf_contacts_: all of them, or a manifold per body pair.
 void World::reduce_contacts() {
   const SolverSettings& solver = settings_.solver;
@@ -377,6 +376,7 @@ void World::reduce_contacts() {
   }
 }
 
+// Plausible mode: contact reduction, islands and waking, then the sequential-impulse solver.
 void World::respond(float dt, StepStats& stats) {
   const SolverSettings& solver = settings_.solver;
   reduce_contacts();
@@ -392,6 +392,8 @@ void World::respond(float dt, StepStats& stats) {
     if (sleep_changes_.empty()) break;
     for (const std::uint32_t body : sleep_changes_) {
       detector_.set_asleep({body}, false);
+      // Still until the solver moves them: no motion from before they slept.
+      detector_.set_motion({body}, Vec3::Zero(), 0.0f);
       moving_[body] = 1;
     }
     detect(stats);
