@@ -156,6 +156,11 @@ class World {
   [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
   [[nodiscard]] bool stopped() const { return stopped_; }
 
+  // The time-critical narrow phase's budgets (CollisionSettings::max_sphere_tests and
+  // max_microseconds) from the next step on, e.g. from a viewer's slider; 0 turns one off. A time
+  // that is negative or not finite throws sphys::Error.
+  void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
+
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
   [[nodiscard]] const CollisionDetector& detector() const { return detector_; }
 

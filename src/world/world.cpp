@@ -57,6 +57,11 @@ void check_settings(const WorldSettings& settings) {
     throw Error("substep_travel must be positive and finite, got " +
                 std::to_string(settings.substep_travel));
   }
+  if (!(settings.collision.max_microseconds >= 0.0) ||
+      !std::isfinite(settings.collision.max_microseconds)) {
+    throw Error("the detection time budget must be finite and not negative, got " +
+                std::to_string(settings.collision.max_microseconds) + " µs");
+  }
   const SolverSettings& solver = settings.solver;
   if (solver.velocity_iterations < 1) throw Error("velocity_iterations must be at least 1");
   if (solver.manifold_points < 1 || solver.manifold_points > kMaxManifoldPoints) {
@@ -192,6 +197,15 @@ void World::remove_body(BodyId id) {
            static_cast<std::uint32_t>(entry.first) == id.index;
   });
   solver_->forget();
+}
+
+void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds) {
+  WorldSettings settings = settings_;
+  settings.collision.max_sphere_tests = max_sphere_tests;
+  settings.collision.max_microseconds = max_microseconds;
+  check_settings(settings);
+  settings_ = settings;
+  detector_.set_settings(collision_settings(settings_));
 }
 
 void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
