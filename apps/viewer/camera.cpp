@@ -46,6 +46,17 @@ Eigen::Matrix4f OrbitCamera::projection(float aspect) const {
   return m;
 }
 
+Eigen::Vector3f OrbitCamera::ray(float x, float y, float width, float height) const {
+  const Eigen::Vector3f forward = (target - eye()).normalized();
+  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
+  const Eigen::Vector3f up = right.cross(forward);
+  const float half_height = std::tan(fov_y / 2.0f);
+  const float half_width = half_height * width / height;
+  const float across = 2.0f * x / width - 1.0f;
+  const float down = 2.0f * y / height - 1.0f;
+  return (forward + across * half_width * right - down * half_height * up).normalized();
+}
+
 void OrbitCamera::turn(float dx, float dy) {
   yaw -= 0.005f * dx;
   pitch = std::clamp(pitch + 0.005f * dy, -kPitchLimit, kPitchLimit);

@@ -18,6 +18,10 @@ struct OrbitCamera {
   [[nodiscard]] Eigen::Matrix4f view() const;
   [[nodiscard]] Eigen::Matrix4f projection(float aspect) const;
 
+  // The unit direction from the eye through pixel (x, y) of a `width` × `height` window (y
+  // downwards, as the mouse gives it).
+  [[nodiscard]] Eigen::Vector3f ray(float x, float y, float width, float height) const;
+
   // Mouse drags in pixels of a window `height` tall.
   void turn(float dx, float dy);
   void pan(float dx, float dy, float height);

@@ -1,8 +1,8 @@
 #include "renderer.h"
 
 #include <epoxy/gl.h>
-#include <stdexcept>
-#include <string>
+
+#include "shader.h"
 
 namespace sphys::viewer {
 namespace {
@@ -44,34 +44,10 @@ void main() {
 }
 )";
 
-unsigned compile(GLenum type, const char* source) {
-  const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok == 0) {
-    char log[1024] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("shader does not compile: ") + log);
-  }
-  return shader;
-}
-
 }  // namespace
 
 Renderer::Renderer() {
-  const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fragment = compile(GL_FRAGMENT_SHADER, kFragmentShader);
-  program_ = glCreateProgram();
-  glAttachShader(program_, vertex);
-  glAttachShader(program_, fragment);
-  glLinkProgram(program_);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (ok == 0) throw std::runtime_error("shader program does not link");
+  program_ = link_program(kVertexShader, kFragmentShader);
   model_location_ = glGetUniformLocation(program_, "model");
   view_projection_location_ = glGetUniformLocation(program_, "view_projection");
   color_location_ = glGetUniformLocation(program_, "color");
@@ -80,12 +56,17 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
+  clear_meshes();
+  glDeleteProgram(program_);
+}
+
+void Renderer::clear_meshes() {
   for (const Mesh& mesh : meshes_) {
     glDeleteVertexArrays(1, &mesh.vertex_array);
     glDeleteBuffers(1, &mesh.vertex_buffer);
     glDeleteBuffers(1, &mesh.index_buffer);
   }
-  glDeleteProgram(program_);
+  meshes_.clear();
 }
 
 std::uint32_t Renderer::add_mesh(const tools::TriangleMesh& mesh) {
@@ -136,6 +117,7 @@ void Renderer::begin(const Eigen::Matrix4f& view, const Eigen::Matrix4f& project
 void Renderer::draw(std::uint32_t mesh, const Eigen::Matrix4f& model, const Eigen::Vector3f& color,
                     float alpha) {
   const Mesh& gl_mesh = meshes_.at(mesh);
+  glUseProgram(program_);  // the overlays' lines may have drawn in between
   glUniformMatrix4fv(model_location_, 1, GL_FALSE, model.data());
   glUniform3fv(color_location_, 1, color.data());
   glUniform1f(alpha_location_, alpha);

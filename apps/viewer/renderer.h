@@ -21,6 +21,8 @@ class Renderer {
 
   // Uploads a mesh; the handle is what draw() takes.
   std::uint32_t add_mesh(const tools::TriangleMesh& mesh);
+  // Frees every mesh, e.g. before the meshes of another scene; their handles become invalid.
+  void clear_meshes();
 
   // Clears the frame and sets the camera for the draws that follow.
   void begin(const Eigen::Matrix4f& view, const Eigen::Matrix4f& projection,

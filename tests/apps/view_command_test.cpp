@@ -35,18 +35,7 @@ bool is_sky(const unsigned char* p) {
   return std::abs(p[0] - 199) <= 3 && std::abs(p[1] - 209) <= 3 && std::abs(p[2] - 222) <= 3;
 }
 
-// Renders stacks:4x25 (depth 2) after `frames` frames, with the sphere overlay at `spheres`.
-Image screenshot(const test::TempDir& dir, int frames, int spheres) {
-  const fs::path png =
-      dir.path() / ("shot-" + std::to_string(frames) + "-" + std::to_string(spheres) + ".png");
-  // Mesa's software renderer keeps allocations past exit, which LeakSanitizer would report.
-  setenv("ASAN_OPTIONS", "detect_leaks=0:abort_on_error=1", 1);
-  const test::CommandResult r = test::run_command(
-      "xvfb-run",
-      {"-a", "-s", "-screen 0 640x480x24", SPHYS_CLI_PATH, "view", "stacks:4x25", "--depth", "2",
-       "--frames", std::to_string(frames), "--spheres", std::to_string(spheres), "--screenshot",
-       png.string(), "--width", std::to_string(kWidth), "--height", std::to_string(kHeight)});
-  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+Image read_png(const fs::path& png) {
   Image image;
   int channels = 0;
   unsigned char* data = stbi_load(png.string().c_str(), &image.width, &image.height, &channels, 3);
@@ -57,6 +46,41 @@ Image screenshot(const test::TempDir& dir, int frames, int spheres) {
   image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
   stbi_image_free(data);
   return image;
+}
+
+// Runs `sphys view ARGS` under Xvfb.
+test::CommandResult view(std::vector<std::string> args) {
+  // Mesa's software renderer keeps allocations past exit, which LeakSanitizer would report.
+  setenv("ASAN_OPTIONS", "detect_leaks=0:abort_on_error=1", 1);
+  args.insert(args.begin(), {"-a", "-s", "-screen 0 640x480x24", SPHYS_CLI_PATH, "view"});
+  return test::run_command("xvfb-run", args);
+}
+
+// `sphys view ARGS --screenshot` at kWidth × kHeight.
+Image screenshot(const fs::path& png, std::vector<std::string> args) {
+  args.insert(args.end(), {"--screenshot", png.string(), "--width", std::to_string(kWidth),
+                           "--height", std::to_string(kHeight)});
+  const test::CommandResult r = view(args);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  return read_png(png);
+}
+
+// Renders stacks:4x25 (depth 2) after `frames` frames, with the sphere overlay at `spheres`.
+Image screenshot(const test::TempDir& dir, int frames, int spheres) {
+  const fs::path png =
+      dir.path() / ("shot-" + std::to_string(frames) + "-" + std::to_string(spheres) + ".png");
+  return screenshot(png, {"stacks:4x25", "--depth", "2", "--frames", std::to_string(frames),
+                          "--spheres", std::to_string(spheres)});
+}
+
+// Pixels of `image` for which `pick` holds.
+template <typename Pick>
+int count_pixels(const Image& image, Pick pick) {
+  int count = 0;
+  for (std::size_t i = 0; i + 2 < image.rgb.size(); i += 3) {
+    count += pick(image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]) ? 1 : 0;
+  }
+  return count;
 }
 
 TEST(ViewCommand, AScreenshotShowsTheGroundAndTheBunniesWhereTheCameraLooks) {
@@ -111,6 +135,74 @@ TEST(ViewCommand, TheSphereOverlayChangesThePicture) {
   EXPECT_GT(bluer, changed / 2);
 }
 
+TEST(ViewCommand, TheContactAndBoxOverlaysDrawInTheirColours) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const std::vector<std::string> scene = {"stacks:4x25", "--depth", "2", "--frames", "60"};
+  const Image plain = screenshot(dir.path() / "plain.png", scene);
+  std::vector<std::string> with_contacts = scene;
+  with_contacts.push_back("--show-contacts");
+  const Image contacts = screenshot(dir.path() / "contacts.png", with_contacts);
+  std::vector<std::string> with_boxes = scene;
+  with_boxes.push_back("--show-boxes");
+  const Image boxes = screenshot(dir.path() / "boxes.png", with_boxes);
+  // Contact crosses are red, normals yellow; the broad phase's boxes green. None of these
+  // colours is in the plain picture (sky, grey ground, sand bunnies).
+  const auto red = [](int r, int g, int b) { return r > 180 && g < 90 && b < 90; };
+  const auto yellow = [](int r, int g, int b) { return r > 180 && g > 150 && b < 80; };
+  const auto green = [](int r, int g, int b) { return g > r + 60 && g > b + 60; };
+  EXPECT_EQ(count_pixels(plain, red), 0);
+  EXPECT_EQ(count_pixels(plain, yellow), 0);
+  EXPECT_EQ(count_pixels(plain, green), 0);
+  // 60 frames in, the bottom of the stacks is on the ground: some hundred contacts.
+  EXPECT_GT(count_pixels(contacts, red), 20);
+  EXPECT_GT(count_pixels(contacts, yellow), 20);
+  EXPECT_GT(count_pixels(boxes, green), 200);
+}
+
+TEST(ViewCommand, AReplayedFrameLooksLikeTheLiveRunAtThatFrame) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const test::CommandResult run = test::run_command(
+      SPHYS_CLI_PATH, {"simulate", "stacks:4x25", "--depth", "2", "--mode", "paper", "--frames",
+                       "40", "--out", (dir.path() / "run").string()});
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const std::string recording = (dir.path() / "run" / "recording.sphysrec").string();
+  // Frame 0 of a recording is the start, frame N the state after N steps, as --frames N live.
+  for (const int frame : {0, 40}) {
+    const std::string n = std::to_string(frame);
+    const Image live =
+        screenshot(dir.path() / ("live" + n + ".png"),
+                   {"stacks:4x25", "--depth", "2", "--mode", "paper", "--frames", n});
+    const Image replay =
+        screenshot(dir.path() / ("replay" + n + ".png"), {"--replay", recording, "--frames", n});
+    ASSERT_EQ(live.rgb.size(), replay.rgb.size());
+    EXPECT_EQ(live.rgb, replay.rgb) << "frame " << frame;
+  }
+  // And frame 40 is not frame 0: the bunnies have fallen.
+  EXPECT_NE(read_png(dir.path() / "replay0.png").rgb, read_png(dir.path() / "replay40.png").rgb);
+}
+
+TEST(ViewCommand, TheWindowRunsLiveAndReplaysForSomeFramesThenReportsTheFrameRate) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const test::CommandResult live =
+      view({"stacks:2x3", "--depth", "2", "--exit-after", "5", "--spheres", "2", "--show-contacts",
+            "--show-boxes", "--width", "320", "--height", "180"});
+  ASSERT_EQ(live.exit_code, 0) << live.out << live.err;
+  EXPECT_NE(live.out.find("sphys view: 5 frames displayed in"), std::string::npos) << live.out;
+
+  const test::CommandResult run = test::run_command(
+      SPHYS_CLI_PATH,
+      {"simulate", "stacks:2x3", "--depth", "2", "--frames", "10", "--out", dir.path().string()});
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const test::CommandResult replay =
+      view({"--replay", (dir.path() / "recording.sphysrec").string(), "--exit-after", "3",
+            "--spheres", "1", "--width", "320", "--height", "180"});
+  ASSERT_EQ(replay.exit_code, 0) << replay.out << replay.err;
+  EXPECT_NE(replay.out.find("sphys view: 3 frames displayed in"), std::string::npos) << replay.out;
+}
+
 TEST(ViewCommand, BadOptionsExitWithCode2) {
   test::expect_bad_input({"view", "stacks:1x1", "--screenshot", "/tmp/x.png", "--width", "4"},
                          "--width and --height must be between 16 and 8192");
@@ -119,7 +211,30 @@ TEST(ViewCommand, BadOptionsExitWithCode2) {
   test::expect_bad_input({"view", "stacks:0x1", "--screenshot", "/tmp/x.png"},
                          "unknown preset 'stacks:0x1'");
   test::expect_bad_input({"view", "stacks:1x1", "--screenshot", "/tmp/x.png", "--mode", "bogus"},
-                         "unknown response mode 'bogus'");
+                         "--mode: unknown response mode 'bogus'");
+  test::expect_bad_input({"view", "stacks:1x1", "--msaa", "32"}, "--msaa must be between 0 and 16");
+  test::expect_bad_input({"view", "stacks:1x1", "--exit-after", "0"},
+                         "--exit-after must be at least 1");
+  test::expect_bad_input({"view", "stacks:1x1", "--replay", "/tmp/x.sphysrec"},
+                         "give a scene or --replay, not both");
+  test::expect_bad_input({"view", "--replay", "/tmp/x.sphysrec", "--mode", "paper"},
+                         "--mode and --ground change a live run");
+  test::expect_bad_input({"view", "--replay", "/nonexistent/run.sphysrec"},
+                         "/nonexistent/run.sphysrec");
+}
+
+TEST(ViewCommand, AReplayScreenshotPastTheLastFrameIsRefused) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const test::CommandResult run = test::run_command(
+      SPHYS_CLI_PATH,
+      {"simulate", "stacks:1x2", "--depth", "2", "--frames", "5", "--out", dir.path().string()});
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const std::string recording = (dir.path() / "recording.sphysrec").string();
+  test::expect_bad_input({"view", "--replay", recording, "--frames", "6", "--screenshot",
+                          (dir.path() / "x.png").string()},
+                         "--frames 6 is past the recording's last frame, 5");
+  EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
 }
 
 }  // namespace

@@ -1,0 +1,143 @@
+#include "scene_drawer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "sphys/tools/primitives.h"
+#include "sphys/tools/scene_meshes.h"
+
+namespace sphys::viewer {
+namespace {
+
+const Eigen::Vector3f kBodyColour(0.86f, 0.72f, 0.52f);
+const Eigen::Vector3f kAsleepColour(0.55f, 0.62f, 0.80f);
+const Eigen::Vector3f kGroundColour(0.50f, 0.53f, 0.50f);
+const Eigen::Vector3f kSphereColour(0.25f, 0.55f, 0.95f);
+const Eigen::Vector3f kContactColour(0.95f, 0.10f, 0.10f);
+const Eigen::Vector3f kNormalColour(1.00f, 0.85f, 0.10f);
+const Eigen::Vector3f kBoxColour(0.10f, 0.75f, 0.25f);
+// The shadow under a body on the ground, and the height at which it has faded out. unit: m
+constexpr float kShadowAlpha = 0.45f;
+constexpr float kShadowFade = 12.0f;
+// Half the arms of a contact's cross, and the length of its normal. unit: m
+constexpr float kContactMark = 0.03f;
+constexpr float kNormalLength = 0.25f;
+
+Eigen::Matrix4f model_matrix(const Transform& pose, float scale = 1.0f) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.block<3, 3>(0, 0) = pose.rotation.toRotationMatrix() * scale;
+  m.block<3, 1>(0, 3) = pose.translation;
+  return m;
+}
+
+}  // namespace
+
+SceneDrawer::SceneDrawer(Renderer& renderer, const tools::Scene& scene,
+                         const std::vector<tools::BodyShape>& shapes)
+    : scene_(&scene), shapes_(&shapes) {
+  for (const tools::BodyShape& shape : shapes) {
+    shape_meshes_.push_back(renderer.add_mesh(*shape.body_mesh));
+  }
+  const tools::TriangleMesh ground = tools::ground_mesh(scene.ground, kPlaneSize);
+  if (!ground.triangles.empty()) ground_ = renderer.add_mesh(ground);
+  sphere_ = renderer.add_mesh(tools::make_icosphere(1.0, 2));
+}
+
+void SceneDrawer::draw(Renderer& renderer, LineRenderer& lines, const OrbitCamera& camera,
+                       float aspect, const FrameContents& frame, const Overlays& overlays) {
+  const Eigen::Matrix4f view_projection = camera.projection(aspect) * camera.view();
+  renderer.begin(camera.view(), camera.projection(aspect), camera.eye());
+  if (ground_) {
+    renderer.draw(*ground_, Eigen::Matrix4f::Identity(), kGroundColour);
+    draw_shadows(renderer, frame.bodies);
+  }
+  for (const BodyView& body : frame.bodies) {
+    const bool tinted = overlays.sleeping_tint && body.asleep;
+    renderer.draw(shape_meshes_[body.shape], model_matrix(body.pose),
+                  tinted ? kAsleepColour : kBodyColour);
+  }
+  lines.begin(view_projection);
+  if (overlays.boxes) draw_boxes(lines, frame.boxes);
+  // See-through spheres last, so that they do not hide what lies behind them.
+  if (overlays.sphere_level > 0) draw_spheres(renderer, frame.bodies, overlays.sphere_level);
+  if (overlays.contacts) draw_contacts(lines, frame.contacts);
+}
+
+// A soft dark disc on the ground under each body, fading with the body's height: enough to tell
+// how high a body is and where it will land, at the cost of one flat sphere per body.
+void SceneDrawer::draw_shadows(Renderer& renderer, std::span<const BodyView> bodies) const {
+  const tools::GroundSpec& ground = scene_->ground;
+  const auto top = static_cast<float>(ground.height);
+  const double half =
+      ground.kind == tools::GroundSpec::Kind::kOctreeBox ? ground.size / 2.0 : kPlaneSize / 2.0;
+  for (const BodyView& body : bodies) {
+    const Vec3& position = body.pose.translation;
+    if (std::abs(position.x()) > half || std::abs(position.z()) > half) continue;
+    const float height = position.y() - top;
+    if (!(height > 0.0f)) continue;
+    const float alpha = kShadowAlpha * std::max(0.0f, 1.0f - height / kShadowFade);
+    if (alpha <= 0.0f) continue;
+    const auto radius = static_cast<float>(0.8 * (*shapes_)[body.shape].max_vertex_distance);
+    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+    model.diagonal() << radius, 0.002f, radius, 1.0f;
+    model.block<3, 1>(0, 3) = Eigen::Vector3f(position.x(), top + 0.01f, position.z());
+    renderer.draw(sphere_, model, Eigen::Vector3f::Zero(), alpha);
+  }
+}
+
+// The spheres of one level of each body's tree, see-through, as in the paper's Figure 1.
+void SceneDrawer::draw_spheres(Renderer& renderer, std::span<const BodyView> bodies,
+                               int level) const {
+  for (const BodyView& body : bodies) {
+    const SphereTree& tree = *(*shapes_)[body.shape].tree;
+    for (const Sphere& sphere : tree.level_spheres(std::min(level, tree.depth()) - 1)) {
+      const Transform placed{body.pose.rotation, body.pose.apply(sphere.center)};
+      renderer.draw(sphere_, model_matrix(placed, sphere.radius), kSphereColour, 0.35f);
+    }
+  }
+}
+
+// A small cross at each contact point and its normal (from body a towards body b), drawn over
+// everything: contacts lie between bodies, where surfaces would hide them.
+void SceneDrawer::draw_contacts(LineRenderer& lines, std::span<const Contact> contacts) {
+  points_.clear();
+  for (const Contact& contact : contacts) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec3 arm = kContactMark * Vec3::Unit(axis);
+      points_.push_back(contact.point - arm);
+      points_.push_back(contact.point + arm);
+    }
+  }
+  lines.draw(points_, kContactColour, true);
+  points_.clear();
+  for (const Contact& contact : contacts) {
+    points_.push_back(contact.point);
+    points_.push_back(contact.point + kNormalLength * contact.normal);
+  }
+  lines.draw(points_, kNormalColour, true);
+}
+
+void SceneDrawer::draw_boxes(LineRenderer& lines, std::span<const Aabb> boxes) {
+  points_.clear();
+  for (const Aabb& box : boxes) {
+    if (box.empty() || !box.min.allFinite() || !box.max.allFinite()) continue;
+    const auto corner = [&](int i) {
+      return Vec3((i & 1) != 0 ? box.max.x() : box.min.x(),
+                  (i & 2) != 0 ? box.max.y() : box.min.y(),
+                  (i & 4) != 0 ? box.max.z() : box.min.z());
+    };
+    // The 12 edges join corners that differ in one coordinate bit.
+    for (int i = 0; i < 8; ++i) {
+      for (const int bit : {1, 2, 4}) {
+        if ((i & bit) != 0) continue;
+        points_.push_back(corner(i));
+        points_.push_back(corner(i | bit));
+      }
+    }
+  }
+  lines.draw(points_, kBoxColour, false);
+}
+
+}  // namespace sphys::viewer
