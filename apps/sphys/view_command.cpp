@@ -16,6 +16,7 @@ struct ViewArguments {
   std::optional<std::string> ground;
   std::optional<std::string> screenshot;
   bool no_cache = false;
+  bool no_shadows = false;
 };
 
 }  // namespace
@@ -38,6 +39,7 @@ void add_view_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--show-contacts", options->show_contacts, "Draw contact points and normals");
   cmd->add_flag("--show-boxes", options->show_boxes, "Draw the broad phase's boxes");
+  cmd->add_flag("--no-shadows", args->no_shadows, "Draw without the sun's shadows (faster)");
   cmd->add_option("--screenshot", args->screenshot,
                   "Render one frame to this PNG and exit, after --frames physics frames (with "
                   "--replay: the recording's frame --frames)");
@@ -48,8 +50,8 @@ void add_view_command(CLI::App& app) {
                   "Close the window after N displayed frames and print the frame rate");
   cmd->add_option("--width", options->width, "Window width in pixels")->capture_default_str();
   cmd->add_option("--height", options->height, "Window height in pixels")->capture_default_str();
-  cmd->add_option("--msaa", options->msaa, "Antialiasing samples per pixel (0: off)")
-      ->capture_default_str();
+  cmd->add_option("--msaa", options->msaa,
+                  "Antialiasing samples per pixel (0: off); default 4, none on software OpenGL");
   cmd->add_flag("--no-cache", args->no_cache, "Build sphere-trees even if they are cached");
   cmd->callback([options, args] {
     if (args->replay) {
@@ -64,6 +66,7 @@ void add_view_command(CLI::App& app) {
     if (args->ground) options->ground = tools::parse_ground_option(*args->ground);
     if (args->screenshot) options->screenshot = *args->screenshot;
     options->use_cache = !args->no_cache;
+    options->shadows = !args->no_shadows;
     viewer::run_viewer(*options);
   });
 }

@@ -10,7 +10,9 @@ namespace {
 void overlay_controls(Overlays& overlays, bool live) {
   ImGui::SliderInt("sphere level", &overlays.sphere_level, 0, 6,
                    overlays.sphere_level == 0 ? "off" : "%d");
+  ImGui::Checkbox("shadows", &overlays.shadows);
   if (live) {
+    ImGui::SameLine();
     ImGui::Checkbox("contacts", &overlays.contacts);
     ImGui::SameLine();
     ImGui::Checkbox("boxes", &overlays.boxes);

@@ -1,6 +1,7 @@
 #include "renderer.h"
 
 #include <epoxy/gl.h>
+#include <stdexcept>
 
 #include "shader.h"
 
@@ -22,27 +23,84 @@ void main() {
 }
 )";
 
-// Lambert from a sun high to one side, plus an ambient term that is brighter for faces turned
-// to the sky, so that the undersides of bodies read as such; far things fade into the haze.
+// Lambert from a sun high to one side, shadowed by a shadow map, plus an
+// ambient term that is brighter for faces turned to the sky, so that the undersides of bodies
+// read as such; far things fade into the haze.
 constexpr const char* kFragmentShader = R"(#version 330 core
 in vec3 world_position;
 in vec3 world_normal;
 uniform vec3 color;
 uniform float alpha;
 uniform vec3 eye;
+uniform vec3 to_sun;
+uniform mat4 light_view_projection;
+uniform sampler2DShadow shadow_map;
+uniform float shadow_strength;
 out vec4 fragment;
-const vec3 kToSun = normalize(vec3(0.45, 0.8, 0.35));
 const vec3 kHaze = vec3(0.78, 0.82, 0.87);
+float sunlit(vec3 n) {
+  // Offset along the normal so that a surface does not shadow itself (acne).
+  vec4 p = light_view_projection * vec4(world_position + 0.03 * n, 1.0);
+  vec3 c = p.xyz / p.w * 0.5 + 0.5;
+  if (any(lessThan(c, vec3(0.0))) || any(greaterThan(c, vec3(1.0)))) return 1.0;
+  vec2 texel = 1.0 / vec2(textureSize(shadow_map, 0));
+  // Four taps half a texel apart, each filtered 2 × 2 by the hardware comparison.
+  float sum = 0.0;
+  for (int x = 0; x < 2; ++x) {
+    for (int y = 0; y < 2; ++y) {
+      sum += texture(shadow_map, vec3(c.xy + (vec2(x, y) - 0.5) * texel, c.z - 0.001));
+    }
+  }
+  return sum / 4.0;
+}
 void main() {
   vec3 n = normalize(world_normal);
   if (!gl_FrontFacing) n = -n;
-  float sun = max(dot(n, kToSun), 0.0);
+  float sun = max(dot(n, to_sun), 0.0);
+  if (sun > 0.0 && shadow_strength > 0.0) sun *= mix(1.0, sunlit(n), shadow_strength);
   float sky = 0.5 + 0.5 * n.y;
   vec3 lit = color * (0.18 + 0.32 * sky + 0.62 * sun);
   float haze = clamp(length(world_position - eye) / 250.0, 0.0, 0.7);
   fragment = vec4(mix(lit, kHaze, haze), alpha);
 }
 )";
+
+// The shadow map's pass: depth from the sun only.
+constexpr const char* kDepthVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 position;
+uniform mat4 model;
+uniform mat4 light_view_projection;
+void main() { gl_Position = light_view_projection * model * vec4(position, 1.0); }
+)";
+
+constexpr const char* kDepthFragmentShader = R"(#version 330 core
+void main() {}
+)";
+
+constexpr int kShadowMapSize = 1024;  // unit: texels per side
+
+// An orthographic view from the sun of the sphere (`center`, `radius`).
+Eigen::Matrix4f sun_view_projection(const Eigen::Vector3f& to_sun, const Eigen::Vector3f& center,
+                                    float radius) {
+  const Eigen::Vector3f forward = -to_sun;
+  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
+  const Eigen::Vector3f up = right.cross(forward);
+  const Eigen::Vector3f from = center + 2.0f * radius * to_sun;
+  Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
+  view.block<1, 3>(0, 0) = right.transpose();
+  view.block<1, 3>(1, 0) = up.transpose();
+  view.block<1, 3>(2, 0) = -forward.transpose();
+  view(0, 3) = -right.dot(from);
+  view(1, 3) = -up.dot(from);
+  view(2, 3) = forward.dot(from);
+  // Depth from radius to 3 radius in front of the sun's eye maps to -1 .. 1.
+  Eigen::Matrix4f ortho = Eigen::Matrix4f::Identity();
+  ortho(0, 0) = 1.0f / radius;
+  ortho(1, 1) = 1.0f / radius;
+  ortho(2, 2) = -1.0f / radius;
+  ortho(2, 3) = -2.0f;
+  return ortho * view;
+}
 
 }  // namespace
 
@@ -53,10 +111,65 @@ Renderer::Renderer() {
   color_location_ = glGetUniformLocation(program_, "color");
   alpha_location_ = glGetUniformLocation(program_, "alpha");
   eye_location_ = glGetUniformLocation(program_, "eye");
+  light_location_ = glGetUniformLocation(program_, "light_view_projection");
+  shadow_strength_location_ = glGetUniformLocation(program_, "shadow_strength");
+  glUseProgram(program_);
+  glUniform3fv(glGetUniformLocation(program_, "to_sun"), 1, kToSun.data());
+  glUniform1i(glGetUniformLocation(program_, "shadow_map"), 0);
+
+  depth_program_ = link_program(kDepthVertexShader, kDepthFragmentShader);
+  depth_model_location_ = glGetUniformLocation(depth_program_, "model");
+  depth_light_location_ = glGetUniformLocation(depth_program_, "light_view_projection");
+  glGenTextures(1, &shadow_texture_);
+  glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize, 0,
+               GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glGenFramebuffers(1, &shadow_framebuffer_);
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_texture_, 0);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) throw std::runtime_error("the shadow map's framebuffer is not complete");
+}
+
+void Renderer::begin_shadows(const Eigen::Vector3f& center, float radius) {
+  light_view_projection_ = sun_view_projection(kToSun, center, radius);
+  glGetIntegerv(GL_VIEWPORT, saved_viewport_.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_);
+  glViewport(0, 0, kShadowMapSize, kShadowMapSize);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glUseProgram(depth_program_);
+  glUniformMatrix4fv(depth_light_location_, 1, GL_FALSE, light_view_projection_.data());
+}
+
+void Renderer::cast_shadow(std::uint32_t mesh, const Eigen::Matrix4f& model) {
+  const Mesh& gl_mesh = meshes_.at(mesh);
+  glUniformMatrix4fv(depth_model_location_, 1, GL_FALSE, model.data());
+  glBindVertexArray(gl_mesh.vertex_array);
+  glDrawElements(GL_TRIANGLES, gl_mesh.index_count, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+}
+
+void Renderer::end_shadows() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(saved_viewport_[0], saved_viewport_[1], saved_viewport_[2], saved_viewport_[3]);
+  shadows_ = true;
 }
 
 Renderer::~Renderer() {
   clear_meshes();
+  glDeleteFramebuffers(1, &shadow_framebuffer_);
+  glDeleteTextures(1, &shadow_texture_);
+  glDeleteProgram(depth_program_);
   glDeleteProgram(program_);
 }
 
@@ -112,6 +225,11 @@ void Renderer::begin(const Eigen::Matrix4f& view, const Eigen::Matrix4f& project
   const Eigen::Matrix4f view_projection = projection * view;
   glUniformMatrix4fv(view_projection_location_, 1, GL_FALSE, view_projection.data());
   glUniform3fv(eye_location_, 1, eye.data());
+  glUniformMatrix4fv(light_location_, 1, GL_FALSE, light_view_projection_.data());
+  glUniform1f(shadow_strength_location_, shadows_ ? 1.0f : 0.0f);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+  shadows_ = false;  // a frame without a shadow pass has no shadows
 }
 
 void Renderer::draw(std::uint32_t mesh, const Eigen::Matrix4f& model, const Eigen::Vector3f& color,

@@ -1,7 +1,6 @@
 #include "scene_drawer.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <Eigen/Geometry>
 
@@ -18,9 +17,10 @@ const Eigen::Vector3f kSphereColour(0.25f, 0.55f, 0.95f);
 const Eigen::Vector3f kContactColour(0.95f, 0.10f, 0.10f);
 const Eigen::Vector3f kNormalColour(1.00f, 0.85f, 0.10f);
 const Eigen::Vector3f kBoxColour(0.10f, 0.75f, 0.25f);
-// The shadow under a body on the ground, and the height at which it has faded out. unit: m
-constexpr float kShadowAlpha = 0.45f;
-constexpr float kShadowFade = 12.0f;
+// The sun's shadows cover a sphere around what the camera looks at, as wide as the view is far,
+// within these bounds: wider would blur them, narrower cut them off. unit: m
+constexpr float kMinShadowReach = 10.0f;
+constexpr float kMaxShadowReach = 80.0f;
 // Half the arms of a contact's cross, and the length of its normal. unit: m
 constexpr float kContactMark = 0.03f;
 constexpr float kNormalLength = 0.25f;
@@ -48,11 +48,16 @@ SceneDrawer::SceneDrawer(Renderer& renderer, const tools::Scene& scene,
 void SceneDrawer::draw(Renderer& renderer, LineRenderer& lines, const OrbitCamera& camera,
                        float aspect, const FrameContents& frame, const Overlays& overlays) {
   const Eigen::Matrix4f view_projection = camera.projection(aspect) * camera.view();
-  renderer.begin(camera.view(), camera.projection(aspect), camera.eye());
-  if (ground_) {
-    renderer.draw(*ground_, Eigen::Matrix4f::Identity(), kGroundColour);
-    draw_shadows(renderer, frame.bodies);
+  if (overlays.shadows) {
+    renderer.begin_shadows(camera.target,
+                           std::clamp(camera.distance, kMinShadowReach, kMaxShadowReach));
+    for (const BodyView& body : frame.bodies) {
+      renderer.cast_shadow(shape_meshes_[body.shape], model_matrix(body.pose));
+    }
+    renderer.end_shadows();
   }
+  renderer.begin(camera.view(), camera.projection(aspect), camera.eye());
+  if (ground_) renderer.draw(*ground_, Eigen::Matrix4f::Identity(), kGroundColour);
   for (const BodyView& body : frame.bodies) {
     const bool tinted = overlays.sleeping_tint && body.asleep;
     renderer.draw(shape_meshes_[body.shape], model_matrix(body.pose),
@@ -63,28 +68,6 @@ void SceneDrawer::draw(Renderer& renderer, LineRenderer& lines, const OrbitCamer
   // See-through spheres last, so that they do not hide what lies behind them.
   if (overlays.sphere_level > 0) draw_spheres(renderer, frame.bodies, overlays.sphere_level);
   if (overlays.contacts) draw_contacts(lines, frame.contacts);
-}
-
-// A soft dark disc on the ground under each body, fading with the body's height: enough to tell
-// how high a body is and where it will land, at the cost of one flat sphere per body.
-void SceneDrawer::draw_shadows(Renderer& renderer, std::span<const BodyView> bodies) const {
-  const tools::GroundSpec& ground = scene_->ground;
-  const auto top = static_cast<float>(ground.height);
-  const double half =
-      ground.kind == tools::GroundSpec::Kind::kOctreeBox ? ground.size / 2.0 : kPlaneSize / 2.0;
-  for (const BodyView& body : bodies) {
-    const Vec3& position = body.pose.translation;
-    if (std::abs(position.x()) > half || std::abs(position.z()) > half) continue;
-    const float height = position.y() - top;
-    if (!(height > 0.0f)) continue;
-    const float alpha = kShadowAlpha * std::max(0.0f, 1.0f - height / kShadowFade);
-    if (alpha <= 0.0f) continue;
-    const auto radius = static_cast<float>(0.8 * (*shapes_)[body.shape].max_vertex_distance);
-    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
-    model.diagonal() << radius, 0.002f, radius, 1.0f;
-    model.block<3, 1>(0, 3) = Eigen::Vector3f(position.x(), top + 0.01f, position.z());
-    renderer.draw(sphere_, model, Eigen::Vector3f::Zero(), alpha);
-  }
 }
 
 // The spheres of one level of each body's tree, see-through, as in the paper's Figure 1.

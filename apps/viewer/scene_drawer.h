@@ -1,7 +1,7 @@
 #pragma once
 
-// Draws a frame of a scene: the ground, the bodies' meshes with a soft shadow under each, and
-// the overlays (sphere-tree level, contacts and normals, broad-phase boxes, sleeping tint).
+// Draws a frame of a scene: the ground and the bodies' meshes in the sun's shadows, and the
+// overlays (sphere-tree level, contacts and normals, broad-phase boxes, sleeping tint).
 
 #include <cstdint>
 #include <optional>
@@ -23,6 +23,7 @@ struct Overlays {
   bool contacts = false;
   bool boxes = false;
   bool sleeping_tint = true;
+  bool shadows = true;  // the sun's, cast by the bodies
 };
 
 struct FrameContents {
@@ -41,7 +42,6 @@ class SceneDrawer {
             const FrameContents& frame, const Overlays& overlays);
 
  private:
-  void draw_shadows(Renderer& renderer, std::span<const BodyView> bodies) const;
   void draw_spheres(Renderer& renderer, std::span<const BodyView> bodies, int level) const;
   void draw_contacts(LineRenderer& lines, std::span<const Contact> contacts);
   void draw_boxes(LineRenderer& lines, std::span<const Aabb> boxes);

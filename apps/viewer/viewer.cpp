@@ -65,6 +65,7 @@ Overlays overlays_of(const ViewerOptions& options) {
   overlays.sphere_level = options.sphere_level;
   overlays.contacts = options.show_contacts;
   overlays.boxes = options.show_boxes;
+  overlays.shadows = options.shadows;
   return overlays;
 }
 
@@ -341,7 +342,9 @@ void run_viewer(const ViewerOptions& options) {
   if (options.frames < 0) throw Error("--frames must not be negative");
   if (options.sphere_level < 0) throw Error("--spheres must not be negative");
   if (options.exit_after && *options.exit_after < 1) throw Error("--exit-after must be at least 1");
-  if (options.msaa < 0 || options.msaa > 16) throw Error("--msaa must be between 0 and 16");
+  if (options.msaa && (*options.msaa < 0 || *options.msaa > 16)) {
+    throw Error("--msaa must be between 0 and 16");
+  }
   if (options.replay) {
     if (options.screenshot) {
       replay_screenshot(options);

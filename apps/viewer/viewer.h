@@ -25,6 +25,7 @@ struct ViewerOptions {
   int sphere_level = 0;                           // sphere overlay: tree level drawn; 0: none
   bool show_contacts = false;
   bool show_boxes = false;
+  bool shadows = true;
   std::optional<std::filesystem::path> screenshot;
   // Physics frames before the screenshot; with a replay, the recording's frame shown.
   int frames = 0;
@@ -32,9 +33,9 @@ struct ViewerOptions {
   std::optional<int> exit_after;
   int width = 1280;
   int height = 720;
-  // Samples per pixel for antialiasing; 0 turns it off (software OpenGL draws 2 to 3 times
-  // faster without).
-  int msaa = 4;
+  // Samples per pixel for antialiasing; 0 turns it off; unset: 4 on a GPU, none on a software
+  // renderer such as Mesa's llvmpipe under Xvfb.
+  std::optional<int> msaa;
   bool use_cache = true;  // the sphere-tree cache
 };
 

@@ -18,8 +18,31 @@
 
 namespace sphys::viewer {
 
-Window::Window(int width, int height, int samples) {
+namespace {
+
+constexpr int kDefaultSamples = 4;
+
+bool software_renderer() {
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (name == nullptr) return false;
+  const std::string renderer(name);
+  return renderer.find("llvmpipe") != std::string::npos ||
+         renderer.find("softpipe") != std::string::npos ||
+         renderer.find("swrast") != std::string::npos;
+}
+
+}  // namespace
+
+Window::Window(int width, int height, std::optional<int> samples) {
   if (glfwInit() == GLFW_FALSE) throw std::runtime_error("cannot start GLFW (is there a display?)");
+  open(width, height, samples.value_or(kDefaultSamples));
+  if (!samples && software_renderer()) {
+    glfwDestroyWindow(handle_);
+    open(width, height, 0);
+  }
+}
+
+void Window::open(int width, int height, int samples) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

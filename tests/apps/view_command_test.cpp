@@ -135,6 +135,30 @@ TEST(ViewCommand, TheSphereOverlayChangesThePicture) {
   EXPECT_GT(bluer, changed / 2);
 }
 
+TEST(ViewCommand, TheBodiesCastShadowsThatDarkenThePicture) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const std::vector<std::string> scene = {"stacks:4x25", "--depth", "2", "--frames", "60"};
+  const Image shadowed = screenshot(dir.path() / "shadowed.png", scene);
+  std::vector<std::string> without = scene;
+  without.push_back("--no-shadows");
+  const Image plain = screenshot(dir.path() / "plain.png", without);
+  ASSERT_EQ(plain.rgb.size(), shadowed.rgb.size());
+  // Shadows only take sunlight away: the pixels that change get darker, and there are many
+  // (the stacks' long shadow on the ground, the bodies shading one another).
+  int changed = 0;
+  int darker = 0;
+  for (std::size_t i = 0; i + 2 < plain.rgb.size(); i += 3) {
+    const int before = plain.rgb[i] + plain.rgb[i + 1] + plain.rgb[i + 2];
+    const int after = shadowed.rgb[i] + shadowed.rgb[i + 1] + shadowed.rgb[i + 2];
+    if (before == after) continue;
+    ++changed;
+    darker += after < before ? 1 : 0;
+  }
+  EXPECT_GT(changed, kWidth * kHeight / 50);
+  EXPECT_GT(darker, changed * 95 / 100);
+}
+
 TEST(ViewCommand, TheContactAndBoxOverlaysDrawInTheirColours) {
   test::use_shared_tree_cache();
   const test::TempDir dir;
