@@ -14,6 +14,8 @@ const Eigen::Vector3f kBodyColour(0.86f, 0.72f, 0.52f);
 const Eigen::Vector3f kAsleepColour(0.55f, 0.62f, 0.80f);
 const Eigen::Vector3f kGroundColour(0.50f, 0.53f, 0.50f);
 const Eigen::Vector3f kSphereColour(0.25f, 0.55f, 0.95f);
+// The spheres are see-through enough that the body shows under a layer or two of them.
+constexpr float kSphereAlpha = 0.25f;
 const Eigen::Vector3f kContactColour(0.95f, 0.10f, 0.10f);
 const Eigen::Vector3f kNormalColour(1.00f, 0.85f, 0.10f);
 const Eigen::Vector3f kBoxColour(0.10f, 0.75f, 0.25f);
@@ -77,7 +79,7 @@ void SceneDrawer::draw_spheres(Renderer& renderer, std::span<const BodyView> bod
     const SphereTree& tree = *(*shapes_)[body.shape].tree;
     for (const Sphere& sphere : tree.level_spheres(std::min(level, tree.depth()) - 1)) {
       const Transform placed{body.pose.rotation, body.pose.apply(sphere.center)};
-      renderer.draw(sphere_, model_matrix(placed, sphere.radius), kSphereColour, 0.35f);
+      renderer.draw(sphere_, model_matrix(placed, sphere.radius), kSphereColour, kSphereAlpha);
     }
   }
 }
