@@ -15,8 +15,7 @@ namespace {
 
 // Two bunnies stacked on the paper's ground, depth-2 trees (built here: no cache).
 LiveSimulation two_bunnies() {
-  tools::BuildWorldOptions build;
-  build.tree_depth = 2;
+  static const tools::BuildWorldOptions build{.tree_depth = 2, .cache_dir = {}, .progress = {}};
   return LiveSimulation(tools::preset_scene("stacks:1x2"), build);
 }
 
