@@ -1,0 +1,87 @@
+#include "run_engine.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace sphys::compare {
+namespace {
+
+// The scene's measures at the end: |v| + |ω| r_max above this is moving. unit: m/s
+constexpr float kMovingSpeed = 0.01f;
+// A body whose centre of mass is below this has fallen through the plane. unit: m
+constexpr float kBelowPlane = -0.5f;
+// The last second of the run, in frames. unit: frames
+constexpr int kLastSecond = 60;
+
+// The deepest leaf-sphere overlap between bodies, or with the plane y = 0, at these poses: bodies
+// are swept along x by their bounding spheres, then every leaf pair of a close pair is tested.
+float deepest_overlap(const BenchScene& scene, const std::vector<BodyState>& bodies) {
+  float reach = 0.0f;  // of a leaf sphere from the centre of mass. unit: m
+  for (const Sphere& leaf : scene.leaves) reach = std::max(reach, leaf.center.norm() + leaf.radius);
+  std::vector<std::vector<Sphere>> placed(bodies.size());
+  float deepest = 0.0f;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (const Sphere& leaf : scene.leaves) {
+      const Sphere world{bodies[b].pose.apply(leaf.center), leaf.radius};
+      deepest = std::max(deepest, world.radius - world.center.y());
+      placed[b].push_back(world);
+    }
+  }
+  std::vector<std::size_t> order(bodies.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto x = [&](std::size_t b) { return bodies[b].pose.translation.x(); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x(a) < x(b); });
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::size_t a = order[i];
+    for (std::size_t j = i + 1; j < order.size() && x(order[j]) - x(a) <= 2.0f * reach; ++j) {
+      const std::size_t b = order[j];
+      if ((bodies[a].pose.translation - bodies[b].pose.translation).norm() > 2.0f * reach) continue;
+      for (const Sphere& p : placed[a]) {
+        for (const Sphere& q : placed[b]) {
+          deepest = std::max(deepest, p.radius + q.radius - (p.center - q.center).norm());
+        }
+      }
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
+RunResult run_engine(const std::string& name, const BenchScene& scene, int frames) {
+  const std::unique_ptr<Engine> engine = make_engine(name, scene);
+  RunResult result;
+  result.step_ms.reserve(static_cast<std::size_t>(frames));
+  double contacts = 0.0;
+  for (int frame = 0; frame < frames; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    engine->step();
+    const auto end = std::chrono::steady_clock::now();
+    result.step_ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+    contacts += engine->contacts();
+    const float deepest = engine->deepest_penetration();
+    result.deepest = std::max(result.deepest, deepest);
+    if (frame >= frames - kLastSecond) {
+      result.deepest_last_second = std::max(result.deepest_last_second, deepest);
+    }
+  }
+  result.contacts_per_step = frames > 0 ? contacts / frames : 0.0;
+  std::vector<BodyState> bodies;
+  engine->read(bodies);
+  result.bodies = static_cast<std::uint32_t>(bodies.size());
+  for (const BodyState& body : bodies) {
+    const Mat3 rotation = body.pose.rotation.toRotationMatrix();
+    const Mat3 inertia = rotation * scene.inertia * rotation.transpose();
+    result.kinetic_energy += 0.5 * scene.mass * body.linear_velocity.squaredNorm() +
+                             0.5 * body.angular_velocity.dot(inertia * body.angular_velocity);
+    const float speed =
+        body.linear_velocity.norm() + body.angular_velocity.norm() * scene.max_vertex_distance;
+    result.moving += speed > kMovingSpeed ? 1 : 0;
+    result.below += body.pose.translation.y() < kBelowPlane ? 1 : 0;
+  }
+  result.end_overlap = deepest_overlap(scene, bodies);
+  result.warnings = engine->warnings();
+  return result;
+}
+
+}  // namespace sphys::compare

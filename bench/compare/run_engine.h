@@ -1,0 +1,34 @@
+#pragma once
+
+// One run of one engine on the benchmark scene: the step times and what the scene looks like
+// during and after it.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine.h"
+
+namespace sphys::compare {
+
+struct RunResult {
+  std::vector<double> step_ms;     // wall time of each step call. unit: ms
+  double contacts_per_step = 0.0;  // mean, as the engine counts them
+  float deepest = 0.0f;            // engine-reported, over the run. unit: m
+  float deepest_last_second = 0.0f;
+  // At the end, counted afresh from the poses for every engine alike: the deepest overlap of two
+  // bodies' leaf spheres, or of a leaf sphere with the plane. Exact for the engines colliding
+  // those spheres; for a convex hull, an over-estimate (the spheres stick out of the mesh).
+  // unit: m
+  float end_overlap = 0.0f;
+  double kinetic_energy = 0.0;  // at the end, from sphys's mass properties. unit: J
+  std::uint32_t moving = 0;     // at the end: |v| + |ω| r_max > 1 cm/s
+  std::uint32_t below = 0;      // at the end: centre of mass below y = -0.5 m
+  std::uint32_t bodies = 0;
+  std::string warnings;
+};
+
+// Builds the engine (not timed), steps it `frames` times timing each step call.
+[[nodiscard]] RunResult run_engine(const std::string& engine, const BenchScene& scene, int frames);
+
+}  // namespace sphys::compare

@@ -1,0 +1,43 @@
+#include "engine.h"
+#include "sphys/tools/build_world.h"
+#include "sphys/tools/tree_cache.h"
+
+namespace sphys::compare {
+namespace {
+
+class SphysEngine final : public Engine {
+ public:
+  SphysEngine(const BenchScene& bench, bool paper) : dt_(static_cast<float>(bench.time_step)) {
+    tools::Scene scene = bench.scene;
+    if (paper) scene.response = ResponseMode::kPaper;
+    tools::BuildWorldOptions build;
+    build.cache_dir = tools::default_cache_dir();
+    setup_ = tools::build_world(scene, build);
+  }
+
+  void step() override { stats_ = setup_.world->step(dt_); }
+
+  void read(std::vector<BodyState>& out) const override {
+    out.clear();
+    for (const BodyId id : setup_.bodies) {
+      const RigidBody& body = setup_.world->body(id);
+      out.push_back({body.pose, body.linear_velocity, body.angular_velocity});
+    }
+  }
+
+  [[nodiscard]] std::uint32_t contacts() const override { return stats_.contacts; }
+  [[nodiscard]] float deepest_penetration() const override { return stats_.deepest_penetration; }
+
+ private:
+  float dt_;
+  tools::SimulationSetup setup_;
+  StepStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper) {
+  return std::make_unique<SphysEngine>(scene, paper);
+}
+
+}  // namespace sphys::compare
