@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -22,6 +23,14 @@ inline void expect_bad_input(const std::vector<std::string>& args, const std::st
   const CommandResult r = sphys_cli(args);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_THAT(r.err, testing::HasSubstr(message));
+}
+
+// The lines of a text file the command wrote; none if it is missing.
+inline std::vector<std::string> read_lines(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
 }
 
 // Points the command line at one sphere-tree cache for the whole test program (never the user's),

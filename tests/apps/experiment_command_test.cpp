@@ -21,12 +21,7 @@ using test::expect_bad_input;
 using test::sphys_cli;
 using testing::HasSubstr;
 
-std::vector<std::string> read_lines(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
+using test::read_lines;
 
 TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
   test::use_shared_tree_cache();

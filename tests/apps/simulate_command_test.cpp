@@ -33,12 +33,7 @@ std::vector<std::string> split(const std::string& line, char separator) {
   return fields;
 }
 
-std::vector<std::string> read_lines(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
+using test::read_lines;
 
 // A scene file's text: the header, then `members` (JSON object members, comma-separated).
 std::string scene_text(const std::string& members) {

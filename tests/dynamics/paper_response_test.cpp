@@ -12,10 +12,12 @@
 
 #include <gtest/gtest.h>
 
+#include "support/float_limits.h"
+
 namespace sphys {
 namespace {
 
-constexpr float kFloatEpsilon = std::numeric_limits<float>::epsilon();
+using test::kFloatEpsilon;
 
 // The values checked below come from about ten float operations each on speeds up to 4 m/s; with
 // a whole ε per operation (twice the worst rounding) and another factor 1.6 they are within

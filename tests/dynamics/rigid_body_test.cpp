@@ -7,12 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include "support/float_limits.h"
+
 namespace sphys {
 namespace {
 
 // One float rounding is at most half of this relative to the result; tolerances below count
 // roundings and use a whole epsilon per rounding, a margin of 2.
-constexpr float kFloatEpsilon = std::numeric_limits<float>::epsilon();
+using test::kFloatEpsilon;
 
 // The solid box 1 × 2 × 3 m of density 1000 kg/m³: m = 6000 kg and I = m/12 (b² + c², a² + c²,
 // a² + b²) = (6500, 5000, 2500) kg·m². Three different moments: no axis is free to spin stably

@@ -6,25 +6,16 @@
 #include <gtest/gtest.h>
 
 #include "sphys/error.h"
-#include "sphys/tools/build_tree.h"
-#include "sphys/tools/primitives.h"
 #include "sphys/world.h"
+#include "support/cube_tree.h"
 
 namespace sphys {
 namespace {
 
-std::shared_ptr<const SphereTree> cube_tree() {
-  tools::BuildOptions options;
-  options.method = tools::BuildMethod::Octree;
-  options.depth = 3;
-  return std::make_shared<const SphereTree>(
-      tools::build_sphere_tree(tools::make_box(tools::Vec3d::Constant(1.0)), options));
-}
-
 // Two 1 m cubes overlapping by half their width: many node pairs to descend.
 World overlapping_cubes(const WorldSettings& settings) {
   World world(settings);
-  const auto tree = cube_tree();
+  const auto tree = test::octree_cube_tree();
   for (const float x : {0.0f, 0.5f}) {
     BodyDesc desc;
     desc.tree = tree;

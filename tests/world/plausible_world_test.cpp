@@ -14,30 +14,20 @@
 #include "sphys/tools/build_tree.h"
 #include "sphys/tools/primitives.h"
 #include "sphys/world.h"
+#include "support/cube_tree.h"
 
 namespace sphys {
 namespace {
 
 constexpr float kGravity = 9.81f;
 constexpr float kDt = 1.0f / 60.0f;
-constexpr float kBoxSide = 1.0f;  // unit: m
+constexpr float kBoxSide = 1.0f;  // the side of octree_cube_tree()'s cube. unit: m
 
-// The octree sphere-tree of a 1 m cube, as the tools build it: 64 leaves whose spheres stick out
-// of the faces, so the body is a slightly rounded, bumpy box.
-std::shared_ptr<const SphereTree> cube_tree() {
-  static const auto tree = [] {
-    tools::BuildOptions options;
-    options.method = tools::BuildMethod::Octree;
-    options.depth = 3;
-    return std::make_shared<const SphereTree>(
-        tools::build_sphere_tree(tools::make_box(tools::Vec3d::Constant(kBoxSide)), options));
-  }();
-  return tree;
-}
+using test::octree_cube_tree;
 
 // How far the cube's spheres reach below its centre: where it rests on a plane. unit: m
 float cube_half_height() {
-  const SphereTree& tree = *cube_tree();
+  const SphereTree& tree = *octree_cube_tree();
   float lowest = 0.0f;
   for (std::uint32_t node = 0; node < tree.size(); ++node) {
     if (tree.is_leaf(node)) {
@@ -50,7 +40,7 @@ float cube_half_height() {
 // A homogeneous 1000 kg/m³ cube: m = 1000 kg, I = m s²/6 about every axis.
 BodyDesc cube(const Vec3& position, float friction) {
   BodyDesc desc;
-  desc.tree = cube_tree();
+  desc.tree = octree_cube_tree();
   desc.pose.translation = position;
   desc.mass = 1000.0f;
   desc.inertia = Mat3::Identity() * (desc.mass * kBoxSide * kBoxSide / 6.0f);

@@ -14,11 +14,12 @@
 #include "sphys/tools/mass_properties.h"
 #include "sphys/tools/primitives.h"
 #include "sphys/world.h"
+#include "support/float_limits.h"
 
 namespace sphys {
 namespace {
 
-constexpr float kFloatEpsilon = std::numeric_limits<float>::epsilon();
+using test::kFloatEpsilon;
 constexpr double kPi = std::numbers::pi;
 
 std::shared_ptr<const SphereTree> one_sphere_tree(float radius) {

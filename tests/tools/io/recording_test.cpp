@@ -31,8 +31,8 @@ using testing::IsEmpty;
 using testing::SizeIs;
 using testing::StartsWith;
 
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kFloatNan = std::numeric_limits<float>::quiet_NaN();
+constexpr float kFloatInf = std::numeric_limits<float>::infinity();
 
 // Little-endian bytes composed by hand from the layout in docs/file-formats.md, independent of
 // the code under test.
@@ -302,11 +302,11 @@ TEST(RecordingWriter, WrongPoseCountThrows) {
 
 TEST(RecordingWriter, NonFiniteValueThrows) {
   std::vector<BodyPose> poses(3);
-  poses[2].position.y() = kNan;
+  poses[2].position.y() = kFloatNan;
   EXPECT_THAT(add_frame_error(3, poses),
               HasSubstr("cannot record frame 1, body 2: position y is not finite (nan)"));
   poses[2].position.y() = 0;
-  poses[0].orientation.w() = -kInf;
+  poses[0].orientation.w() = -kFloatInf;
   EXPECT_THAT(add_frame_error(3, poses),
               HasSubstr("frame 1, body 0: orientation w is not finite (-inf)"));
 }
@@ -425,12 +425,12 @@ TEST(RecordingErrors, NonFinitePoseValue) {
   Bytes bytes;
   bytes.header(1, 2, 0.01, 2, "");
   bytes.pose(0, 0, 0, 1, 0, 0, 0).pose(0, 0, 0, 1, 0, 0, 0);
-  bytes.pose(0, 0, 0, 1, 0, 0, 0).pose(0, 0, 0, 1, kNan, 0, 0);
+  bytes.pose(0, 0, 0, 1, 0, 0, 0).pose(0, 0, 0, 1, kFloatNan, 0, 0);
   EXPECT_THAT(bytes_error(bytes.str()),
               HasSubstr("frame 1, body 1: orientation x is not finite (nan)"));
 
   Bytes infinite;
-  infinite.header(1, 1, 0.01, 1, "").pose(0, 0, kInf, 1, 0, 0, 0);
+  infinite.header(1, 1, 0.01, 1, "").pose(0, 0, kFloatInf, 1, 0, 0, 0);
   EXPECT_THAT(bytes_error(infinite.str()),
               HasSubstr("frame 0, body 0: position z is not finite (inf)"));
 }

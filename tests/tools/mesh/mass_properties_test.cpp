@@ -15,6 +15,7 @@
 #include "sphys/error.h"
 #include "sphys/tools/primitives.h"
 #include "sphys/tools/winding_number.h"
+#include "support/mesh_edit.h"
 
 namespace sphys::tools {
 namespace {
@@ -34,13 +35,7 @@ TriangleMesh transformed(TriangleMesh mesh, const Mat3d& rotation, const Vec3d& 
   return mesh;
 }
 
-TriangleMesh without_triangles(TriangleMesh mesh, std::vector<std::size_t> removed) {
-  std::sort(removed.rbegin(), removed.rend());
-  for (const std::size_t t : removed) {
-    mesh.triangles.erase(mesh.triangles.begin() + static_cast<std::ptrdiff_t>(t));
-  }
-  return mesh;
-}
+using test::without_triangles;
 
 MassPropertiesOptions winding_number_options() {
   MassPropertiesOptions options;

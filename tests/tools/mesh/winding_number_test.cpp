@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "sphys/tools/primitives.h"
+#include "support/mesh_edit.h"
 
 namespace sphys::tools {
 namespace {
@@ -23,13 +24,7 @@ std::vector<Vec3d> random_points(std::size_t count, double half) {
   return points;
 }
 
-TriangleMesh without_triangles(TriangleMesh mesh, std::vector<std::size_t> removed) {
-  std::sort(removed.rbegin(), removed.rend());
-  for (const std::size_t t : removed) {
-    mesh.triangles.erase(mesh.triangles.begin() + static_cast<std::ptrdiff_t>(t));
-  }
-  return mesh;
-}
+using test::without_triangles;
 
 Vec3d centroid(const TriangleMesh& mesh, std::size_t t) {
   return (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0;
