@@ -54,6 +54,28 @@ void ContactSolver::apply(const Constraint& c, const Vec3& impulse, std::vector<
   angular[c.b] += inverse_inertia_[c.b] * c.rb.cross(impulse);
 }
 
+float ContactSolver::row_speed(const Constraint& c, int row, const Vec3& direction) const {
+  const Constraint::Row& r = c.rows[static_cast<std::size_t>(row)];
+  return direction.dot(linear_[c.b] - linear_[c.a]) + r.rb_cross.dot(angular_[c.b]) -
+         r.ra_cross.dot(angular_[c.a]);
+}
+
+void ContactSolver::push(const Constraint& c, int row, const Vec3& direction, float impulse) {
+  const Constraint::Row& r = c.rows[static_cast<std::size_t>(row)];
+  linear_[c.a] -= (inverse_mass_[c.a] * impulse) * direction;
+  angular_[c.a] -= impulse * r.turn_a;
+  linear_[c.b] += (inverse_mass_[c.b] * impulse) * direction;
+  angular_[c.b] += impulse * r.turn_b;
+}
+
+void ContactSolver::push_two(const Constraint& c, float impulse1, float impulse2) {
+  const Vec3 impulse = impulse1 * c.tangent1 + impulse2 * c.tangent2;
+  linear_[c.a] -= inverse_mass_[c.a] * impulse;
+  angular_[c.a] -= impulse1 * c.rows[1].turn_a + impulse2 * c.rows[2].turn_a;
+  linear_[c.b] += inverse_mass_[c.b] * impulse;
+  angular_[c.b] += impulse1 * c.rows[1].turn_b + impulse2 * c.rows[2].turn_b;
+}
+
 void ContactSolver::load_bodies(std::span<const RigidBody> bodies,
                                 std::span<const std::uint8_t> moving) {
   const std::size_t slots = bodies.size() + 1;  // the last one is the ground plane
@@ -92,16 +114,20 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     c.rb = contact.point - position_[c.b];
     c.normal = contact.normal;
     tangent_basis(c.normal, c.tangent1, c.tangent2);
-    const auto effective_mass = [&](const Vec3& d) {
-      const Vec3 ca = c.ra.cross(d);
-      const Vec3 cb = c.rb.cross(d);
+    // Fills row r for direction d and returns the effective mass along d.
+    const auto row = [&](std::size_t r, const Vec3& d) {
+      Constraint::Row& out = c.rows[r];
+      out.ra_cross = c.ra.cross(d);
+      out.rb_cross = c.rb.cross(d);
+      out.turn_a = inverse_inertia_[c.a] * out.ra_cross;
+      out.turn_b = inverse_inertia_[c.b] * out.rb_cross;
       const float k_inverse =
-          inverse_mass + ca.dot(inverse_inertia_[c.a] * ca) + cb.dot(inverse_inertia_[c.b] * cb);
+          inverse_mass + out.ra_cross.dot(out.turn_a) + out.rb_cross.dot(out.turn_b);
       return 1.0f / k_inverse;
     };
-    c.normal_mass = effective_mass(c.normal);
-    c.tangent1_mass = effective_mass(c.tangent1);
-    c.tangent2_mass = effective_mass(c.tangent2);
+    c.normal_mass = row(0, c.normal);
+    c.tangent1_mass = row(1, c.tangent1);
+    c.tangent2_mass = row(2, c.tangent2);
     if (settings.rolling_resistance > 0.0f) {
       const Mat3 inverse_inertia = inverse_inertia_[c.a] + inverse_inertia_[c.b];
       // A body with no inverse inertia at all (a point mass) cannot be turned.
@@ -155,16 +181,15 @@ void ContactSolver::solve_velocities(const SolverSettings& settings) {
     for (std::size_t k = 0; k < constraints_.size(); ++k) {
       Constraint& c = constraints_[sweep_index(iteration, k)];
       // Normal first, so that friction is bounded by this pass's normal impulse.
-      const float normal_speed = c.normal.dot(relative_velocity(c, linear_, angular_));
+      const float normal_speed = row_speed(c, 0, c.normal);
       const float normal_total =
           std::max(c.normal_impulse - c.normal_mass * (normal_speed - c.target_speed), 0.0f);
-      apply(c, (normal_total - c.normal_impulse) * c.normal, linear_, angular_);
+      push(c, 0, c.normal, normal_total - c.normal_impulse);
       c.normal_impulse = normal_total;
 
       // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
-      const Vec3 relative = relative_velocity(c, linear_, angular_);
-      float t1 = c.tangent1_impulse - c.tangent1_mass * c.tangent1.dot(relative);
-      float t2 = c.tangent2_impulse - c.tangent2_mass * c.tangent2.dot(relative);
+      float t1 = c.tangent1_impulse - c.tangent1_mass * row_speed(c, 1, c.tangent1);
+      float t2 = c.tangent2_impulse - c.tangent2_mass * row_speed(c, 2, c.tangent2);
       const float limit = c.friction * c.normal_impulse;
       const float length = std::sqrt(t1 * t1 + t2 * t2);
       if (length > limit) {
@@ -172,8 +197,7 @@ void ContactSolver::solve_velocities(const SolverSettings& settings) {
         t1 *= scale;
         t2 *= scale;
       }
-      apply(c, (t1 - c.tangent1_impulse) * c.tangent1 + (t2 - c.tangent2_impulse) * c.tangent2,
-            linear_, angular_);
+      push_two(c, t1 - c.tangent1_impulse, t2 - c.tangent2_impulse);
       c.tangent1_impulse = t1;
       c.tangent2_impulse = t2;
 

@@ -4,6 +4,7 @@
 // contacts of a step, with warm starting, Coulomb friction, restitution above a threshold and
 // split-impulse penetration recovery, and shock propagation through piles. See docs/dynamics.md.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -53,6 +54,16 @@ class ContactSolver {
     Vec3 normal = Vec3::UnitY();
     Vec3 tangent1 = Vec3::UnitX();
     Vec3 tangent2 = Vec3::UnitZ();
+    // Per direction (normal, tangent1, tangent2): the angular parts of its Jacobian (r × d) and
+    // each body's inverse world inertia times them, so that the velocity passes need no matrix
+    // products.
+    struct Row {
+      Vec3 ra_cross = Vec3::Zero();
+      Vec3 rb_cross = Vec3::Zero();
+      Vec3 turn_a = Vec3::Zero();
+      Vec3 turn_b = Vec3::Zero();
+    };
+    std::array<Row, 3> rows{};
     float normal_mass = 0.0f;  // 1 / (inverse effective mass along each direction). unit: kg
     float tangent1_mass = 0.0f;
     float tangent2_mass = 0.0f;
@@ -93,6 +104,11 @@ class ContactSolver {
   [[nodiscard]] static Vec3 relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
                                               const std::vector<Vec3>& angular);
   // Applies `impulse` (world frame, from body a to body b) at the contact point.
+  // The velocity passes' own: the speed along row r of c (direction d), and an impulse along up
+  // to two rows at once.
+  [[nodiscard]] float row_speed(const Constraint& c, int row, const Vec3& direction) const;
+  void push(const Constraint& c, int row, const Vec3& direction, float impulse);
+  void push_two(const Constraint& c, float impulse1, float impulse2);
   void apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
              std::vector<Vec3>& angular) const;
   void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
