@@ -12,7 +12,31 @@ constexpr float kNear = 0.05f;  // unit: m
 constexpr float kFar = 500.0f;  // unit: m
 constexpr float kPitchLimit = 1.55f;
 
+// The screen's axes in the world for an eye looking along `forward` (unit), +y up.
+struct Basis {
+  Eigen::Vector3f forward;
+  Eigen::Vector3f right;
+  Eigen::Vector3f up;
+};
+
+Basis basis(const Eigen::Vector3f& forward) {
+  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
+  return {forward, right, right.cross(forward)};
+}
+
 }  // namespace
+
+Eigen::Matrix4f look_at(const Eigen::Vector3f& from, const Eigen::Vector3f& forward) {
+  const Basis b = basis(forward);
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.block<1, 3>(0, 0) = b.right.transpose();
+  m.block<1, 3>(1, 0) = b.up.transpose();
+  m.block<1, 3>(2, 0) = -b.forward.transpose();
+  m(0, 3) = -b.right.dot(from);
+  m(1, 3) = -b.up.dot(from);
+  m(2, 3) = b.forward.dot(from);
+  return m;
+}
 
 Eigen::Vector3f OrbitCamera::eye() const {
   const Eigen::Vector3f direction(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
@@ -22,17 +46,7 @@ Eigen::Vector3f OrbitCamera::eye() const {
 
 Eigen::Matrix4f OrbitCamera::view() const {
   const Eigen::Vector3f from = eye();
-  const Eigen::Vector3f forward = (target - from).normalized();
-  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
-  const Eigen::Vector3f up = right.cross(forward);
-  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
-  m.block<1, 3>(0, 0) = right.transpose();
-  m.block<1, 3>(1, 0) = up.transpose();
-  m.block<1, 3>(2, 0) = -forward.transpose();
-  m(0, 3) = -right.dot(from);
-  m(1, 3) = -up.dot(from);
-  m(2, 3) = forward.dot(from);
-  return m;
+  return look_at(from, (target - from).normalized());
 }
 
 Eigen::Matrix4f OrbitCamera::projection(float aspect) const {
@@ -47,14 +61,12 @@ Eigen::Matrix4f OrbitCamera::projection(float aspect) const {
 }
 
 Eigen::Vector3f OrbitCamera::ray(float x, float y, float width, float height) const {
-  const Eigen::Vector3f forward = (target - eye()).normalized();
-  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
-  const Eigen::Vector3f up = right.cross(forward);
+  const Basis b = basis((target - eye()).normalized());
   const float half_height = std::tan(fov_y / 2.0f);
   const float half_width = half_height * width / height;
   const float across = 2.0f * x / width - 1.0f;
   const float down = 2.0f * y / height - 1.0f;
-  return (forward + across * half_width * right - down * half_height * up).normalized();
+  return (b.forward + across * half_width * b.right - down * half_height * b.up).normalized();
 }
 
 void OrbitCamera::turn(float dx, float dy) {
@@ -63,13 +75,10 @@ void OrbitCamera::turn(float dx, float dy) {
 }
 
 void OrbitCamera::pan(float dx, float dy, float height) {
-  const Eigen::Vector3f from = eye();
-  const Eigen::Vector3f forward = (target - from).normalized();
-  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
-  const Eigen::Vector3f up = right.cross(forward);
+  const Basis b = basis((target - eye()).normalized());
   // A drag across the window moves the target by the width of the view at its distance.
   const float metres_per_pixel = 2.0f * distance * std::tan(fov_y / 2.0f) / height;
-  target += metres_per_pixel * (-dx * right + dy * up);
+  target += metres_per_pixel * (-dx * b.right + dy * b.up);
 }
 
 void OrbitCamera::zoom(float wheel_steps) {

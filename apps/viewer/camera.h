@@ -7,6 +7,10 @@
 
 namespace sphys::viewer {
 
+// The view matrix of an eye at `from` looking along the unit vector `forward`, +y up (forward
+// must not be vertical).
+[[nodiscard]] Eigen::Matrix4f look_at(const Eigen::Vector3f& from, const Eigen::Vector3f& forward);
+
 struct OrbitCamera {
   Eigen::Vector3f target = Eigen::Vector3f::Zero();
   float distance = 20.0f;  // unit: m

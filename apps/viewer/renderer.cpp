@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 #include <stdexcept>
 
+#include "camera.h"
 #include "shader.h"
 
 namespace sphys::viewer {
@@ -82,17 +83,7 @@ constexpr int kShadowMapSize = 1024;  // unit: texels per side
 // An orthographic view from the sun of the sphere (`center`, `radius`).
 Eigen::Matrix4f sun_view_projection(const Eigen::Vector3f& to_sun, const Eigen::Vector3f& center,
                                     float radius) {
-  const Eigen::Vector3f forward = -to_sun;
-  const Eigen::Vector3f right = forward.cross(Eigen::Vector3f::UnitY()).normalized();
-  const Eigen::Vector3f up = right.cross(forward);
-  const Eigen::Vector3f from = center + 2.0f * radius * to_sun;
-  Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
-  view.block<1, 3>(0, 0) = right.transpose();
-  view.block<1, 3>(1, 0) = up.transpose();
-  view.block<1, 3>(2, 0) = -forward.transpose();
-  view(0, 3) = -right.dot(from);
-  view(1, 3) = -up.dot(from);
-  view(2, 3) = forward.dot(from);
+  const Eigen::Matrix4f view = look_at(center + 2.0f * radius * to_sun, -to_sun);
   // Depth from radius to 3 radius in front of the sun's eye maps to -1 .. 1.
   Eigen::Matrix4f ortho = Eigen::Matrix4f::Identity();
   ortho(0, 0) = 1.0f / radius;
