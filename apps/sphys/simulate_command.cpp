@@ -42,6 +42,7 @@ struct SimulateOptions {
   std::optional<int> substeps;
   std::optional<int> passes;
   std::optional<std::string> out;
+  std::uint32_t threads = 1;
   bool json = false;
   bool no_cache = false;
 };
@@ -394,6 +395,7 @@ void run(const SimulateOptions& options) {
 
   tools::BuildWorldOptions build;
   build.tree_depth = options.depth;
+  build.threads = options.threads;
   if (!options.no_cache) build.cache_dir = tools::default_cache_dir();
   tools::SimulationSetup setup = [&] {
     ProgressBar bar("preparing bodies");
@@ -471,6 +473,11 @@ void add_simulate_command(CLI::App& app) {
                   "Paper mode: passes over the contacts per step at most (see docs/experiment.md)");
   cmd->add_option("--out", options->out,
                   "Folder for frames.csv and recording.sphysrec (default out/<scene>)");
+  cmd->add_option("--threads", options->threads,
+                  "Threads a step runs on (0: every hardware thread); the results are the same "
+                  "bit for bit whatever the count")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
   cmd->add_flag("--no-cache", options->no_cache, "Build sphere-trees even if they are cached");
   cmd->callback([options] { run(*options); });

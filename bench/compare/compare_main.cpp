@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -43,6 +44,13 @@ double mean(const std::vector<double>& values) {
   return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
 }
 
+std::string memory_text(std::optional<double> mib) {
+  if (!mib) return "?";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", *mib);
+  return text;
+}
+
 std::pair<int, int> parse_layout(const std::string& layout) {
   int stacks = 0;
   int per_stack = 0;
@@ -69,9 +77,9 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
   out << line;
   out << "| engine | median ms/step | steps/s | × sphys median | mean ms/step | × sphys mean | "
          "contacts/step | deepest (m) | deepest, last second (m) | overlap at end (m) | "
-         "KE at end (J) | moving at end | below plane |\n"
+         "KE at end (J) | moving at end | below plane | peak memory (MiB) |\n"
       << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-         "---: |\n";
+         "---: | ---: |\n";
   const auto reference = results.find("sphys");
   const double sphys_median = reference == results.end() ? 0.0 : median(reference->second.step_ms);
   const double sphys_mean = reference == results.end() ? 0.0 : mean(reference->second.step_ms);
@@ -79,7 +87,7 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
     const Pooled& pooled = results.at(engine);
     if (pooled.step_ms.empty()) {
       out << "| " << engine << " | " << pooled.runs.front().warnings
-          << " | | | | | | | | | | | |\n";
+          << " | | | | | | | | | | | | |\n";
       continue;
     }
     const double ms = median(pooled.step_ms);
@@ -94,6 +102,9 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
       worst.kinetic_energy = std::max(worst.kinetic_energy, run.kinetic_energy);
       worst.moving = std::max(worst.moving, run.moving);
       worst.below = std::max(worst.below, run.below);
+      if (run.peak_memory_mib) {
+        worst.peak_memory_mib = std::max(worst.peak_memory_mib.value_or(0.0), *run.peak_memory_mib);
+      }
       contacts += run.contacts_per_step;
       if (!run.warnings.empty()) worst.warnings = run.warnings;
     }
@@ -106,11 +117,12 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
     std::snprintf(
         line, sizeof line,
         "| %s | %.3f | %.0f | %s | %.3f | %s | %.1f | %.4f | %.4f | %.4f | %.3g | %u of %u "
-        "| %u |%s\n",
+        "| %u | %s |%s\n",
         engine.c_str(), ms, ms > 0.0 ? 1000.0 / ms : 0.0, ratio(ms, sphys_median).c_str(), mean_ms,
         ratio(mean_ms, sphys_mean).c_str(), contacts, static_cast<double>(worst.deepest),
         static_cast<double>(worst.deepest_last_second), static_cast<double>(worst.end_overlap),
         worst.kinetic_energy, worst.moving, worst.bodies, worst.below,
+        memory_text(worst.peak_memory_mib).c_str(),
         worst.warnings.empty() ? "" : (" " + worst.warnings).c_str());
     out << line;
   }

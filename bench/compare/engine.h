@@ -33,12 +33,14 @@ class Engine {
 };
 
 // The engines by name: "sphys", "sphys-paper", "bullet-spheres", "bullet-hull", "ode",
-// "mujoco". Throws sphys::Error for an unknown name.
+// "mujoco"; "sphys:T" and "sphys-paper:T" step sphys on T threads (0: all). Throws sphys::Error
+// for an unknown name.
 [[nodiscard]] std::unique_ptr<Engine> make_engine(const std::string& name, const BenchScene& scene);
 [[nodiscard]] std::vector<std::string> engine_names();
 
 // Each engine's maker, in its own file.
-[[nodiscard]] std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper);
+[[nodiscard]] std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper,
+                                                        std::uint32_t threads);
 [[nodiscard]] std::unique_ptr<Engine> make_bullet_engine(const BenchScene& scene, bool hull);
 [[nodiscard]] std::unique_ptr<Engine> make_ode_engine(const BenchScene& scene);
 [[nodiscard]] std::unique_ptr<Engine> make_mujoco_engine(const BenchScene& scene);

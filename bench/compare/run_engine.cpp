@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "peak_memory.h"
+
 namespace sphys::compare {
 namespace {
 
@@ -49,6 +51,7 @@ float deepest_overlap(const BenchScene& scene, const std::vector<BodyState>& bod
 }  // namespace
 
 RunResult run_engine(const std::string& name, const BenchScene& scene, int frames) {
+  const PeakMemory memory;
   const std::unique_ptr<Engine> engine = make_engine(name, scene);
   RunResult result;
   result.step_ms.reserve(static_cast<std::size_t>(frames));
@@ -66,6 +69,7 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
     }
   }
   result.contacts_per_step = frames > 0 ? contacts / frames : 0.0;
+  result.peak_memory_mib = memory.added_mib();
   std::vector<BodyState> bodies;
   engine->read(bodies);
   result.bodies = static_cast<std::uint32_t>(bodies.size());

@@ -4,6 +4,7 @@
 // during and after it.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct RunResult {
   std::uint32_t moving = 0;     // at the end: |v| + |ω| r_max > 1 cm/s
   std::uint32_t below = 0;      // at the end: centre of mass below y = -0.5 m
   std::uint32_t bodies = 0;
+  // Resident memory the engine added at its peak (building it and the steps), where the kernel
+  // tells. unit: MiB
+  std::optional<double> peak_memory_mib;
   std::string warnings;
 };
 

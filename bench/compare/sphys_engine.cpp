@@ -7,11 +7,13 @@ namespace {
 
 class SphysEngine final : public Engine {
  public:
-  SphysEngine(const BenchScene& bench, bool paper) : dt_(static_cast<float>(bench.time_step)) {
+  SphysEngine(const BenchScene& bench, bool paper, std::uint32_t threads)
+      : dt_(static_cast<float>(bench.time_step)) {
     tools::Scene scene = bench.scene;
     if (paper) scene.response = ResponseMode::kPaper;
     tools::BuildWorldOptions build;
     build.cache_dir = tools::default_cache_dir();
+    build.threads = threads;
     setup_ = tools::build_world(scene, build);
   }
 
@@ -36,8 +38,9 @@ class SphysEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper) {
-  return std::make_unique<SphysEngine>(scene, paper);
+std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper,
+                                          std::uint32_t threads) {
+  return std::make_unique<SphysEngine>(scene, paper, threads);
 }
 
 }  // namespace sphys::compare

@@ -3,12 +3,15 @@
 // Collision detection for a set of bodies (paper §3): Sweep & Prune over the bodies' bounds, the
 // sphere-tree descent for every overlapping pair, one contact per overlapping leaf pair.
 
+#include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "sphys/contact.h"
+#include "sphys/parallel.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/sweep_and_prune.h"
 #include "sphys/tree_descent.h"
@@ -76,6 +79,11 @@ class CollisionDetector {
   void set_asleep(BodyId body, bool asleep);
   [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
   void set_settings(const CollisionSettings& settings) { settings_ = settings; }
+  // The threads the narrow phase and the contacts run on (none: the caller's thread). The
+  // contacts and figures do not depend on them. A time-critical budget is spent pair after pair
+  // in order, so with one the narrow phase runs on the caller's thread. `parallel` must outlive
+  // the detector or be replaced first.
+  void set_parallel(const Parallel* parallel) { parallel_ = parallel; }
 
   // Replaces `contacts` with this step's contacts, ordered by body pair (as the broad phase
   // lists them, then the ground plane's by body) and within a pair by the descent's order. The
@@ -109,23 +117,53 @@ class CollisionDetector {
     Sphere sphere_b;
   };
 
+  // The narrow phase's work on a run of consecutive candidate pairs, or of bodies against the
+  // ground plane, done on one thread into its own buffers; the runs' leaf pairs make contacts in
+  // the runs' order, so the result is the same whatever thread did which run.
+  struct NarrowChunk {
+    std::size_t begin = 0;  // candidate pairs, or bodies when `plane`
+    std::size_t end = 0;
+    bool plane = false;
+    TreeDescent descent;
+    std::vector<NodePair> node_pairs;
+    std::vector<std::uint32_t> plane_stack;
+    std::vector<LeafSpheres> leaves;
+    std::uint64_t sphere_tests = 0;
+    std::uint32_t leaf_pairs = 0;
+    std::uint32_t cut_short_pairs = 0;
+    std::uint32_t coincident_centres = 0;
+    std::size_t first_contact = 0;  // where its contacts go in detect()'s output
+  };
+
   [[nodiscard]] Aabb broad_phase_box(const Body& body) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
   void narrow_phase();
-  void ground_plane_leaves(std::uint32_t body, float height);
-  void make_contacts(std::vector<Contact>& contacts);
-  [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, float margin) const;
+  void plan_chunks(bool budget);
+  void descend_pairs(NarrowChunk& chunk, std::chrono::steady_clock::time_point start) const;
+  void ground_plane_leaves(std::uint32_t body, float height, NarrowChunk& chunk) const;
+  void make_contacts(NarrowChunk& chunk, std::vector<Contact>& contacts) const;
+  [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
+                                               float margin) const;
+  // Calls fn(chunk) for each planned chunk, on the detector's threads.
+  template <class Fn>
+  void run_chunks(const Fn& fn) {
+    const auto each = [&](std::size_t c) { fn(chunks_[c]); };
+    if (parallel_ != nullptr) {
+      parallel_->for_each(chunks_used_, each);
+    } else {
+      for (std::size_t c = 0; c < chunks_used_; ++c) each(c);
+    }
+  }
 
   CollisionSettings settings_;
   std::vector<Body> bodies_;
   std::vector<std::uint32_t> free_bodies_;
   std::vector<std::uint32_t> body_of_proxy_;
   SweepAndPrune broad_phase_;
-  TreeDescent descent_;
-  std::vector<NodePair> node_pairs_;
-  std::vector<LeafSpheres> leaf_spheres_;
-  std::vector<std::uint32_t> plane_stack_;
+  std::vector<NarrowChunk> chunks_;
+  std::size_t chunks_used_ = 0;
+  const Parallel* parallel_ = nullptr;
   CollisionStats stats_;
 };
 

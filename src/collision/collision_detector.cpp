@@ -42,6 +42,11 @@ Aabb world_bounds(const SphereTree& tree, const Transform& pose, int level) {
   return box;
 }
 
+// Candidate pairs, and bodies against the plane, per run of the narrow phase: enough work per run
+// to outweigh handing it to a thread, and runs enough to share among threads.
+constexpr std::size_t kPairsPerChunk = 64;
+constexpr std::size_t kBodiesPerChunk = 256;
+
 }  // namespace
 
 CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {}
@@ -139,15 +144,25 @@ const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) 
   stats_.narrow_phase_ms = elapsed_ms(narrow_start);
 
   const Clock::time_point contacts_start = Clock::now();
-  make_contacts(contacts);
+  std::size_t total = 0;
+  for (std::size_t c = 0; c < chunks_used_; ++c) {
+    chunks_[c].first_contact = total;
+    total += chunks_[c].leaves.size();
+  }
+  contacts.resize(total);
+  run_chunks([&](NarrowChunk& chunk) { make_contacts(chunk, contacts); });
+  for (std::size_t c = 0; c < chunks_used_; ++c) {
+    stats_.coincident_centres += chunks_[c].coincident_centres;
+  }
   stats_.contacts_ms = elapsed_ms(contacts_start);
   stats_.contacts = static_cast<std::uint32_t>(contacts.size());
   return stats_;
 }
 
-// What is left of the time-critical budgets after `spent_microseconds` and the sphere tests
-// counted so far in this call.
-DescentSettings CollisionDetector::descent_budget(double spent_microseconds, float margin) const {
+// What is left of the time-critical budgets after `spent_microseconds` and `spent_tests` sphere
+// tests in this call.
+DescentSettings CollisionDetector::descent_budget(double spent_microseconds,
+                                                  std::uint64_t spent_tests, float margin) const {
   DescentSettings descent;
   descent.margin = margin;
   descent.depth_a = settings_.tree_depth;
@@ -155,9 +170,8 @@ DescentSettings CollisionDetector::descent_budget(double spent_microseconds, flo
   // A budget that is on never reaches 0 (which would mean "off"): a pair met after the budget
   // is spent is resolved at its roots.
   if (settings_.max_sphere_tests > 0) {
-    descent.max_sphere_tests = settings_.max_sphere_tests > stats_.sphere_tests
-                                   ? settings_.max_sphere_tests - stats_.sphere_tests
-                                   : 1;
+    descent.max_sphere_tests =
+        settings_.max_sphere_tests > spent_tests ? settings_.max_sphere_tests - spent_tests : 1;
   }
   if (settings_.max_microseconds > 0.0) {
     descent.max_microseconds = std::max(settings_.max_microseconds - spent_microseconds, 1e-3);
@@ -165,75 +179,128 @@ DescentSettings CollisionDetector::descent_budget(double spent_microseconds, flo
   return descent;
 }
 
+// Splits the candidate pairs, then the bodies for the ground plane, into runs of fixed length
+// (the same whatever the thread count). A budget is shared by the pairs in order: then all pairs
+// are one run.
+void CollisionDetector::plan_chunks(bool budget) {
+  const std::size_t pairs = broad_phase_.pairs().size();
+  const std::size_t pair_run = budget ? std::max<std::size_t>(pairs, 1) : kPairsPerChunk;
+  const std::size_t bodies = settings_.ground_plane_height ? bodies_.size() : std::size_t{0};
+  chunks_used_ = 0;
+  const auto add = [&](std::size_t begin, std::size_t end, bool plane) {
+    if (chunks_.size() <= chunks_used_) chunks_.emplace_back();
+    NarrowChunk& chunk = chunks_[chunks_used_++];
+    chunk.begin = begin;
+    chunk.end = end;
+    chunk.plane = plane;
+    chunk.leaves.clear();
+    chunk.sphere_tests = 0;
+    chunk.leaf_pairs = 0;
+    chunk.cut_short_pairs = 0;
+    chunk.coincident_centres = 0;
+  };
+  for (std::size_t begin = 0; begin < pairs; begin += pair_run) {
+    add(begin, std::min(begin + pair_run, pairs), false);
+  }
+  for (std::size_t begin = 0; begin < bodies; begin += kBodiesPerChunk) {
+    add(begin, std::min(begin + kBodiesPerChunk, bodies), true);
+  }
+}
+
 void CollisionDetector::narrow_phase() {
-  leaf_spheres_.clear();
+  const bool budget = settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
+  plan_chunks(budget);
   const Clock::time_point start = Clock::now();
-  for (const ProxyPair& pair : broad_phase_.pairs()) {
-    const std::uint32_t ia = body_of_proxy_[pair.a];
-    const std::uint32_t ib = body_of_proxy_[pair.b];
+  const auto work = [&](NarrowChunk& chunk) {
+    if (!chunk.plane) {
+      descend_pairs(chunk, start);
+      return;
+    }
+    for (std::size_t i = chunk.begin; i < chunk.end; ++i) {
+      const Body& body = bodies_[i];
+      if (body.alive && !body.is_static && !body.asleep) {
+        ground_plane_leaves(static_cast<std::uint32_t>(i), *settings_.ground_plane_height, chunk);
+      }
+    }
+  };
+  if (budget) {
+    for (std::size_t c = 0; c < chunks_used_; ++c) work(chunks_[c]);
+  } else {
+    run_chunks(work);
+  }
+  for (std::size_t c = 0; c < chunks_used_; ++c) {
+    const NarrowChunk& chunk = chunks_[c];
+    stats_.sphere_tests += chunk.sphere_tests;
+    stats_.leaf_pairs += chunk.leaf_pairs;
+    stats_.pairs_cut_short += chunk.cut_short_pairs;
+  }
+}
+
+void CollisionDetector::descend_pairs(NarrowChunk& chunk, Clock::time_point start) const {
+  const std::span<const ProxyPair> pairs = broad_phase_.pairs();
+  for (std::size_t p = chunk.begin; p < chunk.end; ++p) {
+    const std::uint32_t ia = body_of_proxy_[pairs[p].a];
+    const std::uint32_t ib = body_of_proxy_[pairs[p].b];
     const Body& a = bodies_[ia];
     const Body& b = bodies_[ib];
     const bool a_moves = !a.is_static && !a.asleep;
     const bool b_moves = !b.is_static && !b.asleep;
     if (!a_moves && !b_moves) continue;
-    node_pairs_.clear();
+    chunk.node_pairs.clear();
+    const DescentSettings settings =
+        descent_budget(1e3 * elapsed_ms(start), chunk.sphere_tests, pair_margin(a, b));
     const DescentStats descent =
-        descent_.descend(*a.tree, a.pose, *b.tree, b.pose,
-                         descent_budget(1e3 * elapsed_ms(start), pair_margin(a, b)), node_pairs_);
-    stats_.sphere_tests += descent.sphere_tests;
-    stats_.leaf_pairs += descent.leaf_pairs;
-    stats_.pairs_cut_short += descent.cut_short_pairs;
-    for (const NodePair& nodes : node_pairs_) {
-      leaf_spheres_.push_back({ia, ib, nodes.node_a, nodes.node_b,
-                               descent_.world_sphere_a(*a.tree, nodes.node_a),
-                               descent_.world_sphere_b(*b.tree, nodes.node_b)});
-    }
-  }
-  if (settings_.ground_plane_height) {
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      if (bodies_[i].alive && !bodies_[i].is_static && !bodies_[i].asleep) {
-        ground_plane_leaves(i, *settings_.ground_plane_height);
-      }
+        chunk.descent.descend(*a.tree, a.pose, *b.tree, b.pose, settings, chunk.node_pairs);
+    chunk.sphere_tests += descent.sphere_tests;
+    chunk.leaf_pairs += descent.leaf_pairs;
+    chunk.cut_short_pairs += descent.cut_short_pairs;
+    for (const NodePair& nodes : chunk.node_pairs) {
+      chunk.leaves.push_back({ia, ib, nodes.node_a, nodes.node_b,
+                              chunk.descent.world_sphere_a(*a.tree, nodes.node_a),
+                              chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
     }
   }
 }
 
 // Descends one body's tree against the half-space y <= height: a subtree is skipped when its
 // bound is above the plane by more than the body's margin; each leaf sphere within it is kept.
-void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height) {
+void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height,
+                                            NarrowChunk& chunk) const {
   const Body& body = bodies_[index];
   const SphereTree& tree = *body.tree;
   const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
   const float reach_down = height + plane_margin(body);
-  plane_stack_.assign(1, 0);
-  while (!plane_stack_.empty()) {
-    const std::uint32_t node = plane_stack_.back();
-    plane_stack_.pop_back();
+  std::vector<std::uint32_t>& stack = chunk.plane_stack;
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const std::uint32_t node = stack.back();
+    stack.pop_back();
     const Sphere& sphere = tree.sphere(node);
     const Vec3 center = body.pose.apply(sphere.center);
-    ++stats_.sphere_tests;
+    ++chunk.sphere_tests;
     const bool leaf = tree.is_leaf(node) || node >= leaves_begin;
     if (center.y() - (leaf ? sphere.radius : tree.subtree_radius(node)) > reach_down) continue;
     if (!leaf) {
       for (std::uint32_t c = tree.first_child(node) + tree.child_count(node);
            c-- > tree.first_child(node);) {
-        plane_stack_.push_back(c);
+        stack.push_back(c);
       }
       continue;
     }
-    leaf_spheres_.push_back({kGroundPlaneBody, index, 0, node, Sphere{}, {center, sphere.radius}});
-    ++stats_.leaf_pairs;
+    chunk.leaves.push_back({kGroundPlaneBody, index, 0, node, Sphere{}, {center, sphere.radius}});
+    ++chunk.leaf_pairs;
   }
 }
 
 // One contact per pair of leaf spheres (paper eq. 1-3), in the narrow phase's order.
-void CollisionDetector::make_contacts(std::vector<Contact>& contacts) {
-  contacts.reserve(leaf_spheres_.size());
+void CollisionDetector::make_contacts(NarrowChunk& chunk, std::vector<Contact>& contacts) const {
   std::uint32_t fallback_a = kGroundPlaneBody;
   std::uint32_t fallback_b = kGroundPlaneBody;
   Vec3 fallback = Vec3::UnitY();
-  for (const LeafSpheres& leaves : leaf_spheres_) {
-    Contact contact;
+  std::size_t out = chunk.first_contact;
+  for (const LeafSpheres& leaves : chunk.leaves) {
+    Contact& contact = contacts[out++];
+    contact = Contact{};
     contact.body_a = leaves.body_a;
     contact.body_b = leaves.body_b;
     contact.leaf_a = leaves.leaf_a;
@@ -249,10 +316,9 @@ void CollisionDetector::make_contacts(std::vector<Contact>& contacts) {
                                    bodies_[fallback_b].pose.translation);
       }
       if (sphere_sphere_contact(leaves.sphere_a, leaves.sphere_b, fallback, contact)) {
-        ++stats_.coincident_centres;
+        ++chunk.coincident_centres;
       }
     }
-    contacts.push_back(contact);
   }
 }
 

@@ -33,25 +33,32 @@ constexpr std::uint32_t kShockPasses = 4;
 // bounces in the next step despite rounding. As a fraction of the linear slop.
 constexpr float kTouchingFraction = 0.25f;
 
-}  // namespace
-
 // Passes alternate forwards and backwards (symmetric Gauss–Seidel): one direction only leaves a
 // bias towards the contacts met last, which tilts a stack steadily to one side.
-std::size_t ContactSolver::sweep_index(std::uint32_t iteration, std::size_t k) const {
-  return iteration % 2 == 0 ? k : constraints_.size() - 1 - k;
+std::uint32_t sweep_index(std::span<const std::uint32_t> island, std::uint32_t iteration,
+                          std::size_t k) {
+  return island[iteration % 2 == 0 ? k : island.size() - 1 - k];
 }
+
+}  // namespace
 
 Vec3 ContactSolver::relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
                                       const std::vector<Vec3>& angular) {
   return linear[c.b] + angular[c.b].cross(c.rb) - linear[c.a] - angular[c.a].cross(c.ra);
 }
 
+// Immovable bodies (the ground, static and sleeping ones) are shared by islands solved at once
+// on other threads: their velocities, zero, are read and never written.
 void ContactSolver::apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
                           std::vector<Vec3>& angular) const {
-  linear[c.a] -= inverse_mass_[c.a] * impulse;
-  angular[c.a] -= inverse_inertia_[c.a] * c.ra.cross(impulse);
-  linear[c.b] += inverse_mass_[c.b] * impulse;
-  angular[c.b] += inverse_inertia_[c.b] * c.rb.cross(impulse);
+  if (c.a_moves) {
+    linear[c.a] -= inverse_mass_[c.a] * impulse;
+    angular[c.a] -= inverse_inertia_[c.a] * c.ra.cross(impulse);
+  }
+  if (c.b_moves) {
+    linear[c.b] += inverse_mass_[c.b] * impulse;
+    angular[c.b] += inverse_inertia_[c.b] * c.rb.cross(impulse);
+  }
 }
 
 float ContactSolver::row_speed(const Constraint& c, int row, const Vec3& direction) const {
@@ -62,18 +69,26 @@ float ContactSolver::row_speed(const Constraint& c, int row, const Vec3& directi
 
 void ContactSolver::push(const Constraint& c, int row, const Vec3& direction, float impulse) {
   const Constraint::Row& r = c.rows[static_cast<std::size_t>(row)];
-  linear_[c.a] -= (inverse_mass_[c.a] * impulse) * direction;
-  angular_[c.a] -= impulse * r.turn_a;
-  linear_[c.b] += (inverse_mass_[c.b] * impulse) * direction;
-  angular_[c.b] += impulse * r.turn_b;
+  if (c.a_moves) {
+    linear_[c.a] -= (inverse_mass_[c.a] * impulse) * direction;
+    angular_[c.a] -= impulse * r.turn_a;
+  }
+  if (c.b_moves) {
+    linear_[c.b] += (inverse_mass_[c.b] * impulse) * direction;
+    angular_[c.b] += impulse * r.turn_b;
+  }
 }
 
 void ContactSolver::push_two(const Constraint& c, float impulse1, float impulse2) {
   const Vec3 impulse = impulse1 * c.tangent1 + impulse2 * c.tangent2;
-  linear_[c.a] -= inverse_mass_[c.a] * impulse;
-  angular_[c.a] -= impulse1 * c.rows[1].turn_a + impulse2 * c.rows[2].turn_a;
-  linear_[c.b] += inverse_mass_[c.b] * impulse;
-  angular_[c.b] += impulse1 * c.rows[1].turn_b + impulse2 * c.rows[2].turn_b;
+  if (c.a_moves) {
+    linear_[c.a] -= inverse_mass_[c.a] * impulse;
+    angular_[c.a] -= impulse1 * c.rows[1].turn_a + impulse2 * c.rows[2].turn_a;
+  }
+  if (c.b_moves) {
+    linear_[c.b] += inverse_mass_[c.b] * impulse;
+    angular_[c.b] += impulse1 * c.rows[1].turn_b + impulse2 * c.rows[2].turn_b;
+  }
 }
 
 void ContactSolver::load_bodies(std::span<const RigidBody> bodies,
@@ -110,6 +125,8 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     c.b = contact.body_b;
     const float inverse_mass = inverse_mass_[c.a] + inverse_mass_[c.b];
     if (!(inverse_mass > 0.0f)) continue;  // neither body moves
+    c.a_moves = inverse_mass_[c.a] > 0.0f;
+    c.b_moves = inverse_mass_[c.b] > 0.0f;
     c.ra = contact.point - position_[c.a];
     c.rb = contact.point - position_[c.b];
     c.normal = contact.normal;
@@ -168,9 +185,11 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
 }
 
-void ContactSolver::solve_velocities(const SolverSettings& settings) {
+void ContactSolver::solve_velocities(std::span<const std::uint32_t> island,
+                                     const SolverSettings& settings) {
   if (settings.warm_starting) {
-    for (const Constraint& c : constraints_) {
+    for (const std::uint32_t k : island) {
+      const Constraint& c = constraints_[k];
       apply(c,
             c.normal_impulse * c.normal + c.tangent1_impulse * c.tangent1 +
                 c.tangent2_impulse * c.tangent2,
@@ -178,8 +197,8 @@ void ContactSolver::solve_velocities(const SolverSettings& settings) {
     }
   }
   for (std::uint32_t iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
-    for (std::size_t k = 0; k < constraints_.size(); ++k) {
-      Constraint& c = constraints_[sweep_index(iteration, k)];
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      Constraint& c = constraints_[sweep_index(island, iteration, k)];
       // Normal first, so that friction is bounded by this pass's normal impulse.
       const float normal_speed = row_speed(c, 0, c.normal);
       const float normal_total =
@@ -212,8 +231,8 @@ void ContactSolver::solve_velocities(const SolverSettings& settings) {
           rolling *= rolling_length > 0.0f ? rolling_limit / rolling_length : 0.0f;
         }
         const Vec3 change = rolling - c.rolling_impulse;
-        angular_[c.a] -= inverse_inertia_[c.a] * change;
-        angular_[c.b] += inverse_inertia_[c.b] * change;
+        if (c.a_moves) angular_[c.a] -= inverse_inertia_[c.a] * change;
+        if (c.b_moves) angular_[c.b] += inverse_inertia_[c.b] * change;
         c.rolling_impulse = rolling;
       }
     }
@@ -222,9 +241,12 @@ void ContactSolver::solve_velocities(const SolverSettings& settings) {
 
 // Restitution after the velocities are solved (as Box2D does it): a touching contact that
 // approached faster than the threshold and took an impulse leaves at ε times that speed.
-void ContactSolver::bounce(const SolverSettings& settings, ContactSolverStats& stats) {
+std::uint32_t ContactSolver::bounce(std::span<const std::uint32_t> island,
+                                    const SolverSettings& settings) {
   const float touching = -kTouchingFraction * settings.linear_slop;
-  for (Constraint& c : constraints_) {
+  std::uint32_t bounces = 0;
+  for (const std::uint32_t k : island) {
+    Constraint& c = constraints_[k];
     if (c.restitution <= 0.0f || c.depth < touching || c.normal_impulse <= 0.0f ||
         !(c.approach < -settings.restitution_threshold)) {
       continue;
@@ -235,8 +257,9 @@ void ContactSolver::bounce(const SolverSettings& settings, ContactSolverStats& s
         std::max(c.normal_impulse - c.normal_mass * (normal_speed - target), 0.0f);
     apply(c, (normal_total - c.normal_impulse) * c.normal, linear_, angular_);
     c.normal_impulse = normal_total;
-    ++stats.bounces;
+    ++bounces;
   }
+  return bounces;
 }
 
 // Shock propagation (Guendelman, Bridson & Fedkiw 2003), after the velocity passes and the
@@ -247,22 +270,18 @@ void ContactSolver::bounce(const SolverSettings& settings, ContactSolverStats& s
 // height. Only pushes are added (a contact that separates, or closes no faster than its gap
 // allows, is left alone), and bodies no contact path joins to something immovable are untouched,
 // so free bodies keep their momentum.
-void ContactSolver::propagate_shock(const SolverSettings& settings) {
-  const std::size_t slots = linear_.size();
-  immovable_.resize(slots);
-  for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
-  pairs_.clear();
-  for (const Constraint& c : constraints_) pairs_.emplace_back(c.a, c.b);
-  const std::span<const std::uint32_t> level = levels_.compute(immovable_, pairs_);
-
-  // (level of the upper body, constraint), by level.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>>& order = order_;
-  order.clear();
-  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+void ContactSolver::propagate_shock(std::span<const std::uint32_t> island,
+                                    std::span<const std::uint32_t> level,
+                                    const SolverSettings& settings) {
+  // This island's slices of the shared buffers: (level of the upper body, constraint), by level.
+  const std::size_t offset = static_cast<std::size_t>(island.data() - island_constraints_.data());
+  std::size_t count = 0;
+  for (const std::uint32_t k : island) {
     const Constraint& c = constraints_[k];
     const std::uint32_t top = std::max(level[c.a], level[c.b]);
-    if (top != kUnsupported) order.emplace_back(top, static_cast<std::uint32_t>(k));
+    if (top != kUnsupported) order_[offset + count++] = {top, k};
   }
+  const std::span<std::pair<std::uint32_t, std::uint32_t>> order(order_.data() + offset, count);
   std::sort(order.begin(), order.end());
 
   const auto share = [&](std::uint32_t body, const Vec3& r, const Vec3& n) {
@@ -275,14 +294,14 @@ void ContactSolver::propagate_shock(const SolverSettings& settings) {
   };
   // What this pass gave each contact so far, so that a later sweep may take back what an earlier
   // one gave too much (pushes at the corners of a face overshoot one by one).
-  std::vector<float>& given = given_;
-  given.assign(order.size(), 0.0f);
+  const std::span<float> given(given_.data() + offset, count);
+  std::fill(given.begin(), given.end(), 0.0f);
   // Contacts struck by a blow: closing faster than shock_speed beyond their target when met.
   // Those are stopped at their target. What the velocity passes leave of a resting contact's
   // approach is let be: pushing it to zero at one corner of a face and then another only rocks
   // the body, and a stack of boxes leans.
-  std::vector<std::uint8_t>& struck = struck_;
-  struck.assign(order.size(), 0);
+  const std::span<std::uint8_t> struck(struck_.data() + offset, count);
+  std::fill(struck.begin(), struck.end(), std::uint8_t{0});
   for (std::size_t begin = 0; begin < order.size();) {
     const std::uint32_t top = order[begin].first;
     std::size_t end = begin;
@@ -313,10 +332,11 @@ void ContactSolver::propagate_shock(const SolverSettings& settings) {
 // Split impulses (Catto; Bullet): pseudo-velocities that push penetrating bodies apart by a
 // fraction of the penetration beyond the slop. They move the bodies in this step only and never
 // reach the real velocities, so the recovery adds no kinetic energy.
-void ContactSolver::recover_penetration(const SolverSettings& settings, float dt) {
+void ContactSolver::recover_penetration(std::span<const std::uint32_t> island,
+                                        const SolverSettings& settings, float dt) {
   for (std::uint32_t iteration = 0; iteration < settings.position_iterations; ++iteration) {
-    for (std::size_t k = 0; k < constraints_.size(); ++k) {
-      Constraint& c = constraints_[sweep_index(iteration, k)];
+    for (std::size_t k = 0; k < island.size(); ++k) {
+      Constraint& c = constraints_[sweep_index(island, iteration, k)];
       if (c.depth <= settings.linear_slop) continue;
       const float target =
           std::min(settings.position_correction * (c.depth - settings.linear_slop) / dt,
@@ -360,19 +380,87 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
   std::sort(previous_.begin(), previous_.end());
 }
 
+// Islands: the constraints joined through moving bodies. Constraints of different islands share
+// no moving body, so each island is solved on its own, in the constraints' order, and the result
+// is the same as one sweep over all of them in that order, whatever thread solves which island.
+void ContactSolver::group_islands() {
+  const std::size_t slots = linear_.size();
+  parent_.resize(slots);
+  for (std::size_t i = 0; i < slots; ++i) parent_[i] = static_cast<std::uint32_t>(i);
+  const auto find = [&](std::uint32_t body) {
+    while (parent_[body] != body) {
+      parent_[body] = parent_[parent_[body]];  // path halving
+      body = parent_[body];
+    }
+    return body;
+  };
+  for (const Constraint& c : constraints_) {
+    if (c.a_moves && c.b_moves) {
+      const std::uint32_t ra = find(c.a);
+      const std::uint32_t rb = find(c.b);
+      if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  // Islands numbered by their first constraint; constraints listed by island, in order.
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  island_of_root_.assign(slots, kNone);
+  constraint_island_.resize(constraints_.size());
+  island_begin_.clear();
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    const Constraint& c = constraints_[k];
+    const std::uint32_t root = find(c.a_moves ? c.a : c.b);
+    if (island_of_root_[root] == kNone) {
+      island_of_root_[root] = static_cast<std::uint32_t>(island_begin_.size());
+      island_begin_.push_back(0);
+    }
+    const std::uint32_t island = island_of_root_[root];
+    constraint_island_[k] = island;
+    ++island_begin_[island];
+  }
+  std::uint32_t total = 0;
+  for (std::uint32_t& begin : island_begin_) total += std::exchange(begin, total);
+  island_begin_.push_back(total);
+  island_constraints_.resize(constraints_.size());
+  fill_.assign(island_begin_.begin(), island_begin_.end() - 1);
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    island_constraints_[fill_[constraint_island_[k]]++] = static_cast<std::uint32_t>(k);
+  }
+}
+
 ContactSolverStats ContactSolver::solve(std::span<RigidBody> bodies,
                                         std::span<const std::uint8_t> moving,
                                         std::span<const Contact> contacts,
                                         std::span<const PairMaterial> materials,
                                         const SolverSettings& settings, const Vec3& gravity,
-                                        float dt) {
+                                        float dt, const Parallel& parallel) {
   ContactSolverStats stats;
   load_bodies(bodies, moving);
   prepare(contacts, materials, settings, dt, stats);
-  solve_velocities(settings);
-  bounce(settings, stats);
-  if (settings.shock_propagation) propagate_shock(settings);
-  recover_penetration(settings, dt);
+  group_islands();
+
+  std::span<const std::uint32_t> level;
+  if (settings.shock_propagation) {
+    const std::size_t slots = linear_.size();
+    immovable_.resize(slots);
+    for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
+    pairs_.clear();
+    for (const Constraint& c : constraints_) pairs_.emplace_back(c.a, c.b);
+    level = levels_.compute(immovable_, pairs_);
+    order_.resize(constraints_.size());
+    given_.resize(constraints_.size());
+    struck_.resize(constraints_.size());
+  }
+  const std::size_t islands = island_begin_.size() - 1;
+  island_bounces_.assign(islands, 0);
+  parallel.for_each(islands, [&](std::size_t i) {
+    const std::span<const std::uint32_t> island(island_constraints_.data() + island_begin_[i],
+                                                island_begin_[i + 1] - island_begin_[i]);
+    solve_velocities(island, settings);
+    island_bounces_[i] = bounce(island, settings);
+    if (settings.shock_propagation) propagate_shock(island, level, settings);
+    recover_penetration(island, settings, dt);
+  });
+  for (const std::uint32_t bounces : island_bounces_) stats.bounces += bounces;
   keep_impulses(settings, gravity * dt, dt);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].is_static || moving[i] == 0) continue;

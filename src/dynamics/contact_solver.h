@@ -13,6 +13,7 @@
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/math.h"
+#include "sphys/parallel.h"
 #include "sphys/rigid_body.h"
 #include "sphys/world.h"
 
@@ -33,11 +34,12 @@ class ContactSolver {
   // (speculative). Afterwards position_linear()/position_angular() hold the pseudo-velocities that
   // push penetrating bodies apart: the caller moves the bodies by them for dt and forgets them,
   // so the recovery adds no kinetic energy. `gravity` is what the moving bodies were accelerated
-  // by in this step before the call (it sets the speed a bounce starts from).
+  // by in this step before the call (it sets the speed a bounce starts from). Islands are solved
+  // on `parallel`'s threads; the result does not depend on how many there are.
   ContactSolverStats solve(std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
                            std::span<const Contact> contacts,
                            std::span<const PairMaterial> materials, const SolverSettings& settings,
-                           const Vec3& gravity, float dt);
+                           const Vec3& gravity, float dt, const Parallel& parallel);
 
   [[nodiscard]] std::span<const Vec3> position_linear() const { return pseudo_linear_; }
   [[nodiscard]] std::span<const Vec3> position_angular() const { return pseudo_angular_; }
@@ -52,6 +54,8 @@ class ContactSolver {
     Vec3 ra = Vec3::Zero();  // contact point from each centre of mass. unit: m
     Vec3 rb = Vec3::Zero();
     Vec3 normal = Vec3::UnitY();
+    bool a_moves = false;  // the body has mass here (neither static nor asleep nor the ground)
+    bool b_moves = false;
     Vec3 tangent1 = Vec3::UnitX();
     Vec3 tangent2 = Vec3::UnitZ();
     // Per direction (normal, tangent1, tangent2): the angular parts of its Jacobian (r × d) and
@@ -100,7 +104,6 @@ class ContactSolver {
     }
   };
 
-  [[nodiscard]] std::size_t sweep_index(std::uint32_t iteration, std::size_t k) const;
   [[nodiscard]] static Vec3 relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
                                               const std::vector<Vec3>& angular);
   // Applies `impulse` (world frame, from body a to body b) at the contact point.
@@ -114,10 +117,15 @@ class ContactSolver {
   void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
   void prepare(std::span<const Contact> contacts, std::span<const PairMaterial> materials,
                const SolverSettings& settings, float dt, ContactSolverStats& stats);
-  void solve_velocities(const SolverSettings& settings);
-  void bounce(const SolverSettings& settings, ContactSolverStats& stats);
-  void propagate_shock(const SolverSettings& settings);
-  void recover_penetration(const SolverSettings& settings, float dt);
+  void group_islands();
+  // The passes over one island's constraints (indices into constraints_, in order).
+  void solve_velocities(std::span<const std::uint32_t> island, const SolverSettings& settings);
+  [[nodiscard]] std::uint32_t bounce(std::span<const std::uint32_t> island,
+                                     const SolverSettings& settings);
+  void propagate_shock(std::span<const std::uint32_t> island, std::span<const std::uint32_t> level,
+                       const SolverSettings& settings);
+  void recover_penetration(std::span<const std::uint32_t> island, const SolverSettings& settings,
+                           float dt);
   void keep_impulses(const SolverSettings& settings, const Vec3& gravity_step, float dt);
 
   std::vector<Constraint> constraints_;
@@ -130,7 +138,16 @@ class ContactSolver {
   std::vector<Mat3> inverse_inertia_;
   std::vector<Vec3> pseudo_linear_;
   std::vector<Vec3> pseudo_angular_;
-  // Shock propagation's buffers, kept so that a step does not allocate them anew.
+  // Islands: island i's constraints are island_constraints_[island_begin_[i], island_begin_[i+1]).
+  std::vector<std::uint32_t> island_constraints_;
+  std::vector<std::uint32_t> island_begin_;
+  std::vector<std::uint32_t> island_bounces_;
+  std::vector<std::uint32_t> parent_;  // union-find over body slots
+  std::vector<std::uint32_t> island_of_root_;
+  std::vector<std::uint32_t> constraint_island_;
+  std::vector<std::uint32_t> fill_;
+  // Shock propagation's buffers, kept so that a step does not allocate them anew. The last three
+  // are sliced like island_constraints_, one slice per island.
   ContactLevels levels_;
   std::vector<std::uint8_t> immovable_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // each constraint's bodies

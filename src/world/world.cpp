@@ -27,6 +27,8 @@ constexpr float kInertiaSymmetryTolerance = 1e-4f;
 constexpr float kUnitQuaternionTolerance = 1e-3f;
 // A body slower than this many times the sleep speed should be resting: its speed is jitter.
 constexpr float kSettlingFactor = 10.0f;
+// More threads than any machine has is a mistake in the settings, not a wish.
+constexpr std::uint32_t kMaxThreads = 1024;
 
 void check_material(float restitution, float friction) {
   if (!(restitution >= 0.0f && restitution <= 1.0f)) {
@@ -45,6 +47,10 @@ void check_settings(const WorldSettings& settings) {
   }
   if (!(settings.ground_friction >= 0.0f) || !std::isfinite(settings.ground_friction)) {
     throw Error("the ground's friction must be finite and not negative");
+  }
+  if (settings.threads > kMaxThreads) {
+    throw Error("threads must be at most " + std::to_string(kMaxThreads) + " (0: all), got " +
+                std::to_string(settings.threads));
   }
   if (settings.substeps < 1 || settings.substeps > 64) {
     throw Error("substeps must be between 1 and 64, got " + std::to_string(settings.substeps));
@@ -144,6 +150,8 @@ World::World(const WorldSettings& settings)
       solver_(std::make_unique<ContactSolver>()),
       sleep_(std::make_unique<SleepTracker>()) {
   check_settings(settings);
+  parallel_ = std::make_unique<Parallel>(settings.threads);
+  detector_.set_parallel(parallel_.get());
 }
 
 World::~World() = default;
@@ -432,8 +440,8 @@ void World::respond(float dt, StepStats& stats) {
                         : PairMaterial{mix_friction(a.friction, b.friction),
                                        mix_restitution(a.restitution, b.restitution)};
   }
-  const ContactSolverStats solved =
-      solver_->solve(bodies_, moving_, contacts_, materials_, solver, settings_.gravity, dt);
+  const ContactSolverStats solved = solver_->solve(bodies_, moving_, contacts_, materials_, solver,
+                                                   settings_.gravity, dt, *parallel_);
   stats.impulses += solved.constraints;
   stats.warm_started += solved.warm_started;
   stats.bounces += solved.bounces;

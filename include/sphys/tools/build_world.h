@@ -25,6 +25,8 @@ struct BuildWorldOptions {
   std::optional<std::filesystem::path> cache_dir;
   // Called with the fraction of the shapes prepared (0..1), for progress bars.
   std::function<void(double)> progress;
+  // The world's threads (WorldSettings::threads): 0 takes every hardware thread.
+  std::uint32_t threads = 1;
 };
 
 // A shape shared by bodies with the same mesh, size and tree.

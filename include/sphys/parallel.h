@@ -1,0 +1,47 @@
+#pragma once
+
+// The threads a world steps with: loops over independent items on up to N threads of oneTBB.
+// Each item writes only its own outputs, so what a loop computes does not depend on how many
+// threads ran it, nor on which thread took which item.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+namespace sphys {
+
+class Parallel {
+ public:
+  // `threads`: at most this many threads run a loop; 0 takes every hardware thread; 1 runs the
+  // loops on the caller's thread without oneTBB.
+  explicit Parallel(std::uint32_t threads = 1);
+  ~Parallel();
+  Parallel(const Parallel&) = delete;
+  Parallel& operator=(const Parallel&) = delete;
+
+  [[nodiscard]] std::uint32_t threads() const { return threads_; }
+
+  // Calls fn(i) for every i in [0, count), in any order and concurrently when there are threads;
+  // in order on the caller's thread when there is one. fn must not touch what another item
+  // writes.
+  template <class Fn>
+  void for_each(std::size_t count, const Fn& fn) const {
+    if (!arena_ || count < 2) {
+      for (std::size_t i = 0; i < count; ++i) fn(i);
+      return;
+    }
+    run(
+        count, [](const void* f, std::size_t i) { (*static_cast<const Fn*>(f))(i); }, &fn);
+  }
+
+ private:
+  // The threaded loop, behind a plain function pointer so that oneTBB's headers stay out of this
+  // one.
+  void run(std::size_t count, void (*item)(const void*, std::size_t), const void* fn) const;
+
+  struct Arena;  // a oneTBB task arena of threads_ threads
+  std::uint32_t threads_ = 1;
+  std::unique_ptr<Arena> arena_;  // none with one thread
+};
+
+}  // namespace sphys
