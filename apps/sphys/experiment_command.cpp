@@ -1,11 +1,9 @@
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +12,7 @@
 #include "progress.h"
 #include "sphys/error.h"
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/machine.h"
 #include "sphys/tools/run_experiment.h"
 #include "sphys/tools/scene.h"
 #include "sphys/tools/text_file.h"
@@ -37,20 +36,8 @@ struct ExperimentCommandOptions {
   bool no_cache = false;
 };
 
-// "model name" of the first processor in /proc/cpuinfo and the hardware threads, for reports.
-std::string machine_description() {
-  std::string cpu = "unknown processor";
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);) {
-    if (line.starts_with("model name")) {
-      const std::size_t colon = line.find(':');
-      if (colon != std::string::npos) cpu = line.substr(line.find_first_not_of(' ', colon + 1));
-      break;
-    }
-  }
-  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) +
-         " hardware threads, one used";
-}
+// The machine, for reports: the experiment steps one world at a time on one thread.
+std::string machine() { return tools::machine_description() + ", one used"; }
 
 nlohmann::ordered_json row_json(const tools::RowResult& result) {
   const tools::RowSummary summary = tools::summarize(result);
@@ -114,12 +101,11 @@ void run(const ExperimentCommandOptions& options) {
   std::vector<fs::path> plots;
   if (!options.no_plots) plots = tools::write_plots(out, results);
   const fs::path report = out / "report.md";
-  tools::write_text_file(report,
-                         tools::markdown_report(results, machine_description(), experiment.mode));
+  tools::write_text_file(report, tools::markdown_report(results, machine(), experiment.mode));
 
   if (options.json) {
     nlohmann::ordered_json json;
-    json["machine"] = machine_description();
+    json["machine"] = machine();
     json["response"] = tools::response_mode_name(experiment.mode.response);
     json["contacts"] = tools::contact_set_name(experiment.mode.contacts);
     json["rows"] = nlohmann::ordered_json::array();
@@ -147,9 +133,8 @@ void run(const ExperimentCommandOptions& options) {
     return;
   }
   std::printf("%s", tools::comparison_text(results, experiment.mode).c_str());
-  std::printf("\nmachine: %s\nreport: %s (with the per-frame CSVs%s in %s)\n",
-              machine_description().c_str(), report.string().c_str(),
-              plots.empty() ? "" : " and plots", out.string().c_str());
+  std::printf("\nmachine: %s\nreport: %s (with the per-frame CSVs%s in %s)\n", machine().c_str(),
+              report.string().c_str(), plots.empty() ? "" : " and plots", out.string().c_str());
 }
 
 }  // namespace

@@ -9,13 +9,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "run_engine.h"
 #include "sphys/error.h"
+#include "sphys/tools/machine.h"
 #include "sphys/tools/text_file.h"
 
 namespace sphys::compare {
@@ -28,6 +28,7 @@ struct Options {
   int frames = 880;
   int runs = 1;
   std::string out;
+  std::string command;  // as typed, for the report
 };
 
 double median(std::vector<double> values) {
@@ -130,10 +131,10 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
 }
 
 int run(const Options& options) {
-  std::string report =
-      "# sphys-compare\n\nmachine: " + std::to_string(std::thread::hardware_concurrency()) +
-      " hardware threads, one used per engine; runs per engine: " + std::to_string(options.runs) +
-      "\n";
+  std::string report = "# sphys-compare\n\ncommand: `" + options.command +
+                       "`\n\nmachine: " + tools::machine_description() +
+                       "; one thread per engine (sphys:T: T threads); runs per engine: " +
+                       std::to_string(options.runs) + "\n";
   for (const std::string& layout : options.layouts) {
     const auto [stacks, per_stack] = parse_layout(layout);
     for (const int depth : options.depths) {
@@ -186,6 +187,8 @@ int main(int argc, char** argv) {
   app.add_option("--runs", options.runs, "Runs per engine and scene")->capture_default_str();
   app.add_option("--out", options.out, "Also write the tables (Markdown) to this file");
   CLI11_PARSE(app, argc, argv);
+  options.command = "sphys-compare";
+  for (int i = 1; i < argc; ++i) options.command += std::string(" ") + argv[i];
   try {
     if (options.frames < 1 || options.runs < 1)
       throw sphys::Error("--frames and --runs must be at least 1");
