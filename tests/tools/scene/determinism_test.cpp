@@ -102,7 +102,7 @@ ThreadedRun expect_same_on_one_and_two_threads(const Scene& scene, int frames) {
 TEST(Determinism, BunnyStacksOnThePlaneAreBitIdenticalOnOneAndTwoThreads) {
   Scene scene = bunny_stacks_scene(8, 6, 3);
   scene.ground.kind = GroundSpec::Kind::kPlane;
-  const int frames = test::sanitized_run() ? 60 : 400;
+  const int frames = test::sanitized_run() ? 25 : 400;
   const ThreadedRun two = expect_same_on_one_and_two_threads(scene, frames);
   EXPECT_GT(two.islands_seen, 1u);
   if (!test::sanitized_run()) {
@@ -114,7 +114,7 @@ TEST(Determinism, BunnyStacksOnThePlaneAreBitIdenticalOnOneAndTwoThreads) {
 TEST(Determinism, PaperModeOnTheOctreeGroundIsBitIdenticalOnOneAndTwoThreads) {
   Scene scene = bunny_stacks_scene(4, 5, 3);
   scene.response = ResponseMode::kPaper;
-  expect_same_on_one_and_two_threads(scene, test::sanitized_run() ? 40 : 200);
+  expect_same_on_one_and_two_threads(scene, test::sanitized_run() ? 15 : 200);
 }
 
 TEST(Determinism, TooManyThreadsAreRefused) {
