@@ -48,7 +48,7 @@ struct SolverSettings {
   // Approach speeds below this get no restitution, so resting contacts do not bounce. unit: m/s
   float restitution_threshold = 1.0f;
   // Penetration left alone, so that resting contacts keep touching. unit: m
-  float linear_slop = 0.002f;
+  float linear_slop = 0.0004f;
   // Fraction of the penetration beyond the slop removed per step. unit: dimensionless, 0..1
   float position_correction = 0.2f;
   // Largest speed of the penetration recovery. unit: m/s

@@ -104,16 +104,19 @@ float distance_to_chosen_squared(const Vec3& p, std::span<const Contact> run,
 }
 
 // The candidate with the largest positive `score(point, distance_squared_to_chosen)` among those
-// apart from every chosen point, so that no point is chosen twice; ties go to the earlier one.
+// apart from every chosen point, so that no point is chosen twice; a contact kept in the previous
+// call scores kPersistentScoreBonus times more; ties go to the earlier one.
 template <typename Score>
-std::uint32_t best_candidate(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
-                             const Vec3& normal, Score score) {
+std::uint32_t best_candidate(std::span<const Contact> run, std::span<const std::uint8_t> was_kept,
+                             std::span<const std::uint32_t> chosen, const Vec3& normal,
+                             Score score) {
   std::uint32_t best = kNoCandidate;
   float best_score = 0.0f;
   for (std::uint32_t i = 0; i < run.size(); ++i) {
     const float apart = distance_to_chosen_squared(run[i].point, run, chosen, normal);
     if (!(apart > 0.0f)) continue;
-    const float candidate_score = score(run[i].point, apart);
+    float candidate_score = score(run[i].point, apart);
+    if (was_kept[i] != 0) candidate_score *= ContactReducer::kPersistentScoreBonus;
     if (candidate_score > best_score) {
       best = i;
       best_score = candidate_score;
@@ -122,37 +125,54 @@ std::uint32_t best_candidate(std::span<const Contact> run, std::span<const std::
   return best;
 }
 
-std::uint32_t next_point(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
-                         const Vec3& normal) {
+std::uint32_t next_point(std::span<const Contact> run, std::span<const std::uint8_t> was_kept,
+                         std::span<const std::uint32_t> chosen, const Vec3& normal) {
   std::uint32_t next = kNoCandidate;
   if (chosen.size() == 2) {
     const Vec3& a = run[chosen[0]].point;
     const Vec3& b = run[chosen[1]].point;
-    next = best_candidate(run, chosen, normal, [&](const Vec3& p, float) {
+    next = best_candidate(run, was_kept, chosen, normal, [&](const Vec3& p, float) {
       return std::abs(twice_signed_area(a, b, p, normal));
     });
   } else if (chosen.size() == 3) {
     const Vec3& a = run[chosen[0]].point;
     const Vec3& b = run[chosen[1]].point;
     const Vec3& c = run[chosen[2]].point;
-    next = best_candidate(run, chosen, normal, [&](const Vec3& p, float) {
+    next = best_candidate(run, was_kept, chosen, normal, [&](const Vec3& p, float) {
       return twice_area_added(p, a, b, c, normal);
     });
   }
   // Collinear contacts (an edge resting on a face) add no area: spreading them along their line
   // still gives the solver the widest support there is.
   if (next == kNoCandidate) {
-    next = best_candidate(run, chosen, normal, [](const Vec3&, float apart) { return apart; });
+    next = best_candidate(run, was_kept, chosen, normal,
+                          [](const Vec3&, float apart) { return apart; });
   }
   return next;
 }
 
-void choose_points(std::span<const Contact> run, std::uint32_t max_points, const Vec3& normal,
+// The deepest contact, or the deepest of those kept in the previous call when one is within
+// kPersistentDepth of it.
+std::uint32_t first_point(std::span<const Contact> run, std::span<const std::uint8_t> was_kept) {
+  const std::uint32_t deepest = deepest_index(run);
+  std::uint32_t first = deepest;
+  for (std::uint32_t i = 0; i < run.size(); ++i) {
+    if (was_kept[i] == 0 ||
+        !(run[i].depth >= run[deepest].depth - ContactReducer::kPersistentDepth)) {
+      continue;
+    }
+    if (was_kept[first] == 0 || run[i].depth > run[first].depth) first = i;
+  }
+  return first;
+}
+
+void choose_points(std::span<const Contact> run, std::span<const std::uint8_t> was_kept,
+                   std::uint32_t max_points, const Vec3& normal,
                    std::vector<std::uint32_t>& chosen) {
   chosen.clear();
-  chosen.push_back(deepest_index(run));
+  chosen.push_back(first_point(run, was_kept));
   while (chosen.size() < max_points) {
-    const std::uint32_t next = next_point(run, chosen, normal);
+    const std::uint32_t next = next_point(run, was_kept, chosen, normal);
     if (next == kNoCandidate) return;  // every remaining contact coincides with a chosen one
     chosen.push_back(next);
   }
@@ -195,6 +215,10 @@ Contact cluster_contact(std::span<const Contact> run, std::span<const std::uint3
   return merged;
 }
 
+ContactReducer::Feature feature_of(const Contact& contact) {
+  return {contact.body_a, contact.body_b, contact.leaf_a, contact.leaf_b};
+}
+
 }  // namespace
 
 void ContactReducer::reduce(std::span<const Contact> contacts, std::uint32_t max_points,
@@ -204,21 +228,30 @@ void ContactReducer::reduce(std::span<const Contact> contacts, std::uint32_t max
                 std::to_string(kMaxManifoldPoints) + ", got " + std::to_string(max_points));
   }
   chosen_.reserve(kMaxManifoldPoints);
+  previous_.swap(kept_);
+  kept_.clear();
   for (std::size_t begin = 0; begin < contacts.size();) {
     const std::size_t end = end_of_run(contacts, begin);
     const std::span<const Contact> run = contacts.subspan(begin, end - begin);
     begin = end;
     if (run.size() <= max_points) {
       reduced.insert(reduced.end(), run.begin(), run.end());
+      for (const Contact& contact : run) kept_.push_back(feature_of(contact));
       continue;
     }
+    was_kept_.resize(run.size());
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      was_kept_[i] = std::binary_search(previous_.begin(), previous_.end(), feature_of(run[i]));
+    }
     const Vec3 normal = run_plane_normal(run);
-    choose_points(run, max_points, normal, chosen_);
+    choose_points(run, was_kept_, max_points, normal, chosen_);
     assign_clusters(run, chosen_, normal, cluster_);
     for (std::uint32_t slot = 0; slot < chosen_.size(); ++slot) {
       reduced.push_back(cluster_contact(run, chosen_, cluster_, slot));
+      kept_.push_back(feature_of(run[chosen_[slot]]));
     }
   }
+  std::sort(kept_.begin(), kept_.end());
 }
 
 }  // namespace sphys

@@ -205,6 +205,7 @@ void World::remove_body(BodyId id) {
            static_cast<std::uint32_t>(entry.first) == id.index;
   });
   solver_->forget();
+  reducer_->forget();
 }
 
 void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds) {

@@ -225,6 +225,95 @@ TEST(ContactReducer, NormalsThatCancelFallBackToTheChosenContactsNormal) {
   EXPECT_EQ(reduced[0].normal, Vec3::UnitX());
 }
 
+// A 5 × 5 grid whose corner 0 is the deepest contact, by a tenth of a millimetre, and a reducer
+// that has just reduced it (so it keeps the four corners).
+struct CornerFirst {
+  std::vector<Contact> grid = grid_5x5(0.005f);
+  ContactReducer reducer;
+  std::vector<Contact> first;
+
+  CornerFirst() {
+    grid[0].depth = 0.0101f;
+    reducer.reduce(grid, 4, first);
+  }
+
+  std::vector<Contact> reduce_again(std::span<const Contact> contacts) {
+    std::vector<Contact> next;
+    reducer.reduce(contacts, 4, next);
+    return next;
+  }
+};
+
+// A resting pair whose corner and centre contacts take turns at being the deepest by a tenth of
+// a millimetre (rounding): the corner was chosen first, so the manifold stays the four corners.
+TEST(ContactReducer, AKeptContactStaysFirstWhileNearlyTheDeepest) {
+  CornerFirst pair;
+  ASSERT_THAT(leaves_of(pair.first), ElementsAre(0, 24, 4, 20));
+
+  std::vector<Contact>& grid = pair.grid;
+  grid[12].depth = 0.0102f;
+  const std::vector<Contact> next = pair.reduce_again(grid);
+  EXPECT_THAT(leaves_of(next), ElementsAre(0, 24, 4, 20));
+  // The centre joins the first corner's cluster, whose depth is its deepest: nothing is lost.
+  EXPECT_FLOAT_EQ(next[0].depth, 0.0102f);
+  // Without the memory the centre would come first.
+  EXPECT_EQ(reduce(grid, 4)[0].leaf_a, 12u);
+}
+
+TEST(ContactReducer, AContactDeeperByMoreThanThePersistentDepthTakesOver) {
+  CornerFirst pair;
+  ASSERT_EQ(pair.first[0].leaf_a, 0u);
+
+  std::vector<Contact>& grid = pair.grid;
+  grid[12].depth = grid[0].depth + 2.0f * ContactReducer::kPersistentDepth;
+  EXPECT_EQ(pair.reduce_again(grid)[0].leaf_a, 12u);
+}
+
+TEST(ContactReducer, AKeptContactKeepsItsPlaceAgainstASlightlyBetterNewOne) {
+  std::vector<Contact> run = {
+      contact_at(Vec3(0, 0, 0), 0.02f, 0),  // deepest
+      contact_at(Vec3(1, 0, 0), 0.01f, 1),  // the farthest from it, at first
+      contact_at(Vec3(0, 0, 0.95f), 0.01f, 2),
+  };
+  ContactReducer reducer;
+  std::vector<Contact> first;
+  reducer.reduce(run, 2, first);
+  ASSERT_THAT(leaves_of(first), ElementsAre(0, 1));
+
+  // 2 is now farther, but its squared distance (1.1025 m²) is less than kPersistentScoreBonus
+  // times 1's (1 m²).
+  run[2].point = Vec3(0, 0, 1.05f);
+  std::vector<Contact> next;
+  reducer.reduce(run, 2, next);
+  EXPECT_THAT(leaves_of(next), ElementsAre(0, 1));
+  EXPECT_THAT(leaves_of(reduce(run, 2)), ElementsAre(0, 2));
+
+  // Well beyond the bonus, the better one wins.
+  run[2].point = Vec3(0, 0, 1.5f);
+  next.clear();
+  reducer.reduce(run, 2, next);
+  EXPECT_THAT(leaves_of(next), ElementsAre(0, 2));
+}
+
+TEST(ContactReducer, ForgetChoosesAsANewReducerWould) {
+  CornerFirst pair;
+  std::vector<Contact>& grid = pair.grid;
+  grid[12].depth = 0.0102f;
+  pair.reducer.forget();
+  const std::vector<Contact> next = pair.reduce_again(grid);
+  expect_identical(next, reduce(grid, 4));
+  EXPECT_EQ(next[0].leaf_a, 12u);
+}
+
+// Only the same bodies' contacts count as kept: another pair with the same leaf ids does not.
+TEST(ContactReducer, KeptContactsBelongToTheirBodyPair) {
+  CornerFirst pair;
+  std::vector<Contact> other = grid_5x5(0.005f, 1, 3);
+  other[0].depth = 0.0101f;
+  other[12].depth = 0.0102f;
+  EXPECT_EQ(pair.reduce_again(other)[0].leaf_a, 12u);
+}
+
 TEST(ContactReducer, ReductionIsDeterministic) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
