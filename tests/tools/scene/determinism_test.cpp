@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "sphys/tools/scenarios.h"
 #include "sphys/world.h"
 #include "support/sanitized_run.h"
+#include "support/temp_file.h"
 
 namespace sphys::tools {
 namespace {
@@ -43,9 +45,11 @@ struct ThreadedRun {
   std::uint32_t islands_seen = 0;  // most islands in a step: there was more than one to share
 };
 
-ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames) {
+ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
+                      const std::filesystem::path& tree_cache) {
   BuildWorldOptions options;
   options.threads = threads;
+  options.cache_dir = tree_cache;
   const SimulationSetup setup = build_world(scene, options);
   World& world = *setup.world;
   EXPECT_EQ(world.settings().threads, threads);
@@ -87,13 +91,15 @@ ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames) {
 
 // Returns the two-thread run.
 ThreadedRun expect_same_on_one_and_two_threads(const Scene& scene, int frames) {
-  const ThreadedRun one = run_scene(scene, 1, frames);
-  const ThreadedRun two = run_scene(scene, 2, frames);
+  // The trees are built once and read back for the later runs.
+  const test::TempDir tree_cache;
+  const ThreadedRun one = run_scene(scene, 1, frames, tree_cache.path());
+  const ThreadedRun two = run_scene(scene, 2, frames, tree_cache.path());
   EXPECT_EQ(two.steps, one.steps) << "a step's contacts or counts differ";
   EXPECT_EQ(two.final_state, one.final_state) << "the final poses or velocities differ";
   EXPECT_EQ(two.asleep, one.asleep);
   // Two runs of one thread agree too (nothing depends on addresses or the clock).
-  EXPECT_EQ(run_scene(scene, 1, frames).final_state, one.final_state);
+  EXPECT_EQ(run_scene(scene, 1, frames, tree_cache.path()).final_state, one.final_state);
   return two;
 }
 
