@@ -145,11 +145,6 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     c.normal_mass = row(0, c.normal);
     c.tangent1_mass = row(1, c.tangent1);
     c.tangent2_mass = row(2, c.tangent2);
-    if (settings.rolling_resistance > 0.0f) {
-      const Mat3 inverse_inertia = inverse_inertia_[c.a] + inverse_inertia_[c.b];
-      // A body with no inverse inertia at all (a point mass) cannot be turned.
-      if (inverse_inertia.determinant() > 0.0f) c.rolling_mass = inverse_inertia.inverse();
-    }
     c.friction = materials[k].friction;
     c.restitution = materials[k].restitution;
     c.depth = contact.depth;
@@ -183,6 +178,45 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     constraints_.push_back(c);
   }
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
+  if (settings.rolling_resistance > 0.0f) mark_pairs();
+}
+
+// A body pair's contacts come one after another (the detector and the reducer emit them by
+// pair): its first constraint gets the pair's size and the rolling resistance's mass.
+void ContactSolver::mark_pairs() {
+  for (std::size_t first = 0; first < constraints_.size();) {
+    std::size_t end = first + 1;
+    while (end < constraints_.size() &&
+           constraints_[end].bodies_key == constraints_[first].bodies_key) {
+      ++end;
+    }
+    Constraint& c = constraints_[first];
+    c.pair_size = static_cast<std::uint32_t>(end - first);
+    const Mat3 inverse_inertia = inverse_inertia_[c.a] + inverse_inertia_[c.b];
+    // A body with no inverse inertia at all (a point mass) cannot be turned.
+    if (inverse_inertia.determinant() > 0.0f) c.rolling_mass = inverse_inertia.inverse();
+    first = end;
+  }
+}
+
+// Rolling resistance: an angular impulse against the pair's relative turning (rolling and
+// spinning), at most the resistance arm times the pair's normal impulse. Once per pair rather
+// than per contact: the same bound on the whole, for a quarter of the work with four contacts.
+void ContactSolver::resist_rolling(std::uint32_t first, float arm) {
+  Constraint& c = constraints_[first];
+  float pair_normal_impulse = 0.0f;
+  for (std::uint32_t k = first; k < first + c.pair_size; ++k) {
+    pair_normal_impulse += constraints_[k].normal_impulse;
+  }
+  const Vec3 turning = angular_[c.b] - angular_[c.a];
+  Vec3 rolling = c.rolling_impulse - c.rolling_mass * turning;
+  const float limit = arm * pair_normal_impulse;
+  const float length = rolling.norm();
+  if (length > limit) rolling *= length > 0.0f ? limit / length : 0.0f;
+  const Vec3 change = rolling - c.rolling_impulse;
+  if (c.a_moves) angular_[c.a] -= inverse_inertia_[c.a] * change;
+  if (c.b_moves) angular_[c.b] += inverse_inertia_[c.b] * change;
+  c.rolling_impulse = rolling;
 }
 
 void ContactSolver::solve_velocities(std::span<const std::uint32_t> island,
@@ -198,7 +232,8 @@ void ContactSolver::solve_velocities(std::span<const std::uint32_t> island,
   }
   for (std::uint32_t iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
     for (std::size_t k = 0; k < island.size(); ++k) {
-      Constraint& c = constraints_[sweep_index(island, iteration, k)];
+      const std::uint32_t index = sweep_index(island, iteration, k);
+      Constraint& c = constraints_[index];
       // Normal first, so that friction is bounded by this pass's normal impulse.
       const float normal_speed = row_speed(c, 0, c.normal);
       const float normal_total =
@@ -220,20 +255,8 @@ void ContactSolver::solve_velocities(std::span<const std::uint32_t> island,
       c.tangent1_impulse = t1;
       c.tangent2_impulse = t2;
 
-      // Rolling resistance: a torque against the bodies' relative turning (rolling and
-      // spinning), at most the resistance arm times the normal impulse.
-      if (settings.rolling_resistance > 0.0f) {
-        const Vec3 turning = angular_[c.b] - angular_[c.a];
-        Vec3 rolling = c.rolling_impulse - c.rolling_mass * turning;
-        const float rolling_limit = settings.rolling_resistance * c.normal_impulse;
-        const float rolling_length = rolling.norm();
-        if (rolling_length > rolling_limit) {
-          rolling *= rolling_length > 0.0f ? rolling_limit / rolling_length : 0.0f;
-        }
-        const Vec3 change = rolling - c.rolling_impulse;
-        if (c.a_moves) angular_[c.a] -= inverse_inertia_[c.a] * change;
-        if (c.b_moves) angular_[c.b] += inverse_inertia_[c.b] * change;
-        c.rolling_impulse = rolling;
+      if (c.pair_size > 0 && settings.rolling_resistance > 0.0f) {
+        resist_rolling(index, settings.rolling_resistance);
       }
     }
   }
@@ -336,7 +359,8 @@ void ContactSolver::recover_penetration(std::span<const std::uint32_t> island,
                                         const SolverSettings& settings, float dt) {
   for (std::uint32_t iteration = 0; iteration < settings.position_iterations; ++iteration) {
     for (std::size_t k = 0; k < island.size(); ++k) {
-      Constraint& c = constraints_[sweep_index(island, iteration, k)];
+      const std::uint32_t index = sweep_index(island, iteration, k);
+      Constraint& c = constraints_[index];
       if (c.depth <= settings.linear_slop) continue;
       const float target =
           std::min(settings.position_correction * (c.depth - settings.linear_slop) / dt,

@@ -73,8 +73,11 @@ class ContactSolver {
     float tangent2_mass = 0.0f;
     float friction = 0.0f;
     float restitution = 0.0f;
+    // Rolling resistance acts once per body pair, from the pair's first constraint: the number
+    // of the pair's constraints (consecutive from this one) there, 0 on the others.
+    std::uint32_t pair_size = 0;
     // Inverse of the sum of the two bodies' inverse world inertias: the angular impulse that
-    // stops their relative turning. unit: kg m²
+    // stops their relative turning (first constraint of a pair only). unit: kg m²
     Mat3 rolling_mass = Mat3::Zero();
     Vec3 rolling_impulse = Vec3::Zero();  // angular, on body b. unit: N m s
     float depth = 0.0f;
@@ -120,6 +123,8 @@ class ContactSolver {
   void group_islands();
   // The passes over one island's constraints (indices into constraints_, in order).
   void solve_velocities(std::span<const std::uint32_t> island, const SolverSettings& settings);
+  void resist_rolling(std::uint32_t first, float arm);
+  void mark_pairs();
   [[nodiscard]] std::uint32_t bounce(std::span<const std::uint32_t> island,
                                      const SolverSettings& settings);
   void propagate_shock(std::span<const std::uint32_t> island, std::span<const std::uint32_t> level,

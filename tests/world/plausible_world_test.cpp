@@ -168,6 +168,54 @@ TEST(PlausibleFriction, APairMaterialReplacesTheMixOfTheBodiesOwn) {
   EXPECT_THROW(world.set_pair_material(a, b, {0.5f, 1.5f}), Error);
 }
 
+// 2b. Rolling resistance: a torque of at most the arm e times the normal force.
+
+// A solid ball rolling without slipping: the resisting torque e m g slows it at
+// a = e g / (R + I / (m R)) = e g / (1.4 R), so it stops after v0² / (2a).
+TEST(PlausibleRollingResistance, ARollingBallStopsAfterVSquaredOverTwoA) {
+  const float radius = 0.25f;
+  for (const float speed : {1.0f, 2.0f}) {
+    WorldSettings settings = on_plane(0.5f, 0.0f);
+    settings.solver.rolling_resistance = 0.01f;
+    World world(settings);
+    BodyDesc desc = ball(radius, Vec3(0.0f, radius, 0.0f), 0.0f);
+    desc.friction = 0.5f;
+    desc.linear_velocity = Vec3(speed, 0.0f, 0.0f);
+    desc.angular_velocity = Vec3(0.0f, 0.0f, -speed / radius);  // rolling towards +x
+    const BodyId id = world.add_body(desc);
+    const float deceleration = settings.solver.rolling_resistance * kGravity / (1.4f * radius);
+    run(world, speed / deceleration + 1.0f);
+    const float expected = speed * speed / (2.0f * deceleration);
+    EXPECT_NEAR(world.body(id).pose.translation.x(), expected, 0.05f * expected)
+        << "v0 = " << speed;
+    EXPECT_LT(world.body(id).linear_velocity.norm(), 0.01f);
+  }
+}
+
+// A frictionless box spinning about the vertical on its four lowest spheres: the pair's
+// contacts together resist with e m g, so ω falls at e m g / I and it turns ω0² / (2α).
+TEST(PlausibleRollingResistance, ASpinningBoxStopsAsItsWholeWeightResists) {
+  WorldSettings settings = on_plane(0.0f, 0.0f);
+  settings.solver.rolling_resistance = 0.01f;
+  World world(settings);
+  BodyDesc desc = cube(Vec3(0.0f, cube_half_height(), 0.0f), 0.0f);
+  const float spin = 1.0f;  // unit: rad/s
+  desc.angular_velocity = Vec3(0.0f, spin, 0.0f);
+  const BodyId box = world.add_body(desc);
+  const float inertia = desc.inertia(1, 1);
+  const float deceleration = settings.solver.rolling_resistance * desc.mass * kGravity / inertia;
+  float turned = 0.0f;
+  const int steps = static_cast<int>(std::lround((spin / deceleration + 1.0f) / kDt));
+  for (int i = 0; i < steps; ++i) {
+    ASSERT_FALSE(world.step(kDt).non_finite_body);
+    turned += world.body(box).angular_velocity.y() * kDt;
+  }
+  const float expected = spin * spin / (2.0f * deceleration);
+  EXPECT_NEAR(turned, expected, 0.05f * expected);
+  EXPECT_LT(world.body(box).angular_velocity.norm(), 0.01f);
+  EXPECT_NEAR(world.body(box).pose.translation.x(), 0.0f, 0.01f);
+}
+
 // 3. A stack of ten boxes stands, then sleeps.
 
 TEST(PlausibleStack, TenBoxesStandForTenSecondsAndFallAsleep) {
