@@ -396,6 +396,7 @@ void run(const SimulateOptions& options) {
   tools::BuildWorldOptions build;
   build.tree_depth = options.depth;
   build.threads = options.threads;
+  build.plausibility_figures = true;
   if (!options.no_cache) build.cache_dir = tools::default_cache_dir();
   tools::SimulationSetup setup = [&] {
     ProgressBar bar("preparing bodies");

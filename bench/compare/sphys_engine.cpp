@@ -14,6 +14,8 @@ class SphysEngine final : public Engine {
     tools::BuildWorldOptions build;
     build.cache_dir = tools::default_cache_dir();
     build.threads = threads;
+    // The deepest penetration the comparison prints for every engine.
+    build.plausibility_figures = true;
     setup_ = tools::build_world(scene, build);
   }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "sphys/contact.h"
@@ -18,9 +19,12 @@
 
 namespace sphys {
 
-// A body of the detector. A handle, never a pointer: storage may move.
+// A body: its slot and the slot's generation, so that the id of a removed body never names the
+// body added in its slot later. A handle, never a pointer: storage may move. The detector uses
+// the slot alone; the world checks the generation.
 struct BodyId {
   std::uint32_t index = 0;
+  std::uint32_t generation = 0;
   friend bool operator==(const BodyId&, const BodyId&) = default;
 };
 
@@ -44,6 +48,35 @@ struct CollisionSettings {
   // Speculative contacts: the gap allowed for a pair grows by how far the two can close in the
   // coming step, from the motions given by set_motion() (swept sphere bounds).
   bool speculative = false;
+  // Contacts per body pair: 0 keeps one per overlapping leaf pair (the paper's); 1 to
+  // kMaxManifoldPoints reduces each pair's to a manifold of at most that many (contact reduction,
+  // docs/dynamics.md), persistent from one narrow phase to the next through the pair's record.
+  std::uint32_t manifold_points = 0;
+  // A pair whose bodies moved relative to each other by at most this since its last descent keeps
+  // its contacts, recomputed from the same leaf pairs at the new poses, instead of descending and
+  // reducing again. The descent looks this much beyond the pair's gap, so no leaf pair it left out
+  // can come within the gap meanwhile. 0 descends every pair every time; with a time-critical
+  // budget every pair descends. unit: m, >= 0
+  float reuse_distance = 0.0f;
+  // The deepest and mean penetration of the leaf pairs in CollisionStats: a pass over every leaf
+  // pair, so only on request.
+  bool measure_penetration = false;
+};
+
+// Largest manifold a body pair may be reduced to (CollisionSettings::manifold_points).
+inline constexpr std::uint32_t kMaxManifoldPoints = 8;
+
+// What a contact carries from one narrow phase to the next for warm starting, matched by its leaf
+// pair within its body pair's record. The response writes it; the detector carries it over.
+struct ContactMemory {
+  float normal_impulse = 0.0f;   // to start the next solve from. unit: N·s
+  float solved_impulse = -1.0f;  // what the last solve ended with; negative for a new contact
+  Vec3 friction_impulse = Vec3::Zero();  // world frame, in the tangent plane. unit: N·s
+  // Approach speed at which this gap contact stopped its bodies short (0: it did not). unit: m/s
+  float stopped_approach = 0.0f;
+  // The most negative stopped_approach among the pair's contacts of the last narrow phase, so that
+  // bodies a gap contact stopped short bounce with the speed they came at. unit: m/s
+  float pair_stopped_approach = 0.0f;
 };
 
 // Figures of one detect() call.
@@ -56,18 +89,32 @@ struct CollisionStats {
   std::uint32_t contacts = 0;
   std::uint32_t pairs_cut_short = 0;     // node pairs left when a time-critical budget ran out
   std::uint32_t coincident_centres = 0;  // contacts whose normal came from the fallback
-  double broad_phase_ms = 0.0;           // unit: ms
-  double narrow_phase_ms = 0.0;          // sphere-tree descents. unit: ms
-  double contacts_ms = 0.0;              // contact data from the leaf pairs (eq. 1-3). unit: ms
+  std::uint32_t descended_pairs = 0;     // pairs (ground plane included) whose trees descended
+  std::uint32_t reused_pairs = 0;        // pairs that kept their contacts (reuse_distance)
+  // With CollisionSettings::measure_penetration, over the leaf pairs that overlap.
+  float deepest_penetration = 0.0f;  // unit: m
+  double penetration_sum = 0.0;      // unit: m
+  std::uint32_t penetrating_contacts = 0;
+  double broad_phase_ms = 0.0;   // unit: ms
+  double narrow_phase_ms = 0.0;  // sphere-tree descents. unit: ms
+  // Contact data from the leaf pairs (eq. 1-3), the reduction to manifolds and the carrying over
+  // of each contact's memory. unit: ms
+  double contacts_ms = 0.0;
 };
+
+class ContactReducer;
 
 class CollisionDetector {
  public:
   explicit CollisionDetector(const CollisionSettings& settings = {});
+  ~CollisionDetector();
+  CollisionDetector(CollisionDetector&&) noexcept;
+  CollisionDetector& operator=(CollisionDetector&&) noexcept;
 
   // Throws sphys::Error for a missing or empty tree or a non-finite pose. A pose places the
   // body frame: the tree's centres are given in it, and its origin is the centre of mass.
   BodyId add_body(std::shared_ptr<const SphereTree> tree, const Transform& pose, bool is_static);
+  // The body's pairs and their contacts' memory go with it.
   void remove_body(BodyId body);
   void set_pose(BodyId body, const Transform& pose);
   [[nodiscard]] const Transform& pose(BodyId body) const { return bodies_[body.index].pose; }
@@ -85,11 +132,22 @@ class CollisionDetector {
   // the detector or be replaced first.
   void set_parallel(const Parallel* parallel) { parallel_ = parallel; }
 
-  // Replaces `contacts` with this step's contacts, ordered by body pair (as the broad phase
-  // lists them, then the ground plane's by body) and within a pair by the descent's order. The
-  // contacts of one body pair are consecutive. With a contact margin or speculative contacts,
-  // pairs of leaves that are apart by less than their pair's gap come too (negative depth).
-  const CollisionStats& detect(std::vector<Contact>& contacts);
+  // The broad phase, then the narrow phase of every candidate pair with a moving body (neither
+  // static nor asleep) and of every moving body against the ground plane: contacts() becomes this
+  // step's contacts, ordered by body pair (as the broad phase lists them, then the ground plane's
+  // by body) and within a pair by the descent's order (or the reduction's). The contacts of one
+  // body pair are consecutive. With a contact margin or speculative contacts, pairs of leaves that
+  // are apart by less than their pair's gap come too (negative depth). Each contact's memory()
+  // is carried over from the contact of the same leaf pair in the same body pair's last narrow
+  // phase (a new one starts empty). Figures of this call.
+  const CollisionStats& detect();
+  // The narrow phase of the pairs detect() passed over because neither body moved, for those of
+  // them with a body that moves now (woken since), and of the woken bodies against the ground
+  // plane: their contacts are appended to contacts(), each pair's together. Figures of this call
+  // alone, so that a step adds each pair's work once.
+  const CollisionStats& detect_woken();
+  [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
+  [[nodiscard]] std::span<ContactMemory> memory() { return memory_; }
   [[nodiscard]] const CollisionStats& stats() const { return stats_; }
   // The broad phase's current bound of a body (world frame).
   [[nodiscard]] Aabb bounds(BodyId body) const;
@@ -101,13 +159,32 @@ class CollisionDetector {
     ProxyId proxy = 0;
     Vec3 displacement = Vec3::Zero();
     float turn_reach = 0.0f;
+    float extent = 0.0f;  // farthest tree point from the body's origin. unit: m
     bool is_static = false;
     bool alive = false;
     bool asleep = false;
+    bool ground_done = false;  // its ground plane pair had its narrow phase in this step
   };
 
-  // Two overlapping leaf spheres in the world frame, what the narrow phase hands to the contacts
-  // phase. Against the ground plane, body_a is kGroundPlaneBody and sphere_a is unused.
+  // The persistent record of a body pair (or of a body and the ground plane): created when the
+  // broad phase pairs the bodies, dropped when it unpairs them.
+  struct PairRecord {
+    ProxyPair proxies;  // the key; the ground plane's records are per body instead
+    // Body b's pose in body a's frame (the world's for the ground) at the last descent.
+    Transform relative;
+    // The gap the last descent looked up to; negative when the contacts below are not valid.
+    // unit: m
+    float descent_margin = -1.0f;
+    // Its contacts of the last narrow phase: [first, first + count) of contacts_ (of
+    // previous_contacts_ once the next narrow phase begins).
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+    bool done = false;  // had its narrow phase in this step
+  };
+
+  // Two leaf spheres within their pair's gap in the world frame, what the narrow phase hands to
+  // the contacts phase. Against the ground plane, body_a is kGroundPlaneBody and sphere_a is
+  // unused.
   struct LeafSpheres {
     std::uint32_t body_a = 0;
     std::uint32_t body_b = 0;
@@ -117,52 +194,72 @@ class CollisionDetector {
     Sphere sphere_b;
   };
 
-  // The narrow phase's work on a run of consecutive candidate pairs, or of bodies against the
-  // ground plane, done on one thread into its own buffers; the runs' leaf pairs make contacts in
-  // the runs' order, so the result is the same whatever thread did which run.
-  struct NarrowChunk {
-    std::size_t begin = 0;  // candidate pairs, or bodies when `plane`
-    std::size_t end = 0;
+  // One pair the narrow phase found leaf spheres for: its record and its leaves in the chunk.
+  struct PairLeaves {
+    PairRecord* record = nullptr;
+    std::uint32_t leaves_begin = 0;
+    std::uint32_t leaves_end = 0;
+    bool reused = false;               // the leaves are the record's kept contacts at the new poses
+    std::uint32_t contacts_begin = 0;  // its contacts in the chunk's output
+  };
+
+  // The narrow phase's work on a run of jobs (candidate pairs, or bodies against the ground
+  // plane), done on one thread into its own buffers; the runs' contacts are joined in the runs'
+  // order, so the result is the same whatever thread did which run.
+  struct NarrowChunk;
+
+  // A job of the narrow phase: a candidate pair's index, or a body's against the ground plane.
+  struct Job {
+    std::uint32_t index = 0;
     bool plane = false;
-    TreeDescent descent;
-    std::vector<NodePair> node_pairs;
-    std::vector<std::uint32_t> plane_stack;
-    std::vector<LeafSpheres> leaves;
-    std::uint64_t sphere_tests = 0;
-    std::uint32_t leaf_pairs = 0;
-    std::uint32_t cut_short_pairs = 0;
-    std::uint32_t coincident_centres = 0;
-    std::size_t first_contact = 0;  // where its contacts go in detect()'s output
   };
 
   [[nodiscard]] Aabb broad_phase_box(const Body& body) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
-  void narrow_phase();
-  void plan_chunks(bool budget);
-  void descend_pairs(NarrowChunk& chunk, std::chrono::steady_clock::time_point start) const;
-  void ground_plane_leaves(std::uint32_t body, float height, NarrowChunk& chunk) const;
-  void make_contacts(NarrowChunk& chunk, std::vector<Contact>& contacts) const;
+  [[nodiscard]] bool budget() const;
+  void carry_records_over();
+  [[nodiscard]] bool moves(std::uint32_t body) const;
+  void run_jobs();
+  void plan_chunks();
+  void narrow_phase(NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
+  void pair_leaves(const Job& job, NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
+  [[nodiscard]] bool reuse(PairRecord& record, const Transform& relative, float margin,
+                           float extent_b, std::uint32_t body_a, std::uint32_t body_b,
+                           NarrowChunk& chunk);
+  void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
+  void make_contacts(NarrowChunk& chunk) const;
+  void carry_memory(const PairRecord& record, std::size_t first, std::size_t count);
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
                                                float margin) const;
-  // Calls fn(chunk) for each planned chunk, on the detector's threads.
-  template <class Fn>
-  void run_chunks(const Fn& fn) {
-    const auto each = [&](std::size_t c) { fn(chunks_[c]); };
-    if (parallel_ != nullptr) {
-      parallel_->for_each(chunks_used_, each);
-    } else {
-      for (std::size_t c = 0; c < chunks_used_; ++c) each(c);
-    }
-  }
 
   CollisionSettings settings_;
   std::vector<Body> bodies_;
   std::vector<std::uint32_t> free_bodies_;
   std::vector<std::uint32_t> body_of_proxy_;
   SweepAndPrune broad_phase_;
-  std::vector<NarrowChunk> chunks_;
-  std::size_t chunks_used_ = 0;
+  // Records of the candidate pairs, in the order of broad_phase_.pairs(), and of the last
+  // update's (swapped, to carry them over); the ground plane's per body.
+  std::vector<PairRecord> records_;
+  std::vector<PairRecord> old_records_;
+  std::vector<PairRecord> ground_records_;
+  std::vector<Job> jobs_;
+  std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;
+  std::vector<std::unique_ptr<NarrowChunk>> plane_chunks_;
+  std::vector<NarrowChunk*> chunks_;  // the planned runs, in order
+  // This step's contacts and their memory, and the last step's, to carry the memory over.
+  std::vector<Contact> contacts_;
+  std::vector<ContactMemory> memory_;
+  std::vector<Contact> previous_contacts_;
+  std::vector<ContactMemory> previous_memory_;
+  // Per contact, what reusing it needs: its depth beyond its own leaf pair's (a reduced contact
+  // carries its cluster's deepest overlap) and its normal in body a's frame. unit: m
+  struct ContactShape {
+    float depth_offset = 0.0f;
+    Vec3 normal_in_a = Vec3::UnitY();
+  };
+  std::vector<ContactShape> shapes_;
+  std::vector<ContactShape> previous_shapes_;
   const Parallel* parallel_ = nullptr;
   CollisionStats stats_;
 };

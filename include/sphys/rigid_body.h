@@ -6,6 +6,11 @@
 
 namespace sphys {
 
+// How far a rotation may be from unit length: a given one beyond it is refused rather than
+// normalised, and a body's beyond it after a step means the state has gone bad.
+// unit: dimensionless
+inline constexpr float kUnitQuaternionTolerance = 1e-3f;
+
 // What a body is made of and how it moves. The body frame has its origin at the centre of mass;
 // `pose` places it in the world. A static body never moves and has infinite mass (its inverse
 // mass and inverse inertia are zero).

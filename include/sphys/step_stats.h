@@ -2,6 +2,8 @@
 
 // Figures of one World::step: every figure the experiment reports, each measured once. With
 // substeps, times and counts are summed over them and the deepest penetration is their largest.
+// Times and counts are always measured; the plausibility figures (marked below) only with
+// WorldSettings::plausibility_figures, as each costs a pass over every leaf pair or body.
 
 #include <cstdint>
 #include <optional>
@@ -36,15 +38,19 @@ struct StepStats {
   std::uint32_t pairs_cut_short = 0;
   std::uint32_t coincident_centres = 0;
   std::uint32_t islands = 0;  // groups of touching moving bodies (plausible mode)
+  // Pairs (a body and the ground plane included) whose trees descended, and pairs that kept their
+  // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
+  std::uint32_t descended_pairs = 0;
+  std::uint32_t reused_pairs = 0;
+  std::uint32_t moving_bodies = 0;  // bodies that are not static
+  std::uint32_t bodies_asleep = 0;
 
-  // Plausibility, measured on the leaf-pair contacts before any reduction and on the bodies at
-  // the end of the step.
+  // Plausibility figures, measured on the leaf-pair contacts before any reduction and on the
+  // bodies at the end of the step (WorldSettings::plausibility_figures).
   float deepest_penetration = 0.0f;        // largest overlap of two leaf spheres (0: none). unit: m
   double mean_penetration = 0.0;           // mean overlap of the overlapping leaf pairs. unit: m
   std::uint32_t penetrating_contacts = 0;  // leaf pairs that overlap (not touching or apart)
   double kinetic_energy = 0.0;             // all moving bodies. unit: J
-  std::uint32_t moving_bodies = 0;         // bodies that are not static
-  std::uint32_t bodies_asleep = 0;
   // Asleep, or with every point slower than SleepSettings::speed.
   std::uint32_t bodies_at_rest = 0;
   // Mean speed of the fastest point of the bodies that should be resting: asleep (speed 0), or

@@ -13,6 +13,7 @@
 #include "sphys/material.h"
 #include "sphys/parallel.h"
 #include "sphys/rigid_body.h"
+#include "sphys/solver_settings.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/step_stats.h"
 
@@ -26,44 +27,6 @@ enum class ResponseMode {
   // Sequential impulses with warm starting, Coulomb friction, restitution above a threshold,
   // split-impulse penetration recovery, speculative contacts and sleeping. See docs/dynamics.md.
   kPlausible,
-};
-
-// Which contacts of a body pair the response sees (plausible mode).
-enum class ContactSet {
-  kAll,      // one per overlapping leaf pair, as the paper makes them
-  kReduced,  // a small manifold per body pair (see SolverSettings::manifold_points)
-};
-
-// The plausible mode's solver. See docs/dynamics.md for what each figure does and why.
-struct SolverSettings {
-  std::uint32_t velocity_iterations = 20;  // passes over the contacts for velocities
-  std::uint32_t position_iterations = 4;   // passes for the split-impulse penetration recovery
-  bool warm_starting = true;               // start from the previous step's impulses
-  // After the passes, solve the contacts once more level by level from the ground up, each level
-  // against the one below held fixed, so that no body of a pile is left sinking into its support.
-  bool shock_propagation = true;
-  // Shock propagation acts on contacts still closing faster than this after the passes (a blow
-  // passed on through a pile), and leaves slower ones (resting contacts) to the solver. unit: m/s
-  float shock_speed = 0.5f;
-  // Approach speeds below this get no restitution, so resting contacts do not bounce. unit: m/s
-  float restitution_threshold = 1.0f;
-  // Penetration left alone, so that resting contacts keep touching. unit: m
-  float linear_slop = 0.0004f;
-  // Fraction of the penetration beyond the slop removed per step. unit: dimensionless, 0..1
-  float position_correction = 0.2f;
-  // Largest speed of the penetration recovery. unit: m/s
-  float max_correction_speed = 3.0f;
-  // Rolling resistance: each contact resists the relative turning of its bodies (rolling and
-  // spinning) with a torque up to this arm times its normal force, as a soft tyre or a dent in
-  // the ground does. Round bodies on a rounded sphere-tree would otherwise rock and roll for
-  // ever. unit: m, >= 0
-  float rolling_resistance = 0.01f;
-  ContactSet contacts = ContactSet::kReduced;
-  std::uint32_t manifold_points = 4;  // per body pair when reduced, 1..8
-  // Contacts are made this far before spheres touch, plus how far each pair can close in a step
-  // (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m
-  float contact_margin = 0.02f;
-  bool speculative_contacts = true;
 };
 
 // Bodies at rest stop being simulated until something touches them (plausible mode).
@@ -103,6 +66,10 @@ struct WorldSettings {
   // Threads a step runs on (oneTBB): the narrow phase, the contacts and the solver's islands.
   // 0 takes every hardware thread. The results are bit for bit the same whatever the count.
   std::uint32_t threads = 1;
+  // StepStats' plausibility figures (penetration of the leaf pairs, kinetic energy, bodies at
+  // rest, jitter): each a pass over every leaf pair or body, so computed only when asked for.
+  // Times and counts are always measured.
+  bool plausibility_figures = false;
 };
 
 // What add_body needs. The sphere-tree and the inertia are in the body frame, whose origin is the
@@ -119,7 +86,6 @@ struct BodyDesc {
   bool is_static = false;
 };
 
-class ContactReducer;
 class ContactSolver;
 class SleepTracker;
 
@@ -134,8 +100,11 @@ class World {
   // that is not a unit quaternion (within 1e-3), a mass that is not positive and finite, an
   // inertia that is not symmetric positive definite, restitution outside 0..1, negative friction.
   BodyId add_body(const BodyDesc& desc);
+  // The body leaves the world with its contacts, pair materials and sleep; the bodies it slept
+  // with wake. Its id, and every copy of it, is stale from then on. Every call taking a BodyId
+  // throws sphys::Error for a stale or unknown id.
   void remove_body(BodyId body);
-  [[nodiscard]] const RigidBody& body(BodyId body) const { return bodies_[body.index]; }
+  [[nodiscard]] const RigidBody& body(BodyId body) const { return bodies_[checked(body)]; }
   // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes with the
   // bodies it sleeps with. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
@@ -145,11 +114,16 @@ class World {
   // their own (see sphys/material.h). Checked like a body's material.
   void set_pair_material(BodyId a, BodyId b, const PairMaterial& material);
   [[nodiscard]] bool asleep(BodyId body) const;
-  // Body slots, alive or removed; index with BodyId{i}.
+  // Body slots, alive or removed; id_of(i) is the id of slot i's body (or of its last one).
   [[nodiscard]] std::uint32_t body_slots() const {
     return static_cast<std::uint32_t>(bodies_.size());
   }
-  [[nodiscard]] bool alive(BodyId body) const { return alive_[body.index] != 0; }
+  [[nodiscard]] BodyId id_of(std::uint32_t slot) const { return {slot, generation_.at(slot)}; }
+  // True for the id of a body in the world, false for a stale or unknown one.
+  [[nodiscard]] bool alive(BodyId body) const {
+    return body.index < bodies_.size() && alive_[body.index] != 0 &&
+           generation_[body.index] == body.generation;
+  }
 
   // Advances the world by dt (unit: s, positive and finite, else sphys::Error). Never throws
   // otherwise; when a body's state stops being finite the step reports it in
@@ -157,7 +131,7 @@ class World {
   const StepStats& step(float dt);
   [[nodiscard]] const StepStats& stats() const { return stats_; }
   // The contacts the last step (its last substep) responded to: after reduction, when reduced.
-  [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
+  [[nodiscard]] std::span<const Contact> contacts() const { return detector_.contacts(); }
   [[nodiscard]] bool stopped() const { return stopped_; }
 
   // The time-critical narrow phase's budgets (CollisionSettings::max_sphere_tests and
@@ -169,23 +143,31 @@ class World {
   [[nodiscard]] const CollisionDetector& detector() const { return detector_; }
 
  private:
+  // The slot of a body in the world; throws sphys::Error for a stale or unknown id.
+  [[nodiscard]] std::uint32_t checked(BodyId body) const;
   [[nodiscard]] std::uint32_t substeps_for(float dt) const;
+  // The stages of a substep, in order, each in the file named for it (docs/architecture.md).
   void substep(float dt, StepStats& stats);
-  void detect(StepStats& stats);
-  void reduce_contacts();
-  void respond(float dt, StepStats& stats);
-  void integrate_positions(float dt, bool plausible);
+  void integrate_velocities(float dt, bool plausible, StepStats& stats);
+  void detect_contacts(StepStats& stats);
+  void add_detection(const CollisionStats& detection, StepStats& stats) const;
+  void wake_touched(StepStats& stats);
+  void mix_materials();
+  void respond(float dt, bool plausible, StepStats& stats);
+  void integrate_positions(float dt, bool plausible, StepStats& stats);
+  void update_sleep(float dt, StepStats& stats);
   void measure_rest(StepStats& stats);
   void wake(std::uint32_t body);
   [[nodiscard]] float fastest_point_speed(std::uint32_t body) const;
+  // The key of a body pair in pair_materials_, the same in either order.
+  [[nodiscard]] static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b);
 
   WorldSettings settings_;
   CollisionDetector detector_;
   std::vector<RigidBody> bodies_;
   std::vector<std::uint8_t> alive_;
-  std::vector<float> extent_;  // farthest tree point from the centre of mass. unit: m
-  std::vector<Contact> leaf_contacts_;
-  std::vector<Contact> contacts_;
+  std::vector<std::uint32_t> generation_;  // per slot: bumped when its body is removed
+  std::vector<float> extent_;              // farthest tree point from the centre of mass. unit: m
   std::vector<PairMaterial> materials_;
   std::vector<std::uint8_t> dynamic_;  // alive and not static, per body
   std::vector<std::uint8_t> moving_;   // dynamic and awake
@@ -194,7 +176,6 @@ class World {
   std::vector<std::uint32_t> sleep_changes_;  // bodies woken or fallen asleep, scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
   // Plausible mode's machinery, private to the library.
-  std::unique_ptr<ContactReducer> reducer_;
   std::unique_ptr<ContactSolver> solver_;
   std::unique_ptr<SleepTracker> sleep_;
   // On the heap so that the detector's and solver's pointer to it survives moving the world.

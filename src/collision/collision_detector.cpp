@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
+#include "collision/contact_reduction.h"
+#include "core/buffers.h"
+#include "core/stopwatch.h"
 #include "sphys/error.h"
 
 namespace sphys {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double elapsed_ms(Clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
-}
 
 bool finite(const Transform& pose) {
   return pose.translation.allFinite() && pose.rotation.coeffs().allFinite();
@@ -42,14 +40,56 @@ Aabb world_bounds(const SphereTree& tree, const Transform& pose, int level) {
   return box;
 }
 
-// Candidate pairs, and bodies against the plane, per run of the narrow phase: enough work per run
-// to outweigh handing it to a thread, and runs enough to share among threads.
+// Body b's pose in body a's frame.
+Transform relative_pose(const Transform& a, const Transform& b) {
+  const Quat inverse = a.rotation.conjugate();
+  return {inverse * b.rotation, inverse * (b.translation - a.translation)};
+}
+
+// How far any point of a body within `extent` of its origin can have moved between two of its
+// poses (relative ones here): the origin's move plus the turn's reach. unit: m
+float pose_change(const Transform& from, const Transform& to, float extent) {
+  Quat turn = from.rotation.conjugate() * to.rotation;
+  const float angle = 2.0f * std::atan2(turn.vec().norm(), std::abs(turn.w()));
+  return (to.translation - from.translation).norm() + angle * extent;
+}
+
+std::uint64_t proxy_key(const ProxyPair& pair) { return (std::uint64_t{pair.a} << 32) | pair.b; }
+
+// Jobs per run of the narrow phase: enough work per run to outweigh handing it to a thread, and
+// runs enough to share among threads.
 constexpr std::size_t kPairsPerChunk = 64;
 constexpr std::size_t kBodiesPerChunk = 256;
 
 }  // namespace
 
+struct CollisionDetector::NarrowChunk {
+  std::size_t begin = 0;  // jobs
+  std::size_t end = 0;
+  TreeDescent descent;
+  ContactReducer reducer;
+  std::vector<NodePair> node_pairs;
+  std::vector<std::uint32_t> plane_stack;
+  std::vector<LeafSpheres> leaves;
+  std::vector<PairLeaves> pairs;
+  std::vector<Contact> run;  // one pair's leaf contacts, before reduction
+  std::vector<Contact> contacts;
+  std::vector<ContactShape> shapes;
+  std::uint64_t sphere_tests = 0;
+  std::uint32_t leaf_pairs = 0;
+  std::uint32_t cut_short_pairs = 0;
+  std::uint32_t coincident_centres = 0;
+  std::uint32_t descended_pairs = 0;
+  std::uint32_t reused_pairs = 0;
+  float deepest_penetration = 0.0f;
+  double penetration_sum = 0.0;
+  std::uint32_t penetrating_contacts = 0;
+};
+
 CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {}
+CollisionDetector::~CollisionDetector() = default;
+CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
+CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
 
 BodyId CollisionDetector::add_body(std::shared_ptr<const SphereTree> tree, const Transform& pose,
                                    bool is_static) {
@@ -59,6 +99,7 @@ BodyId CollisionDetector::add_body(std::shared_ptr<const SphereTree> tree, const
   if (free_bodies_.empty()) {
     index = static_cast<std::uint32_t>(bodies_.size());
     bodies_.emplace_back();
+    ground_records_.emplace_back();
   } else {
     index = free_bodies_.back();
     free_bodies_.pop_back();
@@ -68,17 +109,27 @@ BodyId CollisionDetector::add_body(std::shared_ptr<const SphereTree> tree, const
   body.pose = pose;
   body.is_static = is_static;
   body.alive = true;
+  body.extent = body.tree->root().center.norm() + body.tree->subtree_radius(0);
   body.proxy =
       broad_phase_.add(broad_phase_box(body), is_static ? ProxyKind::kStatic : ProxyKind::kDynamic);
   if (body_of_proxy_.size() <= body.proxy) body_of_proxy_.resize(body.proxy + 1);
   body_of_proxy_[body.proxy] = index;
+  ground_records_[index] = PairRecord{};
   return {index};
 }
 
 void CollisionDetector::remove_body(BodyId id) {
   Body& body = bodies_[id.index];
   broad_phase_.remove(body.proxy);
+  // The broad phase drops its pairs at the next update; until then they must not be reused.
+  for (PairRecord& record : records_) {
+    if (record.proxies.a == body.proxy || record.proxies.b == body.proxy) {
+      record.descent_margin = -1.0f;
+      record.count = 0;
+    }
+  }
   body = Body{};
+  ground_records_[id.index] = PairRecord{};
   free_bodies_.push_back(id.index);
 }
 
@@ -95,6 +146,15 @@ void CollisionDetector::set_motion(BodyId id, const Vec3& displacement, float tu
 }
 
 void CollisionDetector::set_asleep(BodyId id, bool asleep) { bodies_[id.index].asleep = asleep; }
+
+bool CollisionDetector::moves(std::uint32_t index) const {
+  const Body& body = bodies_[index];
+  return body.alive && !body.is_static && !body.asleep;
+}
+
+bool CollisionDetector::budget() const {
+  return settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
+}
 
 // The body's bound, grown by half the contact margin (two grown boxes meet when the bodies are
 // within the margin) and, with speculative contacts, by how far the body can move this step.
@@ -124,39 +184,209 @@ Aabb CollisionDetector::bounds(BodyId id) const {
   return broad_phase_.box(bodies_[id.index].proxy);
 }
 
-const CollisionStats& CollisionDetector::detect(std::vector<Contact>& contacts) {
-  contacts.clear();
+// The records follow the broad phase's pairs, both sorted by proxies: a pair still listed keeps
+// its record, a new pair gets an empty one, and the records of pairs gone are dropped.
+void CollisionDetector::carry_records_over() {
+  old_records_.swap(records_);
+  const std::span<const ProxyPair> pairs = broad_phase_.pairs();
+  resize_buffer(records_, pairs.size());
+  std::size_t old = 0;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const std::uint64_t key = proxy_key(pairs[p]);
+    while (old < old_records_.size() && proxy_key(old_records_[old].proxies) < key) ++old;
+    if (old < old_records_.size() && proxy_key(old_records_[old].proxies) == key) {
+      records_[p] = old_records_[old];
+    } else {
+      records_[p] = PairRecord{};
+      records_[p].proxies = pairs[p];
+    }
+  }
+}
+
+const CollisionStats& CollisionDetector::detect() {
   stats_ = {};
   stats_.bodies = static_cast<std::uint32_t>(broad_phase_.size());
 
-  const Clock::time_point broad_start = Clock::now();
+  const StepClock::time_point broad_start = StepClock::now();
   for (const Body& body : bodies_) {
     if (body.alive && !body.is_static && !body.asleep) {
       broad_phase_.set_box(body.proxy, broad_phase_box(body));
     }
   }
   broad_phase_.update();
-  stats_.candidate_pairs = static_cast<std::uint32_t>(broad_phase_.pairs().size());
+  carry_records_over();
+  stats_.candidate_pairs = static_cast<std::uint32_t>(records_.size());
   stats_.broad_phase_ms = elapsed_ms(broad_start);
 
-  const Clock::time_point narrow_start = Clock::now();
-  narrow_phase();
+  previous_contacts_.swap(contacts_);
+  previous_memory_.swap(memory_);
+  previous_shapes_.swap(shapes_);
+  contacts_.clear();
+  memory_.clear();
+  shapes_.clear();
+
+  // Pairs with no moving body make no contacts, and their records nothing to carry over.
+  jobs_.clear();
+  for (std::size_t p = 0; p < records_.size(); ++p) {
+    PairRecord& record = records_[p];
+    record.done = false;
+    if (moves(body_of_proxy_[record.proxies.a]) || moves(body_of_proxy_[record.proxies.b])) {
+      jobs_.push_back({static_cast<std::uint32_t>(p), false});
+    } else {
+      record.descent_margin = -1.0f;
+      record.count = 0;
+    }
+  }
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    bodies_[i].ground_done = false;
+    if (!settings_.ground_plane_height) continue;
+    if (moves(i)) {
+      jobs_.push_back({i, true});
+    } else {
+      ground_records_[i].descent_margin = -1.0f;
+      ground_records_[i].count = 0;
+    }
+  }
+  run_jobs();
+  return stats_;
+}
+
+const CollisionStats& CollisionDetector::detect_woken() {
+  stats_ = {};
+  jobs_.clear();
+  for (std::size_t p = 0; p < records_.size(); ++p) {
+    const PairRecord& record = records_[p];
+    if (!record.done &&
+        (moves(body_of_proxy_[record.proxies.a]) || moves(body_of_proxy_[record.proxies.b]))) {
+      jobs_.push_back({static_cast<std::uint32_t>(p), false});
+    }
+  }
+  if (settings_.ground_plane_height) {
+    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+      if (!bodies_[i].ground_done && moves(i)) jobs_.push_back({i, true});
+    }
+  }
+  run_jobs();
+  return stats_;
+}
+
+// Splits the jobs into runs of fixed length (the same whatever the thread count). A budget is
+// shared by the pairs in order: then all pairs are one run.
+void CollisionDetector::plan_chunks() {
+  chunks_.clear();
+  std::size_t pair_used = 0;
+  std::size_t plane_used = 0;
+  const bool one_run = budget();
+  for (std::size_t begin = 0; begin < jobs_.size();) {
+    const bool plane = jobs_[begin].plane;
+    const std::size_t length = plane ? kBodiesPerChunk : (one_run ? jobs_.size() : kPairsPerChunk);
+    std::size_t end = begin;
+    while (end < jobs_.size() && end - begin < length && jobs_[end].plane == plane) ++end;
+    // Pair runs and plane runs each keep their own chunks, whose buffers then grow to one kind
+    // of work.
+    std::vector<std::unique_ptr<NarrowChunk>>& pool = plane ? plane_chunks_ : pair_chunks_;
+    std::size_t& used = plane ? plane_used : pair_used;
+    if (pool.size() <= used) pool.push_back(std::make_unique<NarrowChunk>());
+    NarrowChunk& chunk = *pool[used++];
+    chunks_.push_back(&chunk);
+    chunk.begin = begin;
+    chunk.end = end;
+    chunk.leaves.clear();
+    chunk.pairs.clear();
+    chunk.contacts.clear();
+    chunk.shapes.clear();
+    chunk.sphere_tests = 0;
+    chunk.leaf_pairs = 0;
+    chunk.cut_short_pairs = 0;
+    chunk.coincident_centres = 0;
+    chunk.descended_pairs = 0;
+    chunk.reused_pairs = 0;
+    chunk.deepest_penetration = 0.0f;
+    chunk.penetration_sum = 0.0;
+    chunk.penetrating_contacts = 0;
+    begin = end;
+  }
+}
+
+// The narrow phase and the contacts of jobs_, appended to contacts_ in the jobs' order.
+void CollisionDetector::run_jobs() {
+  plan_chunks();
+  const auto for_each_chunk = [&](auto&& fn) {
+    const auto each = [&](std::size_t c) { fn(*chunks_[c]); };
+    if (parallel_ != nullptr) {
+      parallel_->for_each(chunks_.size(), each);
+    } else {
+      for (std::size_t c = 0; c < chunks_.size(); ++c) each(c);
+    }
+  };
+
+  const StepClock::time_point narrow_start = StepClock::now();
+  if (budget()) {
+    for (std::size_t c = 0; c < chunks_.size(); ++c) narrow_phase(*chunks_[c], narrow_start);
+  } else {
+    for_each_chunk([&](NarrowChunk& chunk) { narrow_phase(chunk, narrow_start); });
+  }
   stats_.narrow_phase_ms = elapsed_ms(narrow_start);
 
-  const Clock::time_point contacts_start = Clock::now();
-  std::size_t total = 0;
-  for (std::size_t c = 0; c < chunks_used_; ++c) {
-    chunks_[c].first_contact = total;
-    total += chunks_[c].leaves.size();
+  const StepClock::time_point contacts_start = StepClock::now();
+  for_each_chunk([&](NarrowChunk& chunk) { make_contacts(chunk); });
+  for (std::size_t c = 0; c < chunks_.size(); ++c) {
+    NarrowChunk& chunk = *chunks_[c];
+    const std::size_t base = contacts_.size();
+    contacts_.insert(contacts_.end(), chunk.contacts.begin(), chunk.contacts.end());
+    shapes_.insert(shapes_.end(), chunk.shapes.begin(), chunk.shapes.end());
+    resize_buffer(memory_, contacts_.size());
+    for (std::size_t k = 0; k < chunk.pairs.size(); ++k) {
+      const PairLeaves& pair = chunk.pairs[k];
+      const std::size_t end =
+          k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
+      const std::size_t first = base + pair.contacts_begin;
+      carry_memory(*pair.record, first, base + end - first);
+      pair.record->first = static_cast<std::uint32_t>(first);
+      pair.record->count = static_cast<std::uint32_t>(base + end - first);
+    }
+    stats_.sphere_tests += chunk.sphere_tests;
+    stats_.leaf_pairs += chunk.leaf_pairs;
+    stats_.pairs_cut_short += chunk.cut_short_pairs;
+    stats_.coincident_centres += chunk.coincident_centres;
+    stats_.descended_pairs += chunk.descended_pairs;
+    stats_.reused_pairs += chunk.reused_pairs;
+    stats_.deepest_penetration = std::max(stats_.deepest_penetration, chunk.deepest_penetration);
+    stats_.penetration_sum += chunk.penetration_sum;
+    stats_.penetrating_contacts += chunk.penetrating_contacts;
   }
-  contacts.resize(total);
-  run_chunks([&](NarrowChunk& chunk) { make_contacts(chunk, contacts); });
-  for (std::size_t c = 0; c < chunks_used_; ++c) {
-    stats_.coincident_centres += chunks_[c].coincident_centres;
-  }
+  stats_.contacts = static_cast<std::uint32_t>(contacts_.size());
   stats_.contacts_ms = elapsed_ms(contacts_start);
-  stats_.contacts = static_cast<std::uint32_t>(contacts.size());
-  return stats_;
+}
+
+// Each new contact takes the memory of the contact of the same leaf pair among the record's
+// contacts of the last narrow phase. Both come in the descent's order mostly, so the search
+// starts after the last match.
+void CollisionDetector::carry_memory(const PairRecord& record, std::size_t first,
+                                     std::size_t count) {
+  const std::size_t old_first = record.first;
+  const std::size_t old_count = record.count;
+  float pair_stopped = 0.0f;
+  for (std::size_t i = 0; i < old_count; ++i) {
+    pair_stopped = std::min(pair_stopped, previous_memory_[old_first + i].stopped_approach);
+  }
+  std::size_t hint = 0;
+  for (std::size_t k = first; k < first + count; ++k) {
+    const Contact& contact = contacts_[k];
+    ContactMemory memory;
+    for (std::size_t tried = 0; tried < old_count; ++tried) {
+      const std::size_t i = (hint + tried) % old_count;
+      const Contact& old = previous_contacts_[old_first + i];
+      if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
+        memory = previous_memory_[old_first + i];
+        hint = i + 1;
+        break;
+      }
+    }
+    memory.stopped_approach = 0.0f;
+    memory.pair_stopped_approach = pair_stopped;
+    memory_[k] = memory;
+  }
 }
 
 // What is left of the time-critical budgets after `spent_microseconds` and `spent_tests` sphere
@@ -179,97 +409,99 @@ DescentSettings CollisionDetector::descent_budget(double spent_microseconds,
   return descent;
 }
 
-// Splits the candidate pairs, then the bodies for the ground plane, into runs of fixed length
-// (the same whatever the thread count). A budget is shared by the pairs in order: then all pairs
-// are one run.
-void CollisionDetector::plan_chunks(bool budget) {
-  const std::size_t pairs = broad_phase_.pairs().size();
-  const std::size_t pair_run = budget ? std::max<std::size_t>(pairs, 1) : kPairsPerChunk;
-  const std::size_t bodies = settings_.ground_plane_height ? bodies_.size() : std::size_t{0};
-  chunks_used_ = 0;
-  const auto add = [&](std::size_t begin, std::size_t end, bool plane) {
-    if (chunks_.size() <= chunks_used_) chunks_.emplace_back();
-    NarrowChunk& chunk = chunks_[chunks_used_++];
-    chunk.begin = begin;
-    chunk.end = end;
-    chunk.plane = plane;
-    chunk.leaves.clear();
-    chunk.sphere_tests = 0;
-    chunk.leaf_pairs = 0;
-    chunk.cut_short_pairs = 0;
-    chunk.coincident_centres = 0;
-  };
-  for (std::size_t begin = 0; begin < pairs; begin += pair_run) {
-    add(begin, std::min(begin + pair_run, pairs), false);
-  }
-  for (std::size_t begin = 0; begin < bodies; begin += kBodiesPerChunk) {
-    add(begin, std::min(begin + kBodiesPerChunk, bodies), true);
-  }
+void CollisionDetector::narrow_phase(NarrowChunk& chunk, StepClock::time_point start) {
+  for (std::size_t j = chunk.begin; j < chunk.end; ++j) pair_leaves(jobs_[j], chunk, start);
 }
 
-void CollisionDetector::narrow_phase() {
-  const bool budget = settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
-  plan_chunks(budget);
-  const Clock::time_point start = Clock::now();
-  const auto work = [&](NarrowChunk& chunk) {
-    if (!chunk.plane) {
-      descend_pairs(chunk, start);
-      return;
+// A pair whose bodies barely moved relative to each other since its last descent, within the gap
+// that descent looked up to, keeps its leaf pairs: they are placed at the new poses.
+bool CollisionDetector::reuse(PairRecord& record, const Transform& relative, float margin,
+                              float extent_b, std::uint32_t body_a, std::uint32_t body_b,
+                              NarrowChunk& chunk) {
+  if (settings_.reuse_distance <= 0.0f || budget() || record.descent_margin < 0.0f) return false;
+  const float moved = pose_change(record.relative, relative, extent_b);
+  if (!(moved <= settings_.reuse_distance && margin + moved <= record.descent_margin)) {
+    return false;
+  }
+  const Body& b = bodies_[body_b];
+  for (std::uint32_t i = record.first; i < record.first + record.count; ++i) {
+    const Contact& old = previous_contacts_[i];
+    LeafSpheres leaves{body_a, body_b, old.leaf_a, old.leaf_b, Sphere{}, Sphere{}};
+    const Sphere& leaf_b = b.tree->sphere(old.leaf_b);
+    leaves.sphere_b = {b.pose.apply(leaf_b.center), leaf_b.radius};
+    if (body_a != kGroundPlaneBody) {
+      const Body& a = bodies_[body_a];
+      const Sphere& leaf_a = a.tree->sphere(old.leaf_a);
+      leaves.sphere_a = {a.pose.apply(leaf_a.center), leaf_a.radius};
     }
-    for (std::size_t i = chunk.begin; i < chunk.end; ++i) {
-      const Body& body = bodies_[i];
-      if (body.alive && !body.is_static && !body.asleep) {
-        ground_plane_leaves(static_cast<std::uint32_t>(i), *settings_.ground_plane_height, chunk);
-      }
+    chunk.leaves.push_back(leaves);
+  }
+  ++chunk.reused_pairs;
+  return true;
+}
+
+// The leaf spheres of one job within its pair's gap: reused from its record, or from a descent.
+void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
+                                    StepClock::time_point start) {
+  PairLeaves pair;
+  pair.leaves_begin = static_cast<std::uint32_t>(chunk.leaves.size());
+  if (job.plane) {
+    const Body& body = bodies_[job.index];
+    bodies_[job.index].ground_done = true;
+    PairRecord& record = ground_records_[job.index];
+    pair.record = &record;
+    const float margin = plane_margin(body);
+    pair.reused = reuse(record, body.pose, margin, body.extent, kGroundPlaneBody, job.index, chunk);
+    if (!pair.reused) {
+      const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
+      ground_plane_leaves(job.index, *settings_.ground_plane_height + looked, chunk);
+      record.relative = body.pose;
+      record.descent_margin = looked;
+      ++chunk.descended_pairs;
     }
-  };
-  if (budget) {
-    for (std::size_t c = 0; c < chunks_used_; ++c) work(chunks_[c]);
   } else {
-    run_chunks(work);
-  }
-  for (std::size_t c = 0; c < chunks_used_; ++c) {
-    const NarrowChunk& chunk = chunks_[c];
-    stats_.sphere_tests += chunk.sphere_tests;
-    stats_.leaf_pairs += chunk.leaf_pairs;
-    stats_.pairs_cut_short += chunk.cut_short_pairs;
-  }
-}
-
-void CollisionDetector::descend_pairs(NarrowChunk& chunk, Clock::time_point start) const {
-  const std::span<const ProxyPair> pairs = broad_phase_.pairs();
-  for (std::size_t p = chunk.begin; p < chunk.end; ++p) {
-    const std::uint32_t ia = body_of_proxy_[pairs[p].a];
-    const std::uint32_t ib = body_of_proxy_[pairs[p].b];
+    PairRecord& record = records_[job.index];
+    pair.record = &record;
+    const std::uint32_t ia = body_of_proxy_[record.proxies.a];
+    const std::uint32_t ib = body_of_proxy_[record.proxies.b];
     const Body& a = bodies_[ia];
     const Body& b = bodies_[ib];
-    const bool a_moves = !a.is_static && !a.asleep;
-    const bool b_moves = !b.is_static && !b.asleep;
-    if (!a_moves && !b_moves) continue;
-    chunk.node_pairs.clear();
-    const DescentSettings settings =
-        descent_budget(1e3 * elapsed_ms(start), chunk.sphere_tests, pair_margin(a, b));
-    const DescentStats descent =
-        chunk.descent.descend(*a.tree, a.pose, *b.tree, b.pose, settings, chunk.node_pairs);
-    chunk.sphere_tests += descent.sphere_tests;
-    chunk.leaf_pairs += descent.leaf_pairs;
-    chunk.cut_short_pairs += descent.cut_short_pairs;
-    for (const NodePair& nodes : chunk.node_pairs) {
-      chunk.leaves.push_back({ia, ib, nodes.node_a, nodes.node_b,
-                              chunk.descent.world_sphere_a(*a.tree, nodes.node_a),
-                              chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
+    const float margin = pair_margin(a, b);
+    const Transform relative = relative_pose(a.pose, b.pose);
+    pair.reused = reuse(record, relative, margin, b.extent, ia, ib, chunk);
+    if (!pair.reused) {
+      const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
+      chunk.node_pairs.clear();
+      const DescentSettings settings =
+          descent_budget(1e3 * elapsed_ms(start), chunk.sphere_tests, looked);
+      const DescentStats descent =
+          chunk.descent.descend(*a.tree, a.pose, *b.tree, b.pose, settings, chunk.node_pairs);
+      chunk.sphere_tests += descent.sphere_tests;
+      chunk.leaf_pairs += descent.leaf_pairs;
+      chunk.cut_short_pairs += descent.cut_short_pairs;
+      for (const NodePair& nodes : chunk.node_pairs) {
+        chunk.leaves.push_back({ia, ib, nodes.node_a, nodes.node_b,
+                                chunk.descent.world_sphere_a(*a.tree, nodes.node_a),
+                                chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
+      }
+      record.relative = relative;
+      record.descent_margin = looked;
+      ++chunk.descended_pairs;
     }
+    record.done = true;
   }
+  pair.leaves_end = static_cast<std::uint32_t>(chunk.leaves.size());
+  chunk.pairs.push_back(pair);
 }
 
 // Descends one body's tree against the half-space y <= height: a subtree is skipped when its
-// bound is above the plane by more than the body's margin; each leaf sphere within it is kept.
-void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height,
+// bound is above `reach_down` (the plane's height plus the body's gap); each leaf sphere within it
+// is kept.
+void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_down,
                                             NarrowChunk& chunk) const {
   const Body& body = bodies_[index];
   const SphereTree& tree = *body.tree;
   const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
-  const float reach_down = height + plane_margin(body);
   std::vector<std::uint32_t>& stack = chunk.plane_stack;
   stack.assign(1, 0);
   while (!stack.empty()) {
@@ -292,32 +524,74 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float height,
   }
 }
 
-// One contact per pair of leaf spheres (paper eq. 1-3), in the narrow phase's order.
-void CollisionDetector::make_contacts(NarrowChunk& chunk, std::vector<Contact>& contacts) const {
-  std::uint32_t fallback_a = kGroundPlaneBody;
-  std::uint32_t fallback_b = kGroundPlaneBody;
-  Vec3 fallback = Vec3::UnitY();
-  std::size_t out = chunk.first_contact;
-  for (const LeafSpheres& leaves : chunk.leaves) {
-    Contact& contact = contacts[out++];
-    contact = Contact{};
-    contact.body_a = leaves.body_a;
-    contact.body_b = leaves.body_b;
-    contact.leaf_a = leaves.leaf_a;
-    contact.leaf_b = leaves.leaf_b;
-    if (leaves.body_a == kGroundPlaneBody) {
-      sphere_plane_contact(*settings_.ground_plane_height, leaves.sphere_b, contact);
-    } else {
-      // The pairs of one body pair are consecutive: one fallback normal serves them all.
-      if (leaves.body_a != fallback_a || leaves.body_b != fallback_b) {
-        fallback_a = leaves.body_a;
-        fallback_b = leaves.body_b;
-        fallback = fallback_normal(bodies_[fallback_a].pose.translation,
-                                   bodies_[fallback_b].pose.translation);
-      }
-      if (sphere_sphere_contact(leaves.sphere_a, leaves.sphere_b, fallback, contact)) {
+// One contact per pair of leaf spheres (paper eq. 1-3), in the narrow phase's order; then, pair by
+// pair, the reduction to a manifold, or for a reused pair its contacts' own depth offsets and
+// normals.
+void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
+  const bool measure = settings_.measure_penetration;
+  for (PairLeaves& pair : chunk.pairs) {
+    pair.contacts_begin = static_cast<std::uint32_t>(chunk.contacts.size());
+    if (pair.leaves_end == pair.leaves_begin) continue;
+    const LeafSpheres& first = chunk.leaves[pair.leaves_begin];
+    const bool plane = first.body_a == kGroundPlaneBody;
+    // The pairs of one body pair share one fallback normal.
+    const Vec3 fallback = plane ? Vec3::UnitY()
+                                : fallback_normal(bodies_[first.body_a].pose.translation,
+                                                  bodies_[first.body_b].pose.translation);
+    chunk.run.clear();
+    for (std::uint32_t l = pair.leaves_begin; l < pair.leaves_end; ++l) {
+      const LeafSpheres& leaves = chunk.leaves[l];
+      Contact contact;
+      contact.body_a = leaves.body_a;
+      contact.body_b = leaves.body_b;
+      contact.leaf_a = leaves.leaf_a;
+      contact.leaf_b = leaves.leaf_b;
+      if (plane) {
+        sphere_plane_contact(*settings_.ground_plane_height, leaves.sphere_b, contact);
+      } else if (sphere_sphere_contact(leaves.sphere_a, leaves.sphere_b, fallback, contact)) {
         ++chunk.coincident_centres;
       }
+      if (measure && contact.depth > 0.0f) {
+        chunk.deepest_penetration = std::max(chunk.deepest_penetration, contact.depth);
+        chunk.penetration_sum += contact.depth;
+        ++chunk.penetrating_contacts;
+      }
+      chunk.run.push_back(contact);
+    }
+    const Quat rotation_a = plane ? Quat::Identity() : bodies_[first.body_a].pose.rotation;
+    if (pair.reused) {
+      const std::uint32_t old_first = pair.record->first;
+      for (std::size_t i = 0; i < chunk.run.size(); ++i) {
+        const ContactShape& shape = previous_shapes_[old_first + i];
+        Contact contact = chunk.run[i];
+        contact.depth += shape.depth_offset;
+        contact.normal = rotation_a * shape.normal_in_a;
+        chunk.contacts.push_back(contact);
+        chunk.shapes.push_back(shape);
+      }
+      continue;
+    }
+    const std::size_t reduced_begin = chunk.contacts.size();
+    if (settings_.manifold_points == 0) {
+      chunk.contacts.insert(chunk.contacts.end(), chunk.run.begin(), chunk.run.end());
+    } else {
+      // The record still holds the last narrow phase's range (a record that had none, none).
+      const std::span<const Contact> kept =
+          pair.record->count == 0 ? std::span<const Contact>{}
+                                  : std::span<const Contact>(previous_contacts_)
+                                        .subspan(pair.record->first, pair.record->count);
+      chunk.reducer.reduce(chunk.run, settings_.manifold_points, kept, chunk.contacts);
+    }
+    for (std::size_t k = reduced_begin; k < chunk.contacts.size(); ++k) {
+      const Contact& contact = chunk.contacts[k];
+      float own_depth = contact.depth;
+      for (const Contact& leaf : chunk.run) {
+        if (leaf.leaf_a == contact.leaf_a && leaf.leaf_b == contact.leaf_b) {
+          own_depth = leaf.depth;
+          break;
+        }
+      }
+      chunk.shapes.push_back({contact.depth - own_depth, rotation_a.conjugate() * contact.normal});
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/buffers.h"
 #include "sphys/error.h"
 
 namespace sphys {
@@ -43,16 +44,6 @@ class WeightedNormalSum {
   Vec3 sum_ = Vec3::Zero();
   float total_weight_ = 0.0f;
 };
-
-bool same_body_pair(const Contact& a, const Contact& b) {
-  return a.body_a == b.body_a && a.body_b == b.body_b;
-}
-
-std::size_t end_of_run(std::span<const Contact> contacts, std::size_t begin) {
-  std::size_t end = begin + 1;
-  while (end < contacts.size() && same_body_pair(contacts[begin], contacts[end])) ++end;
-  return end;
-}
 
 std::uint32_t deepest_index(std::span<const Contact> run) {
   std::uint32_t deepest = 0;
@@ -194,7 +185,7 @@ std::uint32_t nearest_chosen_slot(const Vec3& p, std::span<const Contact> run,
 
 void assign_clusters(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
                      const Vec3& normal, std::vector<std::uint32_t>& cluster) {
-  cluster.resize(run.size());
+  resize_buffer(cluster, run.size());
   for (std::size_t i = 0; i < run.size(); ++i) {
     cluster[i] = nearest_chosen_slot(run[i].point, run, chosen, normal);
   }
@@ -215,43 +206,34 @@ Contact cluster_contact(std::span<const Contact> run, std::span<const std::uint3
   return merged;
 }
 
-ContactReducer::Feature feature_of(const Contact& contact) {
-  return {contact.body_a, contact.body_b, contact.leaf_a, contact.leaf_b};
+bool same_leaves(const Contact& a, const Contact& b) {
+  return a.leaf_a == b.leaf_a && a.leaf_b == b.leaf_b;
 }
 
 }  // namespace
 
-void ContactReducer::reduce(std::span<const Contact> contacts, std::uint32_t max_points,
-                            std::vector<Contact>& reduced) {
+void ContactReducer::reduce(std::span<const Contact> run, std::uint32_t max_points,
+                            std::span<const Contact> kept, std::vector<Contact>& reduced) {
   if (max_points < 1 || max_points > kMaxManifoldPoints) {
     throw Error("contact reduction: max_points must be in 1.." +
                 std::to_string(kMaxManifoldPoints) + ", got " + std::to_string(max_points));
   }
-  chosen_.reserve(kMaxManifoldPoints);
-  previous_.swap(kept_);
-  kept_.clear();
-  for (std::size_t begin = 0; begin < contacts.size();) {
-    const std::size_t end = end_of_run(contacts, begin);
-    const std::span<const Contact> run = contacts.subspan(begin, end - begin);
-    begin = end;
-    if (run.size() <= max_points) {
-      reduced.insert(reduced.end(), run.begin(), run.end());
-      for (const Contact& contact : run) kept_.push_back(feature_of(contact));
-      continue;
-    }
-    was_kept_.resize(run.size());
-    for (std::size_t i = 0; i < run.size(); ++i) {
-      was_kept_[i] = std::binary_search(previous_.begin(), previous_.end(), feature_of(run[i]));
-    }
-    const Vec3 normal = run_plane_normal(run);
-    choose_points(run, was_kept_, max_points, normal, chosen_);
-    assign_clusters(run, chosen_, normal, cluster_);
-    for (std::uint32_t slot = 0; slot < chosen_.size(); ++slot) {
-      reduced.push_back(cluster_contact(run, chosen_, cluster_, slot));
-      kept_.push_back(feature_of(run[chosen_[slot]]));
-    }
+  if (run.size() <= max_points) {
+    reduced.insert(reduced.end(), run.begin(), run.end());
+    return;
   }
-  std::sort(kept_.begin(), kept_.end());
+  chosen_.reserve(kMaxManifoldPoints);
+  resize_buffer(was_kept_, run.size());
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    was_kept_[i] = std::any_of(kept.begin(), kept.end(),
+                               [&](const Contact& k) { return same_leaves(k, run[i]); });
+  }
+  const Vec3 normal = run_plane_normal(run);
+  choose_points(run, was_kept_, max_points, normal, chosen_);
+  assign_clusters(run, chosen_, normal, cluster_);
+  for (std::uint32_t slot = 0; slot < chosen_.size(); ++slot) {
+    reduced.push_back(cluster_contact(run, chosen_, cluster_, slot));
+  }
 }
 
 }  // namespace sphys

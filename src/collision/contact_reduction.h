@@ -8,15 +8,13 @@
 #include <span>
 #include <vector>
 
+#include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 
 namespace sphys {
 
-// Largest manifold a body pair may be reduced to.
-inline constexpr std::uint32_t kMaxManifoldPoints = 8;
-
-// Appends to `reduced` at most `max_points` (1..kMaxManifoldPoints) contacts for each run of
-// consecutive contacts with the same (body_a, body_b), in the order the runs come:
+// Reduces the contacts of one body pair (`run`, at least one) to at most `max_points`
+// (1..kMaxManifoldPoints), appended to `reduced`:
 //  - a run of at most `max_points` contacts is copied unchanged;
 //  - otherwise the points are chosen among the run's own contacts (their ids and points kept, so
 //    that warm starting can match them from step to step): the deepest first, then the one
@@ -25,41 +23,28 @@ inline constexpr std::uint32_t kMaxManifoldPoints = 8;
 //    `max_points`, the one farthest from those chosen. Every contact of the run joins the cluster
 //    of its nearest chosen point; a chosen contact's normal becomes the depth-weighted mean of its
 //    cluster's normals (normalised) and its depth the cluster's largest depth.
-// Persistent: the reducer remembers the contacts (bodies and leaf ids) it kept in the previous
-// call, and prefers them while they stay nearly as good, so that a resting pair's manifold does
-// not flip between two sets whose depths differ by rounding (each flip loses the warm-started
-// impulses and kicks the body): the first point is a kept one whenever a kept one is within
-// kPersistentDepth of the deepest, and a kept candidate's score is worth kPersistentScoreBonus
-// times a new one's. A new reducer, or one after forget(), chooses as described above.
-// Deterministic: ties go to the earlier contact. Contacts with negative depth (speculative) take
-// part like the others. Allocates only when `reduced` or internal scratch must grow.
+// Persistent: `kept` is the pair's manifold from the previous narrow phase (its pair record), and
+// its leaf pairs are preferred while they stay nearly as good, so that a resting pair's manifold
+// does not flip between two sets whose depths differ by rounding (each flip loses the
+// warm-started impulses and kicks the body): the first point is a kept one whenever a kept one is
+// within kPersistentDepth of the deepest, and a kept candidate's score is worth
+// kPersistentScoreBonus times a new one's. Deterministic: ties go to the earlier contact.
+// Contacts with negative depth (speculative) take part like the others. Allocates only when
+// `reduced` or internal scratch must grow. One reducer per thread.
 class ContactReducer {
  public:
-  void reduce(std::span<const Contact> contacts, std::uint32_t max_points,
+  void reduce(std::span<const Contact> run, std::uint32_t max_points, std::span<const Contact> kept,
               std::vector<Contact>& reduced);
-  // Drops the memory of the previous call (e.g. when a body is removed and its slot reused).
-  void forget() { kept_.clear(); }
 
   // A depth this close to the deepest lets a kept contact stay the first point. The cluster's
   // deepest overlap is still the manifold's depth there, so nothing goes unresolved. unit: m
   static constexpr float kPersistentDepth = 0.001f;
   static constexpr float kPersistentScoreBonus = 1.25f;  // unit: dimensionless, > 1
 
-  // A contact's identity from step to step: its bodies and leaf spheres.
-  struct Feature {
-    std::uint32_t body_a;
-    std::uint32_t body_b;
-    std::uint32_t leaf_a;
-    std::uint32_t leaf_b;
-    auto operator<=>(const Feature&) const = default;
-  };
-
  private:
   std::vector<std::uint32_t> chosen_;
   std::vector<std::uint32_t> cluster_;
-  std::vector<std::uint8_t> was_kept_;  // per contact of the run being reduced
-  std::vector<Feature> kept_;           // this call's choices, sorted at the end
-  std::vector<Feature> previous_;       // the previous call's, sorted
+  std::vector<std::uint8_t> was_kept_;  // per contact of the run
 };
 
 }  // namespace sphys

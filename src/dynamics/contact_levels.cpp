@@ -1,5 +1,7 @@
 #include "dynamics/contact_levels.h"
 
+#include "core/buffers.h"
+
 namespace sphys {
 
 std::span<const std::uint32_t> ContactLevels::compute(
@@ -12,7 +14,7 @@ std::span<const std::uint32_t> ContactLevels::compute(
     ++first_[b + 1];
   }
   for (std::size_t i = 0; i < bodies; ++i) first_[i + 1] += first_[i];
-  neighbours_.resize(first_[bodies]);
+  resize_buffer(neighbours_, first_[bodies]);
   filled_.assign(first_.begin(), first_.end() - 1);
   for (const auto& [a, b] : contacts) {
     neighbours_[filled_[a]++] = b;

@@ -5,14 +5,11 @@
 #include <limits>
 #include <utility>
 
+#include "core/buffers.h"
 #include "dynamics/contact_levels.h"
 
 namespace sphys {
 namespace {
-
-std::uint64_t key_of(std::uint32_t first, std::uint32_t second) {
-  return (std::uint64_t{first} << 32) | second;
-}
 
 // A fixed tangent basis of a normal, so that the friction impulses kept in world space project
 // back onto the same directions from step to step.
@@ -113,6 +110,7 @@ void ContactSolver::load_bodies(std::span<const RigidBody> bodies,
 }
 
 void ContactSolver::prepare(std::span<const Contact> contacts,
+                            std::span<const ContactMemory> memory,
                             std::span<const PairMaterial> materials, const SolverSettings& settings,
                             float dt, ContactSolverStats& stats) {
   const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
@@ -151,45 +149,35 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     // A gap may close within the step and no more; a touching contact may not approach.
     c.target_speed = contact.depth < 0.0f ? contact.depth / dt : 0.0f;
     c.approach = c.normal.dot(relative_velocity(c, linear_, angular_));
-    c.bodies_key = key_of(contact.body_a, contact.body_b);
-    c.leaves_key = key_of(contact.leaf_a, contact.leaf_b);
-
-    if (settings.warm_starting || c.depth >= touching) {
-      const Kept probe{c.bodies_key, c.leaves_key};
-      auto it = std::lower_bound(previous_.begin(), previous_.end(), probe);
-      if (settings.warm_starting && it != previous_.end() && it->bodies == c.bodies_key &&
-          it->leaves == c.leaves_key) {
-        c.normal_impulse = it->normal_impulse;
-        c.previous_solved = it->solved_impulse;
-        c.tangent1_impulse = it->friction_impulse.dot(c.tangent1);
-        c.tangent2_impulse = it->friction_impulse.dot(c.tangent2);
-        ++stats.warm_started;
-      }
-      if (c.depth >= touching) {
-        // Bodies a gap contact of this pair stopped short in the last step meet now: they bounce
-        // with the speed they came at, not the speed they were slowed to.
-        const Kept pair_start{c.bodies_key, 0};
-        for (auto p = std::lower_bound(previous_.begin(), previous_.end(), pair_start);
-             p != previous_.end() && p->bodies == c.bodies_key; ++p) {
-          c.approach = std::min(c.approach, p->stopped_approach);
-        }
-      }
+    c.contact = static_cast<std::uint32_t>(k);
+    const ContactMemory& kept = memory[k];
+    if (settings.warm_starting && kept.solved_impulse >= 0.0f) {
+      c.normal_impulse = kept.normal_impulse;
+      c.previous_solved = kept.solved_impulse;
+      c.tangent1_impulse = kept.friction_impulse.dot(c.tangent1);
+      c.tangent2_impulse = kept.friction_impulse.dot(c.tangent2);
+      ++stats.warm_started;
     }
+    // Bodies a gap contact of this pair stopped short in the last step meet now: they bounce
+    // with the speed they came at, not the speed they were slowed to.
+    if (c.depth >= touching) c.approach = std::min(c.approach, kept.pair_stopped_approach);
     constraints_.push_back(c);
   }
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
-  if (settings.rolling_resistance > 0.0f) mark_pairs();
+  if (settings.rolling_resistance > 0.0f) mark_pairs(contacts);
 }
 
 // A body pair's contacts come one after another (the detector and the reducer emit them by
 // pair): its first constraint gets the pair's size and the rolling resistance's mass.
-void ContactSolver::mark_pairs() {
+void ContactSolver::mark_pairs(std::span<const Contact> contacts) {
+  const auto same_pair = [&](const Constraint& x, const Constraint& y) {
+    const Contact& cx = contacts[x.contact];
+    const Contact& cy = contacts[y.contact];
+    return cx.body_a == cy.body_a && cx.body_b == cy.body_b;
+  };
   for (std::size_t first = 0; first < constraints_.size();) {
     std::size_t end = first + 1;
-    while (end < constraints_.size() &&
-           constraints_[end].bodies_key == constraints_[first].bodies_key) {
-      ++end;
-    }
+    while (end < constraints_.size() && same_pair(constraints_[end], constraints_[first])) ++end;
     Constraint& c = constraints_[first];
     c.pair_size = static_cast<std::uint32_t>(end - first);
     const Mat3 inverse_inertia = inverse_inertia_[c.a] + inverse_inertia_[c.b];
@@ -374,9 +362,10 @@ void ContactSolver::recover_penetration(std::span<const std::uint32_t> island,
 }
 
 void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gravity_step,
-                                  float dt) {
+                                  float dt, std::span<ContactMemory> memory) const {
   const float touching = -kTouchingFraction * settings.linear_slop;
-  previous_.clear();
+  // Contacts with no moving body were not solved: they start the next step afresh.
+  for (ContactMemory& kept : memory) kept = ContactMemory{};
   for (const Constraint& c : constraints_) {
     // A step starts from this step's impulse, but at most twice the last step's plus what
     // gravity adds in a step: a blow (a body landing, or what it sends down a pile) lasts one
@@ -386,8 +375,11 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
     const float start =
         std::min(c.normal_impulse, 2.0f * before + c.normal_mass * gravity_step.norm());
     const float share = c.normal_impulse > 0.0f ? start / c.normal_impulse : 0.0f;
-    Kept kept{c.bodies_key, c.leaves_key, start, c.normal_impulse,
-              share * (c.tangent1_impulse * c.tangent1 + c.tangent2_impulse * c.tangent2)};
+    ContactMemory& kept = memory[c.contact];
+    kept.normal_impulse = start;
+    kept.solved_impulse = c.normal_impulse;
+    kept.friction_impulse =
+        share * (c.tangent1_impulse * c.tangent1 + c.tangent2_impulse * c.tangent2);
     // A gap contact that had to stop its bodies short: they meet in the next step, at the speed
     // they had when the gap closed. Gravity acted for the whole step but they fell only the gap,
     // a fraction of the way: the part of gravity's speed for the rest is taken back, so that the
@@ -399,68 +391,50 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
       const float gravity_approach = (moving_b - moving_a) * c.normal.dot(gravity_step);
       kept.stopped_approach = c.approach - (1.0f - used) * gravity_approach;
     }
-    previous_.push_back(kept);
   }
-  std::sort(previous_.begin(), previous_.end());
 }
 
-// Islands: the constraints joined through moving bodies. Constraints of different islands share
-// no moving body, so each island is solved on its own, in the constraints' order, and the result
-// is the same as one sweep over all of them in that order, whatever thread solves which island.
-void ContactSolver::group_islands() {
-  const std::size_t slots = linear_.size();
-  parent_.resize(slots);
-  for (std::size_t i = 0; i < slots; ++i) parent_[i] = static_cast<std::uint32_t>(i);
-  const auto find = [&](std::uint32_t body) {
-    while (parent_[body] != body) {
-      parent_[body] = parent_[parent_[body]];  // path halving
-      body = parent_[body];
-    }
-    return body;
-  };
-  for (const Constraint& c : constraints_) {
-    if (c.a_moves && c.b_moves) {
-      const std::uint32_t ra = find(c.a);
-      const std::uint32_t rb = find(c.b);
-      if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
-    }
-  }
-  // Islands numbered by their first constraint; constraints listed by island, in order.
+// Islands: constraints of different islands share no moving body, so each island is solved on
+// its own, in the constraints' order, and the result is the same as one sweep over all of them in
+// that order, whatever thread solves which island. Each constraint belongs to the island of a
+// moving body of it.
+void ContactSolver::group_islands(std::span<const std::uint32_t> island) {
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  island_of_root_.assign(slots, kNone);
-  constraint_island_.resize(constraints_.size());
+  island_number_.assign(linear_.size(), kNone);
+  resize_buffer(constraint_island_, constraints_.size());
   island_begin_.clear();
+  // Islands numbered by their first constraint; constraints listed by island, in order.
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     const Constraint& c = constraints_[k];
-    const std::uint32_t root = find(c.a_moves ? c.a : c.b);
-    if (island_of_root_[root] == kNone) {
-      island_of_root_[root] = static_cast<std::uint32_t>(island_begin_.size());
+    const std::uint32_t name = island[c.a_moves ? c.a : c.b];
+    if (island_number_[name] == kNone) {
+      island_number_[name] = static_cast<std::uint32_t>(island_begin_.size());
       island_begin_.push_back(0);
     }
-    const std::uint32_t island = island_of_root_[root];
-    constraint_island_[k] = island;
-    ++island_begin_[island];
+    const std::uint32_t number = island_number_[name];
+    constraint_island_[k] = number;
+    ++island_begin_[number];
   }
   std::uint32_t total = 0;
   for (std::uint32_t& begin : island_begin_) total += std::exchange(begin, total);
   island_begin_.push_back(total);
-  island_constraints_.resize(constraints_.size());
-  fill_.assign(island_begin_.begin(), island_begin_.end() - 1);
+  resize_buffer(island_constraints_, constraints_.size());
+  resize_buffer(fill_, island_begin_.size() - 1);
+  std::copy(island_begin_.begin(), island_begin_.end() - 1, fill_.begin());
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     island_constraints_[fill_[constraint_island_[k]]++] = static_cast<std::uint32_t>(k);
   }
 }
 
-ContactSolverStats ContactSolver::solve(std::span<RigidBody> bodies,
-                                        std::span<const std::uint8_t> moving,
-                                        std::span<const Contact> contacts,
-                                        std::span<const PairMaterial> materials,
-                                        const SolverSettings& settings, const Vec3& gravity,
-                                        float dt, const Parallel& parallel) {
+ContactSolverStats ContactSolver::solve(
+    std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
+    std::span<const std::uint32_t> island, std::span<const Contact> contacts,
+    std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
+    const SolverSettings& settings, const Vec3& gravity, float dt, const Parallel& parallel) {
   ContactSolverStats stats;
   load_bodies(bodies, moving);
-  prepare(contacts, materials, settings, dt, stats);
-  group_islands();
+  prepare(contacts, memory, materials, settings, dt, stats);
+  group_islands(island);
 
   std::span<const std::uint32_t> level;
   if (settings.shock_propagation) {
@@ -470,12 +444,12 @@ ContactSolverStats ContactSolver::solve(std::span<RigidBody> bodies,
     pairs_.clear();
     for (const Constraint& c : constraints_) pairs_.emplace_back(c.a, c.b);
     level = levels_.compute(immovable_, pairs_);
-    order_.resize(constraints_.size());
-    given_.resize(constraints_.size());
-    struck_.resize(constraints_.size());
+    resize_buffer(order_, constraints_.size());
+    resize_buffer(given_, constraints_.size());
+    resize_buffer(struck_, constraints_.size());
   }
   const std::size_t islands = island_begin_.size() - 1;
-  island_bounces_.assign(islands, 0);
+  fill_buffer(island_bounces_, islands, 0u);
   parallel.for_each(islands, [&](std::size_t i) {
     const std::span<const std::uint32_t> island(island_constraints_.data() + island_begin_[i],
                                                 island_begin_[i + 1] - island_begin_[i]);
@@ -485,7 +459,7 @@ ContactSolverStats ContactSolver::solve(std::span<RigidBody> bodies,
     recover_penetration(island, settings, dt);
   });
   for (const std::uint32_t bounces : island_bounces_) stats.bounces += bounces;
-  keep_impulses(settings, gravity * dt, dt);
+  keep_impulses(settings, gravity * dt, dt, memory);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].is_static || moving[i] == 0) continue;
     bodies[i].linear_velocity = linear_[i];

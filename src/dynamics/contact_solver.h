@@ -10,12 +10,13 @@
 #include <vector>
 
 #include "dynamics/contact_levels.h"
+#include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"
 #include "sphys/rigid_body.h"
-#include "sphys/world.h"
+#include "sphys/solver_settings.h"
 
 namespace sphys {
 
@@ -35,16 +36,18 @@ class ContactSolver {
   // push penetrating bodies apart: the caller moves the bodies by them for dt and forgets them,
   // so the recovery adds no kinetic energy. `gravity` is what the moving bodies were accelerated
   // by in this step before the call (it sets the speed a bounce starts from). Islands are solved
-  // on `parallel`'s threads; the result does not depend on how many there are.
+  // on `parallel`'s threads; the result does not depend on how many there are. `island[i]` names
+  // moving body i's island: bodies of different islands share no contact through a moving body
+  // (a coarser grouping, joined through immovable bodies too, gives the same result). `memory[k]`
+  // is contact k's warm start on entry and what it leaves for the next step on return.
   ContactSolverStats solve(std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-                           std::span<const Contact> contacts,
-                           std::span<const PairMaterial> materials, const SolverSettings& settings,
-                           const Vec3& gravity, float dt, const Parallel& parallel);
+                           std::span<const std::uint32_t> island, std::span<const Contact> contacts,
+                           std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
+                           const SolverSettings& settings, const Vec3& gravity, float dt,
+                           const Parallel& parallel);
 
   [[nodiscard]] std::span<const Vec3> position_linear() const { return pseudo_linear_; }
   [[nodiscard]] std::span<const Vec3> position_angular() const { return pseudo_angular_; }
-  // Forgets the impulses kept for warm starting (e.g. after bodies were teleported).
-  void forget() { previous_.clear(); }
 
  private:
   // One contact as the solver sees it. Index `ground` stands for the ground plane's slot.
@@ -89,24 +92,8 @@ class ContactSolver {
     float tangent1_impulse = 0.0f;
     float tangent2_impulse = 0.0f;
     float position_impulse = 0.0f;
-    std::uint64_t bodies_key = 0;
-    std::uint64_t leaves_key = 0;
+    std::uint32_t contact = 0;  // its index in the contacts given to solve()
   };
-  // Accumulated impulses of one contact, kept for the next step's warm start.
-  struct Kept {
-    std::uint64_t bodies = 0;              // (body_a, body_b)
-    std::uint64_t leaves = 0;              // (leaf_a, leaf_b)
-    float normal_impulse = 0.0f;           // to start the next step from
-    float solved_impulse = 0.0f;           // what the step ended with
-    Vec3 friction_impulse = Vec3::Zero();  // world frame, in the contact's tangent plane
-    // Approach speed when a gap contact stopped the bodies short, so that the bounce when they
-    // touch in the next step uses the speed they really had. unit: m/s (negative: approaching)
-    float stopped_approach = 0.0f;
-    friend bool operator<(const Kept& x, const Kept& y) {
-      return x.bodies != y.bodies ? x.bodies < y.bodies : x.leaves < y.leaves;
-    }
-  };
-
   [[nodiscard]] static Vec3 relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
                                               const std::vector<Vec3>& angular);
   // Applies `impulse` (world frame, from body a to body b) at the contact point.
@@ -118,23 +105,24 @@ class ContactSolver {
   void apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
              std::vector<Vec3>& angular) const;
   void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
-  void prepare(std::span<const Contact> contacts, std::span<const PairMaterial> materials,
-               const SolverSettings& settings, float dt, ContactSolverStats& stats);
-  void group_islands();
+  void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
+               std::span<const PairMaterial> materials, const SolverSettings& settings, float dt,
+               ContactSolverStats& stats);
+  void group_islands(std::span<const std::uint32_t> island);
   // The passes over one island's constraints (indices into constraints_, in order).
   void solve_velocities(std::span<const std::uint32_t> island, const SolverSettings& settings);
   void resist_rolling(std::uint32_t first, float arm);
-  void mark_pairs();
+  void mark_pairs(std::span<const Contact> contacts);
   [[nodiscard]] std::uint32_t bounce(std::span<const std::uint32_t> island,
                                      const SolverSettings& settings);
   void propagate_shock(std::span<const std::uint32_t> island, std::span<const std::uint32_t> level,
                        const SolverSettings& settings);
   void recover_penetration(std::span<const std::uint32_t> island, const SolverSettings& settings,
                            float dt);
-  void keep_impulses(const SolverSettings& settings, const Vec3& gravity_step, float dt);
+  void keep_impulses(const SolverSettings& settings, const Vec3& gravity_step, float dt,
+                     std::span<ContactMemory> memory) const;
 
   std::vector<Constraint> constraints_;
-  std::vector<Kept> previous_;  // sorted
   // Per body, and one more slot at the end for the ground plane.
   std::vector<Vec3> linear_;
   std::vector<Vec3> angular_;
@@ -147,8 +135,7 @@ class ContactSolver {
   std::vector<std::uint32_t> island_constraints_;
   std::vector<std::uint32_t> island_begin_;
   std::vector<std::uint32_t> island_bounces_;
-  std::vector<std::uint32_t> parent_;  // union-find over body slots
-  std::vector<std::uint32_t> island_of_root_;
+  std::vector<std::uint32_t> island_number_;  // per island name given, its number here
   std::vector<std::uint32_t> constraint_island_;
   std::vector<std::uint32_t> fill_;
   // Shock propagation's buffers, kept so that a step does not allocate them anew. The last three

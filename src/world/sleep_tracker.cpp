@@ -72,6 +72,12 @@ void SleepTracker::build_islands(std::span<const Contact> contacts,
   }
 }
 
+std::span<const std::uint32_t> SleepTracker::islands() {
+  island_.resize(parent_.size());
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) island_[i] = root(i);
+  return island_;
+}
+
 void SleepTracker::wake_disturbed(const SleepSettings& settings,
                                   std::vector<std::uint32_t>& woken) {
   std::fill(flags_.begin(), flags_.end(), std::uint8_t{0});

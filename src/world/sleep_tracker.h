@@ -23,6 +23,9 @@ class SleepTracker {
   // Islands: moving bodies (`dynamic[i] != 0`) touching by a contact share one; a sleeping body
   // is in one with the bodies it fell asleep with. Static bodies and the ground join nothing.
   void build_islands(std::span<const Contact> contacts, std::span<const std::uint8_t> dynamic);
+  // Per body, the island it is in (a name shared by the island's bodies), as of the last
+  // build_islands(). Valid until the next call of any other member.
+  [[nodiscard]] std::span<const std::uint32_t> islands();
   // Wakes the sleeping bodies of every island that holds an awake body not still for long enough,
   // appending them to `woken`.
   void wake_disturbed(const SleepSettings& settings, std::vector<std::uint32_t>& woken);
@@ -38,6 +41,7 @@ class SleepTracker {
   void join(std::uint32_t a, std::uint32_t b);
 
   std::vector<std::uint32_t> parent_;  // union-find of the islands
+  std::vector<std::uint32_t> island_;  // islands(), scratch
   std::vector<std::uint8_t> asleep_;
   std::vector<float> still_time_;           // unit: s
   std::vector<std::uint32_t> next_asleep_;  // circular list of the bodies that fell asleep together

@@ -1,32 +1,20 @@
 #include "sphys/world.h"
 
-#include <chrono>
 #include <cmath>
 #include <string>
 
 #include <Eigen/Eigenvalues>
 
-#include "collision/contact_reduction.h"
+#include "core/stopwatch.h"
 #include "dynamics/contact_solver.h"
-#include "dynamics/paper_response.h"
 #include "sphys/error.h"
 #include "world/sleep_tracker.h"
 
 namespace sphys {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double elapsed_ms(Clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
-}
-
 // Relative tolerance of the inertia's symmetry: the tensor comes from float or double sums.
 constexpr float kInertiaSymmetryTolerance = 1e-4f;
-// How far a given rotation may be from unit length before it is refused rather than normalised.
-constexpr float kUnitQuaternionTolerance = 1e-3f;
-// A body slower than this many times the sleep speed should be resting: its speed is jitter.
-constexpr float kSettlingFactor = 10.0f;
 // More threads than any machine has is a mistake in the settings, not a wish.
 constexpr std::uint32_t kMaxThreads = 1024;
 
@@ -88,6 +76,7 @@ void check_settings(const WorldSettings& settings) {
   non_negative(solver.contact_margin, "contact_margin");
   non_negative(solver.shock_speed, "shock_speed");
   non_negative(solver.rolling_resistance, "rolling_resistance");
+  non_negative(solver.reuse_distance, "reuse_distance");
   non_negative(settings.sleep.speed, "the sleep speed");
   non_negative(settings.sleep.time, "the sleep time");
   if (!(solver.position_correction >= 0.0f && solver.position_correction <= 1.0f)) {
@@ -101,17 +90,18 @@ CollisionSettings collision_settings(const WorldSettings& settings) {
   const bool plausible = settings.response == ResponseMode::kPlausible;
   collision.contact_margin = plausible ? settings.solver.contact_margin : 0.0f;
   collision.speculative = plausible && settings.solver.speculative_contacts;
+  collision.manifold_points = plausible && settings.solver.contacts == ContactSet::kReduced
+                                  ? settings.solver.manifold_points
+                                  : 0;
+  // Paper mode makes every overlapping leaf pair a contact afresh, as published.
+  collision.reuse_distance = plausible ? settings.solver.reuse_distance : 0.0f;
+  collision.measure_penetration = settings.plausibility_figures;
   return collision;
 }
 
 // The farthest point of a tree from its body's origin (the centre of mass). unit: m
 float tree_extent(const SphereTree& tree) {
   return tree.root().center.norm() + tree.subtree_radius(0);
-}
-
-std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t{a} << 32) | b;
 }
 
 void check_body(const BodyDesc& desc) {
@@ -146,7 +136,6 @@ void check_body(const BodyDesc& desc) {
 World::World(const WorldSettings& settings)
     : settings_(settings),
       detector_(collision_settings(settings)),
-      reducer_(std::make_unique<ContactReducer>()),
       solver_(std::make_unique<ContactSolver>()),
       sleep_(std::make_unique<SleepTracker>()) {
   check_settings(settings);
@@ -158,18 +147,32 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
+std::uint64_t World::pair_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t{a} << 32) | b;
+}
+
+std::uint32_t World::checked(BodyId id) const {
+  if (!alive(id)) {
+    throw Error("no body with id " + std::to_string(id.index) + "." +
+                std::to_string(id.generation) + " in the world (removed, or never added)");
+  }
+  return id.index;
+}
+
 BodyId World::add_body(const BodyDesc& desc) {
   check_body(desc);
   Transform pose = desc.pose;
   pose.rotation.normalize();
-  const BodyId id = detector_.add_body(desc.tree, pose, desc.is_static);
-  if (bodies_.size() <= id.index) {
-    bodies_.resize(id.index + 1);
-    alive_.resize(id.index + 1, 0);
-    extent_.resize(id.index + 1, 0.0f);
-    sleep_->resize(id.index + 1);
+  const BodyId slot = detector_.add_body(desc.tree, pose, desc.is_static);
+  if (bodies_.size() <= slot.index) {
+    bodies_.resize(slot.index + 1);
+    alive_.resize(slot.index + 1, 0);
+    generation_.resize(slot.index + 1, 0);
+    extent_.resize(slot.index + 1, 0.0f);
+    sleep_->resize(slot.index + 1);
   }
-  RigidBody& body = bodies_[id.index];
+  RigidBody& body = bodies_[slot.index];
   body = RigidBody{};
   body.pose = pose;
   body.restitution = desc.restitution;
@@ -183,9 +186,9 @@ BodyId World::add_body(const BodyDesc& desc) {
     body.inertia_body = 0.5f * (desc.inertia + desc.inertia.transpose());
     body.inverse_inertia_body = body.inertia_body.inverse();
   }
-  alive_[id.index] = 1;
-  extent_[id.index] = tree_extent(*desc.tree);
-  return id;
+  alive_[slot.index] = 1;
+  extent_[slot.index] = tree_extent(*desc.tree);
+  return {slot.index, generation_[slot.index]};
 }
 
 void World::wake(std::uint32_t index) {
@@ -195,17 +198,17 @@ void World::wake(std::uint32_t index) {
 }
 
 void World::remove_body(BodyId id) {
-  wake(id.index);  // the bodies it slept with lose a support
+  const std::uint32_t index = checked(id);
+  wake(index);  // the bodies it slept with lose a support
   detector_.remove_body(id);
-  bodies_[id.index] = RigidBody{};
-  bodies_[id.index].is_static = true;  // an empty slot neither moves nor counts
-  alive_[id.index] = 0;
+  bodies_[index] = RigidBody{};
+  bodies_[index].is_static = true;  // an empty slot neither moves nor counts
+  alive_[index] = 0;
+  ++generation_[index];
   std::erase_if(pair_materials_, [&](const auto& entry) {
-    return static_cast<std::uint32_t>(entry.first >> 32) == id.index ||
-           static_cast<std::uint32_t>(entry.first) == id.index;
+    return static_cast<std::uint32_t>(entry.first >> 32) == index ||
+           static_cast<std::uint32_t>(entry.first) == index;
   });
-  solver_->forget();
-  reducer_->forget();
 }
 
 void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds) {
@@ -218,34 +221,38 @@ void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_micr
 }
 
 void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
+  const std::uint32_t index = checked(id);
   if (!linear.allFinite() || !angular.allFinite()) {
     throw Error("a body's velocities must be finite");
   }
-  RigidBody& body = bodies_[id.index];
+  RigidBody& body = bodies_[index];
   if (body.is_static) return;
   body.linear_velocity = linear;
   body.angular_velocity = angular;
-  wake(id.index);
+  wake(index);
 }
 
 void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
+  const std::uint32_t index = checked(id);
   if (!impulse.allFinite() || !point.allFinite()) {
     throw Error("an impulse and its point must be finite");
   }
-  RigidBody& body = bodies_[id.index];
+  RigidBody& body = bodies_[index];
   if (body.is_static) return;
   body.linear_velocity += body.inverse_mass * impulse;
   body.angular_velocity +=
       body.inverse_inertia_world() * (point - body.pose.translation).cross(impulse);
-  wake(id.index);
+  wake(index);
 }
 
 void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
+  const std::uint32_t ia = checked(a);
+  const std::uint32_t ib = checked(b);
   check_material(material.restitution, material.friction);
-  pair_materials_[pair_key(a.index, b.index)] = material;
+  pair_materials_[pair_key(ia, ib)] = material;
 }
 
-bool World::asleep(BodyId id) const { return sleep_->asleep(id.index); }
+bool World::asleep(BodyId id) const { return sleep_->asleep(checked(id)); }
 
 float World::fastest_point_speed(std::uint32_t index) const {
   const RigidBody& body = bodies_[index];
@@ -276,43 +283,25 @@ const StepStats& World::step(float dt) {
     throw Error("the time step must be positive and finite, got " + std::to_string(dt));
   }
   if (stopped_) return stats_;
-  const Clock::time_point step_start = Clock::now();
+  const StepClock::time_point step_start = StepClock::now();
   StepStats stats;
   const std::uint32_t substeps = substeps_for(dt);
   stats.substeps = substeps;
   const float substep_dt = dt / static_cast<float>(substeps);
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
-  measure_rest(stats);
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (alive_[i] == 0 || bodies_[i].is_static) continue;
+    ++stats.moving_bodies;
+    if (sleep_->asleep(i)) ++stats.bodies_asleep;
+  }
+  if (settings_.plausibility_figures) measure_rest(stats);
   stats.step_ms = elapsed_ms(step_start);
   stats_ = stats;
   return stats_;
 }
 
-// Leaf-pair contacts into leaf_contacts_, with the detector's figures and the penetration added
-// to the step's.
-void World::detect(StepStats& stats) {
-  const CollisionStats& detection = detector_.detect(leaf_contacts_);
-  stats.broad_phase_ms += detection.broad_phase_ms;
-  stats.narrow_phase_ms += detection.narrow_phase_ms;
-  stats.contacts_ms += detection.contacts_ms;
-  stats.bodies = detection.bodies;
-  stats.candidate_pairs += detection.candidate_pairs;
-  stats.sphere_tests += detection.sphere_tests;
-  stats.leaf_pairs += detection.leaf_pairs;
-  stats.pairs_cut_short += detection.pairs_cut_short;
-  stats.coincident_centres += detection.coincident_centres;
-  double depth_sum = stats.mean_penetration * stats.penetrating_contacts;
-  for (const Contact& contact : leaf_contacts_) {
-    if (contact.depth <= 0.0f) continue;
-    stats.deepest_penetration = std::max(stats.deepest_penetration, contact.depth);
-    depth_sum += contact.depth;
-    ++stats.penetrating_contacts;
-  }
-  stats.mean_penetration =
-      stats.penetrating_contacts > 0 ? depth_sum / stats.penetrating_contacts : 0.0;
-}
-
-// Figures of one substep are added to the step's: times and counts summed, extremes kept.
+// The stages of one substep. Figures of a substep are added to the step's: times and counts
+// summed, extremes kept.
 void World::substep(float dt, StepStats& stats) {
   const bool plausible = settings_.response == ResponseMode::kPlausible;
   moving_.assign(bodies_.size(), 0);
@@ -321,174 +310,14 @@ void World::substep(float dt, StepStats& stats) {
     dynamic_[i] = alive_[i] != 0 && !bodies_[i].is_static ? 1 : 0;
     moving_[i] = dynamic_[i] != 0 && !sleep_->asleep(i) ? 1 : 0;
   }
-
-  const Clock::time_point velocities_start = Clock::now();
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (moving_[i] == 0) continue;
-    RigidBody& body = bodies_[i];
-    integrate_velocity(body, settings_.gravity, dt);
-    if (plausible) {
-      const Vec3 displacement = body.linear_velocity * dt;
-      const float turn_reach = body.angular_velocity.norm() * dt * extent_[i];
-      // Speeds whose squares overflow single precision leave no bound on the motion to detect
-      // with: the simulation has gone non-finite in all but name.
-      if (!std::isfinite(displacement.norm()) || !std::isfinite(turn_reach)) {
-        stats.non_finite_body = i;
-        stopped_ = true;
-        return;
-      }
-      detector_.set_motion({i}, displacement, turn_reach);
-    }
-  }
-  stats.integration_ms += elapsed_ms(velocities_start);
-
-  detect(stats);
-
-  const Clock::time_point response_start = Clock::now();
-  if (plausible) {
-    respond(dt, stats);
-  } else {
-    contacts_.swap(leaf_contacts_);
-    const PaperResponseStats response = apply_paper_response(
-        bodies_, contacts_, settings_.ground_restitution, settings_.paper_passes);
-    stats.impulses += response.impulses;
-    stats.response_passes += response.passes;
-  }
-  stats.contacts += static_cast<std::uint32_t>(contacts_.size());
-  stats.response_ms += elapsed_ms(response_start);
-
-  const Clock::time_point positions_start = Clock::now();
-  integrate_positions(dt, plausible);
-  stats.integration_ms += elapsed_ms(positions_start);
-
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (dynamic_[i] == 0) continue;
-    const RigidBody& body = bodies_[i];
-    // A quaternion with huge coefficients normalises to zero (its norm overflows), finite but no
-    // rotation: that is the same failure.
-    if (!body.finite() ||
-        !(std::abs(body.pose.rotation.squaredNorm() - 1.0f) < kUnitQuaternionTolerance)) {
-      stats.non_finite_body = i;
-      stopped_ = true;
-      return;
-    }
-  }
-  if (plausible) {
-    speeds_.assign(bodies_.size(), 0.0f);
-    for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-      if (moving_[i] != 0) speeds_[i] = fastest_point_speed(i);
-    }
-    sleep_changes_.clear();
-    stats.islands = sleep_->update(speeds_, dynamic_, dt, settings_.sleep, sleep_changes_);
-    for (const std::uint32_t body : sleep_changes_) {
-      bodies_[body].linear_velocity.setZero();
-      bodies_[body].angular_velocity.setZero();
-      detector_.set_asleep({body}, true);
-    }
-  }
-}
-
-// The response's contacts from leaf_contacts_: all of them, or a manifold per body pair.
-void World::reduce_contacts() {
-  const SolverSettings& solver = settings_.solver;
-  if (solver.contacts == ContactSet::kReduced) {
-    contacts_.clear();
-    reducer_->reduce(leaf_contacts_, solver.manifold_points, contacts_);
-  } else {
-    contacts_.swap(leaf_contacts_);
-  }
-}
-
-// Plausible mode: contact reduction, islands and waking, then the sequential-impulse solver.
-void World::respond(float dt, StepStats& stats) {
-  const SolverSettings& solver = settings_.solver;
-  reduce_contacts();
-
-  // Wake the sleeping islands a restless body touches. The detector skipped the pairs of bodies
-  // that slept until now: without their contacts a blow on a sleeping pile would pass through
-  // its top body unopposed for a step. So detect again with them awake, which may show them
-  // touching other sleeping islands, until nothing more wakes.
-  for (;;) {
-    sleep_->build_islands(contacts_, dynamic_);
-    sleep_changes_.clear();
-    sleep_->wake_disturbed(settings_.sleep, sleep_changes_);
-    if (sleep_changes_.empty()) break;
-    for (const std::uint32_t body : sleep_changes_) {
-      detector_.set_asleep({body}, false);
-      // Still until the solver moves them: no motion from before they slept.
-      detector_.set_motion({body}, Vec3::Zero(), 0.0f);
-      moving_[body] = 1;
-    }
-    detect(stats);
-    reduce_contacts();
-  }
-
-  materials_.resize(contacts_.size());
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& contact = contacts_[k];
-    const RigidBody& b = bodies_[contact.body_b];
-    if (contact.body_a == kGroundPlaneBody) {
-      materials_[k] = {mix_friction(settings_.ground_friction, b.friction),
-                       mix_restitution(settings_.ground_restitution, b.restitution)};
-      continue;
-    }
-    const RigidBody& a = bodies_[contact.body_a];
-    const auto pair = pair_materials_.empty()
-                          ? pair_materials_.end()
-                          : pair_materials_.find(pair_key(contact.body_a, contact.body_b));
-    materials_[k] = pair != pair_materials_.end()
-                        ? pair->second
-                        : PairMaterial{mix_friction(a.friction, b.friction),
-                                       mix_restitution(a.restitution, b.restitution)};
-  }
-  const ContactSolverStats solved = solver_->solve(bodies_, moving_, contacts_, materials_, solver,
-                                                   settings_.gravity, dt, *parallel_);
-  stats.impulses += solved.constraints;
-  stats.warm_started += solved.warm_started;
-  stats.bounces += solved.bounces;
-  stats.response_passes += solver.velocity_iterations;
-}
-
-void World::integrate_positions(float dt, bool plausible) {
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (moving_[i] == 0) continue;
-    RigidBody& body = bodies_[i];
-    integrate_position(body, dt);
-    if (plausible) {
-      correct_position(body, solver_->position_linear()[i], solver_->position_angular()[i], dt);
-    }
-    detector_.set_pose({i}, body.pose);
-  }
-}
-
-// Bodies at rest, how fast the resting ones still move, and the kinetic energy, at the end of
-// the step.
-void World::measure_rest(StepStats& stats) {
-  touching_.assign(bodies_.size(), 0);
-  for (const Contact& contact : contacts_) {
-    if (contact.body_a != kGroundPlaneBody) touching_[contact.body_a] = 1;
-    touching_[contact.body_b] = 1;
-  }
-  double jitter_sum = 0.0;
-  std::uint32_t resting = 0;
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (alive_[i] == 0 || bodies_[i].is_static) continue;
-    stats.kinetic_energy += bodies_[i].kinetic_energy();
-    ++stats.moving_bodies;
-    if (sleep_->asleep(i)) {
-      ++stats.bodies_asleep;
-      ++stats.bodies_at_rest;
-      ++resting;
-      continue;
-    }
-    const float speed = fastest_point_speed(i);
-    if (speed < settings_.sleep.speed) ++stats.bodies_at_rest;
-    if (touching_[i] != 0 && speed < kSettlingFactor * settings_.sleep.speed) {
-      jitter_sum += speed;
-      ++resting;
-    }
-  }
-  stats.jitter = resting > 0 ? jitter_sum / resting : 0.0;
+  integrate_velocities(dt, plausible, stats);  // world/integrate_velocities.cpp
+  if (stopped_) return;
+  detect_contacts(stats);                     // world/detect_contacts.cpp
+  if (plausible) wake_touched(stats);         // world/detect_contacts.cpp
+  respond(dt, plausible, stats);              // world/respond.cpp
+  integrate_positions(dt, plausible, stats);  // world/integrate_positions.cpp
+  if (stopped_) return;
+  if (plausible) update_sleep(dt, stats);  // world/update_sleep.cpp
 }
 
 }  // namespace sphys

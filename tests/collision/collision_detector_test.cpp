@@ -38,9 +38,10 @@ std::vector<std::uint32_t> used_leaves(const SphereTree& tree, int depth) {
   return leaves;
 }
 
-// The oracle: every leaf pair of every body pair (not both static), tested directly; and every
-// leaf reaching the ground plane.
-std::set<Key> brute_force(const Scene& scene, int depth, std::optional<float> ground) {
+// The oracle: every leaf pair of every body pair (not both static) apart by at most `gap`, tested
+// directly; and every leaf within `gap` of the ground plane.
+std::set<Key> brute_force(const Scene& scene, int depth, std::optional<float> ground,
+                          float gap = 0.0f) {
   std::set<Key> keys;
   for (std::uint32_t a = 0; a < scene.trees.size(); ++a) {
     for (std::uint32_t b = a + 1; b < scene.trees.size(); ++b) {
@@ -49,7 +50,7 @@ std::set<Key> brute_force(const Scene& scene, int depth, std::optional<float> gr
         for (std::uint32_t lb : used_leaves(*scene.trees[b], depth)) {
           const Sphere& sa = scene.trees[a]->sphere(la);
           const Sphere& sb = scene.trees[b]->sphere(lb);
-          if (spheres_overlap(scene.poses[a].apply(sa.center), sa.radius,
+          if (spheres_overlap(scene.poses[a].apply(sa.center), sa.radius + gap,
                               scene.poses[b].apply(sb.center), sb.radius)) {
             keys.insert({a, b, la, lb});
           }
@@ -59,7 +60,7 @@ std::set<Key> brute_force(const Scene& scene, int depth, std::optional<float> gr
     if (ground && !scene.is_static[a]) {
       for (std::uint32_t l : used_leaves(*scene.trees[a], depth)) {
         const Sphere& s = scene.trees[a]->sphere(l);
-        if (scene.poses[a].apply(s.center).y() - s.radius <= *ground) {
+        if (scene.poses[a].apply(s.center).y() - s.radius <= *ground + gap) {
           keys.insert({kGroundPlaneBody, a, 0, l});
         }
       }
@@ -78,6 +79,13 @@ std::set<Key> keys_of(const std::vector<Contact>& contacts) {
     EXPECT_TRUE(keys.insert(key).second) << "a contact appears twice";
   }
   return keys;
+}
+
+// detect(), with the contacts copied out.
+const CollisionStats& detect_into(CollisionDetector& detector, std::vector<Contact>& contacts) {
+  const CollisionStats& stats = detector.detect();
+  contacts.assign(detector.contacts().begin(), detector.contacts().end());
+  return stats;
 }
 
 Transform random_pose(std::mt19937_64& rng, float spread) {
@@ -122,7 +130,7 @@ TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
         }
         detector.set_pose(ids[i], pose);
       }
-      const CollisionStats& stats = detector.detect(contacts);
+      const CollisionStats& stats = detect_into(detector, contacts);
       const std::set<Key> expected = brute_force(scene, depth, settings.ground_plane_height);
       ASSERT_EQ(keys_of(contacts), expected) << "depth " << depth << " step " << step;
       EXPECT_EQ(stats.contacts, contacts.size());
@@ -131,6 +139,71 @@ TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
       EXPECT_EQ(stats.bodies, 24u);
     }
   }
+}
+
+// Pairs that barely moved keep their leaf pairs instead of descending: no leaf pair within the gap
+// may be missed, and each kept contact is the exact contact of its leaf pair at the new poses.
+TEST(CollisionDetector, ReusedPairsMissNoLeafPairWithinTheGap) {
+  const auto torus = octree_of(tools::make_torus(0.5, 0.15, 24, 12), 3);
+  const auto box = octree_of(tools::make_box({0.6, 0.3, 0.4}), 3);
+  std::mt19937_64 rng(16);
+  Scene scene;
+  CollisionSettings settings;
+  settings.ground_plane_height = 0.1f;
+  settings.contact_margin = 0.02f;
+  settings.reuse_distance = 0.004f;
+  CollisionDetector detector(settings);
+  std::vector<BodyId> ids;
+  for (int i = 0; i < 16; ++i) {
+    scene.trees.push_back(i % 2 ? torus : box);
+    scene.poses.push_back(random_pose(rng, 1.2f));
+    scene.is_static.push_back(i % 7 == 0);
+    ids.push_back(
+        detector.add_body(scene.trees.back(), scene.poses.back(), scene.is_static.back()));
+  }
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Contact> contacts;
+  std::uint32_t reused = 0;
+  std::uint32_t descended = 0;
+  for (int step = 0; step < 40; ++step) {
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (scene.is_static[i]) continue;
+      // Creeping by up to 1.5 mm a step, so pairs are reused for a step or two and then, having
+      // moved beyond the reuse distance since their descent, descend again.
+      Transform& pose = scene.poses[i];
+      pose.translation += 0.0015f * Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0f);
+      pose.rotation =
+          (pose.rotation * Quat(Eigen::AngleAxisf(0.001f * u(rng), Vec3::UnitY()))).normalized();
+      detector.set_pose(ids[i], pose);
+    }
+    const CollisionStats& stats = detect_into(detector, contacts);
+    reused += stats.reused_pairs;
+    descended += stats.descended_pairs;
+    const std::set<Key> found = keys_of(contacts);
+    for (const Key& key :
+         brute_force(scene, 0, settings.ground_plane_height, settings.contact_margin)) {
+      ASSERT_TRUE(found.contains(key))
+          << "step " << step << ": a leaf pair within the gap is missing";
+    }
+    for (const Contact& c : contacts) {
+      Contact exact = c;
+      const Sphere& sb = scene.trees[c.body_b]->sphere(c.leaf_b);
+      const Sphere world_b{scene.poses[c.body_b].apply(sb.center), sb.radius};
+      if (c.body_a == kGroundPlaneBody) {
+        sphere_plane_contact(*settings.ground_plane_height, world_b, exact);
+      } else {
+        const Sphere& sa = scene.trees[c.body_a]->sphere(c.leaf_a);
+        const Sphere world_a{scene.poses[c.body_a].apply(sa.center), sa.radius};
+        (void)sphere_sphere_contact(world_a, world_b, Vec3::UnitY(), exact);
+      }
+      ASSERT_NEAR(c.depth, exact.depth, 1e-5f);
+      ASSERT_TRUE(c.point.isApprox(exact.point, 1e-4f));
+      // Reported within the gap plus the reuse distance, then moved by up to that again.
+      ASSERT_GE(c.depth, -(settings.contact_margin + 2.0f * settings.reuse_distance) - 1e-5f);
+    }
+  }
+  EXPECT_GT(reused, 0u);
+  EXPECT_GT(descended, 0u);
 }
 
 TEST(CollisionDetector, ContactsFollowThePaperEquations) {
@@ -146,7 +219,7 @@ TEST(CollisionDetector, ContactsFollowThePaperEquations) {
   detector.add_body(small, pa, false);
   detector.add_body(large, pb, false);
   std::vector<Contact> contacts;
-  detector.detect(contacts);
+  detect_into(detector, contacts);
   ASSERT_EQ(contacts.size(), 1u);
   const Contact& c = contacts.front();
   EXPECT_FLOAT_EQ(c.depth, 1.0f);                    // 1 + 3 - 3
@@ -166,14 +239,14 @@ TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
     detector.add_body(torus, poses.back(), false);
   }
   std::vector<Contact> contacts;
-  const CollisionStats stats = detector.detect(contacts);
+  const CollisionStats stats = detect_into(detector, contacts);
   EXPECT_GT(stats.pairs_cut_short, 0u);
   EXPECT_GT(contacts.size(), 0u);
   for (const Contact& c : contacts) EXPECT_GE(c.depth, -1e-5f);  // only overlapping spheres
 
   settings.max_sphere_tests = 0;  // off: exact again
   detector.set_settings(settings);
-  const CollisionStats exact = detector.detect(contacts);
+  const CollisionStats exact = detect_into(detector, contacts);
   EXPECT_EQ(exact.pairs_cut_short, 0u);
   EXPECT_EQ(exact.leaf_pairs, contacts.size());
 }
@@ -184,13 +257,13 @@ TEST(CollisionDetector, RemovedBodiesLeaveNoContacts) {
   const BodyId a = detector.add_body(box, Transform{}, false);
   const BodyId b = detector.add_body(box, Transform{}, false);
   std::vector<Contact> contacts;
-  detector.detect(contacts);
+  detect_into(detector, contacts);
   EXPECT_GT(contacts.size(), 0u);
   detector.remove_body(b);
-  detector.detect(contacts);
+  detect_into(detector, contacts);
   EXPECT_TRUE(contacts.empty());
   const BodyId c = detector.add_body(box, Transform{}, true);
-  detector.detect(contacts);
+  detect_into(detector, contacts);
   EXPECT_GT(contacts.size(), 0u);
   (void)a;
   (void)c;

@@ -51,11 +51,29 @@ std::vector<Contact> grid_5x5(float depth, std::uint32_t body_a = 1, std::uint32
   return grid;
 }
 
+// Each run of one body pair's contacts reduced in turn, as the detector does pair by pair; `kept`
+// stands for the pairs' records: a pair's manifold from the last reduction.
+std::vector<Contact> reduce_runs(ContactReducer& reducer, std::span<const Contact> contacts,
+                                 std::uint32_t max_points, std::span<const Contact> kept = {}) {
+  std::vector<Contact> reduced;
+  std::vector<Contact> kept_of_pair;
+  for (std::size_t begin = 0; begin < contacts.size();) {
+    std::size_t end = begin + 1;
+    const auto same_pair = [&](const Contact& c) {
+      return c.body_a == contacts[begin].body_a && c.body_b == contacts[begin].body_b;
+    };
+    while (end < contacts.size() && same_pair(contacts[end])) ++end;
+    kept_of_pair.clear();
+    std::copy_if(kept.begin(), kept.end(), std::back_inserter(kept_of_pair), same_pair);
+    reducer.reduce(contacts.subspan(begin, end - begin), max_points, kept_of_pair, reduced);
+    begin = end;
+  }
+  return reduced;
+}
+
 std::vector<Contact> reduce(std::span<const Contact> contacts, std::uint32_t max_points) {
   ContactReducer reducer;
-  std::vector<Contact> reduced;
-  reducer.reduce(contacts, max_points, reduced);
-  return reduced;
+  return reduce_runs(reducer, contacts, max_points);
 }
 
 std::vector<std::uint32_t> leaves_of(std::span<const Contact> contacts) {
@@ -109,7 +127,7 @@ TEST(ContactReducer, AppendsWithoutTouchingWhatIsAlreadyThere) {
   const Contact earlier = contact_at(Vec3(9, 9, 9), 0.5f, 77, Vec3::UnitX(), 5, 6);
   std::vector<Contact> reduced = {earlier};
   ContactReducer reducer;
-  reducer.reduce(grid, 4, reduced);
+  reducer.reduce(grid, 4, {}, reduced);
   ASSERT_EQ(reduced.size(), 5u);
   EXPECT_TRUE(identical(reduced[0], earlier));
 }
@@ -225,8 +243,8 @@ TEST(ContactReducer, NormalsThatCancelFallBackToTheChosenContactsNormal) {
   EXPECT_EQ(reduced[0].normal, Vec3::UnitX());
 }
 
-// A 5 × 5 grid whose corner 0 is the deepest contact, by a tenth of a millimetre, and a reducer
-// that has just reduced it (so it keeps the four corners).
+// A 5 × 5 grid whose corner 0 is the deepest contact, by a tenth of a millimetre, just reduced
+// (so its manifold is the four corners).
 struct CornerFirst {
   std::vector<Contact> grid = grid_5x5(0.005f);
   ContactReducer reducer;
@@ -234,13 +252,11 @@ struct CornerFirst {
 
   CornerFirst() {
     grid[0].depth = 0.0101f;
-    reducer.reduce(grid, 4, first);
+    first = reduce_runs(reducer, grid, 4);
   }
 
   std::vector<Contact> reduce_again(std::span<const Contact> contacts) {
-    std::vector<Contact> next;
-    reducer.reduce(contacts, 4, next);
-    return next;
+    return reduce_runs(reducer, contacts, 4, first);
   }
 };
 
@@ -276,42 +292,18 @@ TEST(ContactReducer, AKeptContactKeepsItsPlaceAgainstASlightlyBetterNewOne) {
       contact_at(Vec3(0, 0, 0.95f), 0.01f, 2),
   };
   ContactReducer reducer;
-  std::vector<Contact> first;
-  reducer.reduce(run, 2, first);
+  const std::vector<Contact> first = reduce_runs(reducer, run, 2);
   ASSERT_THAT(leaves_of(first), ElementsAre(0, 1));
 
   // 2 is now farther, but its squared distance (1.1025 m²) is less than kPersistentScoreBonus
   // times 1's (1 m²).
   run[2].point = Vec3(0, 0, 1.05f);
-  std::vector<Contact> next;
-  reducer.reduce(run, 2, next);
-  EXPECT_THAT(leaves_of(next), ElementsAre(0, 1));
+  EXPECT_THAT(leaves_of(reduce_runs(reducer, run, 2, first)), ElementsAre(0, 1));
   EXPECT_THAT(leaves_of(reduce(run, 2)), ElementsAre(0, 2));
 
   // Well beyond the bonus, the better one wins.
   run[2].point = Vec3(0, 0, 1.5f);
-  next.clear();
-  reducer.reduce(run, 2, next);
-  EXPECT_THAT(leaves_of(next), ElementsAre(0, 2));
-}
-
-TEST(ContactReducer, ForgetChoosesAsANewReducerWould) {
-  CornerFirst pair;
-  std::vector<Contact>& grid = pair.grid;
-  grid[12].depth = 0.0102f;
-  pair.reducer.forget();
-  const std::vector<Contact> next = pair.reduce_again(grid);
-  expect_identical(next, reduce(grid, 4));
-  EXPECT_EQ(next[0].leaf_a, 12u);
-}
-
-// Only the same bodies' contacts count as kept: another pair with the same leaf ids does not.
-TEST(ContactReducer, KeptContactsBelongToTheirBodyPair) {
-  CornerFirst pair;
-  std::vector<Contact> other = grid_5x5(0.005f, 1, 3);
-  other[0].depth = 0.0101f;
-  other[12].depth = 0.0102f;
-  EXPECT_EQ(pair.reduce_again(other)[0].leaf_a, 12u);
+  EXPECT_THAT(leaves_of(reduce_runs(reducer, run, 2, first)), ElementsAre(0, 2));
 }
 
 TEST(ContactReducer, ReductionIsDeterministic) {
@@ -325,10 +317,9 @@ TEST(ContactReducer, ReductionIsDeterministic) {
     contacts.push_back(contact_at(point, depth(rng), i, normal, 1, 2 + i / 30));
   }
   ContactReducer reducer;
-  std::vector<Contact> first;
-  reducer.reduce(contacts, 5, first);
-  std::vector<Contact> again;  // with the scratch left by the first call
-  reducer.reduce(contacts, 5, again);
+  const std::vector<Contact> first = reduce_runs(reducer, contacts, 5);
+  // With the scratch left by the first call.
+  const std::vector<Contact> again = reduce_runs(reducer, contacts, 5);
   ASSERT_EQ(first.size(), 15u);
   expect_identical(again, first);
   expect_identical(reduce(contacts, 5), first);
@@ -424,8 +415,8 @@ TEST(ContactReducer, MaxPointsOutsideOneToEightIsRefused) {
   // Refused even when there is nothing to reduce: the parameter is wrong regardless.
   ContactReducer reducer;
   std::vector<Contact> reduced;
-  EXPECT_THROW(reducer.reduce({}, 0, reduced), Error);
-  EXPECT_NO_THROW(reducer.reduce({}, kMaxManifoldPoints, reduced));
+  EXPECT_THROW(reducer.reduce({}, 0, {}, reduced), Error);
+  EXPECT_NO_THROW(reducer.reduce({}, kMaxManifoldPoints, {}, reduced));
   EXPECT_TRUE(reduced.empty());
 }
 

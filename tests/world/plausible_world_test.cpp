@@ -70,6 +70,7 @@ WorldSettings on_plane(float friction, float restitution) {
   settings.collision.ground_plane_height = 0.0f;
   settings.ground_friction = friction;
   settings.ground_restitution = restitution;
+  settings.plausibility_figures = true;
   return settings;
 }
 

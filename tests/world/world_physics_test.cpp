@@ -52,6 +52,7 @@ BodyDesc ball_of_mass(float radius, float mass, const Vec3& position) {
 WorldSettings paper_settings() {
   WorldSettings settings;
   settings.response = ResponseMode::kPaper;
+  settings.plausibility_figures = true;
   return settings;
 }
 

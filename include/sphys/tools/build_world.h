@@ -27,6 +27,8 @@ struct BuildWorldOptions {
   std::function<void(double)> progress;
   // The world's threads (WorldSettings::threads): 0 takes every hardware thread.
   std::uint32_t threads = 1;
+  // StepStats' plausibility figures each step (WorldSettings::plausibility_figures).
+  bool plausibility_figures = false;
 };
 
 // A shape shared by bodies with the same mesh, size and tree.

@@ -21,6 +21,7 @@ RowResult run_experiment_row(const ExperimentRow& row, const ExperimentOptions& 
   BuildWorldOptions build;
   build.tree_depth = row.depth;
   build.cache_dir = options.cache_dir;
+  build.plausibility_figures = true;
   SimulationSetup setup = build_world(scene, build);
   World& world = *setup.world;
 

@@ -94,9 +94,10 @@ WorldSettings world_settings(const Scene& scene) {
 }
 
 // The world with its ground: the detector's plane or a static octree body.
-void make_world(const Scene& scene, std::uint32_t threads, SimulationSetup& setup) {
+void make_world(const Scene& scene, const BuildWorldOptions& options, SimulationSetup& setup) {
   WorldSettings settings = world_settings(scene);
-  settings.threads = threads;
+  settings.threads = options.threads;
+  settings.plausibility_figures = options.plausibility_figures;
   const GroundSpec& ground = scene.ground;
   switch (ground.kind) {
     case GroundSpec::Kind::kNone:
@@ -147,7 +148,7 @@ SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options
     throw Error("the sphere-tree depth must be 1 to 6, got " + std::to_string(*options.tree_depth));
   }
   SimulationSetup setup;
-  make_world(scene, options.threads, setup);
+  make_world(scene, options, setup);
 
   std::map<ShapeKey, std::uint32_t> shape_of_key;
   std::vector<MassProperties> unit_density;  // per shape, at density 1

@@ -419,7 +419,7 @@ TEST(BuildWorld, ABunnyDroppedOntoThePlaneStaysAboveIt) {
   bunny.position = Vec3(0.0f, 1.0f, 0.0f);
   Scene scene = scene_without_ground({bunny});
   scene.ground.kind = GroundSpec::Kind::kPlane;
-  const SimulationSetup setup = build_world(scene);
+  const SimulationSetup setup = build_world(scene, {.plausibility_figures = true});
   const float reach = static_cast<float>(setup.shapes[0].max_vertex_distance);
   float lowest = 1.0f;
   bool touched = false;

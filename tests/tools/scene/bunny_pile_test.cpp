@@ -27,7 +27,7 @@ TEST(BunnyPile, FourStacksOfFiftyComeToRestWithoutSinkingIn) {
   // Under the sanitizers the fall and the impacts only: that run looks for memory errors, and
   // the release run checks the whole scene.
   const int frames = test::sanitized_run() ? 120 : scene.frames;
-  const SimulationSetup setup = build_world(scene);
+  const SimulationSetup setup = build_world(scene, {.plausibility_figures = true});
   World& world = *setup.world;
   ASSERT_EQ(setup.bodies.size(), 200u);
 

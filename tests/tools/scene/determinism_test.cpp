@@ -50,6 +50,7 @@ ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
   BuildWorldOptions options;
   options.threads = threads;
   options.cache_dir = tree_cache;
+  options.plausibility_figures = true;
   const SimulationSetup setup = build_world(scene, options);
   World& world = *setup.world;
   EXPECT_EQ(world.settings().threads, threads);

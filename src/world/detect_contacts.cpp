@@ -1,0 +1,57 @@
+// Stages 2 and 3 of a substep: bounds and the broad phase, the narrow phase and the manifolds
+// (all in the detector), then waking the sleeping islands that moving bodies disturb, with the
+// narrow phase of their pairs alone.
+
+#include "sphys/world.h"
+#include "world/sleep_tracker.h"
+
+namespace sphys {
+
+void World::add_detection(const CollisionStats& detection, StepStats& stats) const {
+  stats.broad_phase_ms += detection.broad_phase_ms;
+  stats.narrow_phase_ms += detection.narrow_phase_ms;
+  stats.contacts_ms += detection.contacts_ms;
+  stats.candidate_pairs += detection.candidate_pairs;
+  stats.sphere_tests += detection.sphere_tests;
+  stats.leaf_pairs += detection.leaf_pairs;
+  stats.pairs_cut_short += detection.pairs_cut_short;
+  stats.coincident_centres += detection.coincident_centres;
+  stats.descended_pairs += detection.descended_pairs;
+  stats.reused_pairs += detection.reused_pairs;
+  if (!settings_.plausibility_figures) return;
+  const double depth_sum = stats.mean_penetration * stats.penetrating_contacts;
+  stats.deepest_penetration = std::max(stats.deepest_penetration, detection.deepest_penetration);
+  stats.penetrating_contacts += detection.penetrating_contacts;
+  stats.mean_penetration =
+      stats.penetrating_contacts > 0
+          ? (depth_sum + detection.penetration_sum) / stats.penetrating_contacts
+          : 0.0;
+}
+
+void World::detect_contacts(StepStats& stats) {
+  const CollisionStats& detection = detector_.detect();
+  stats.bodies = detection.bodies;
+  add_detection(detection, stats);
+}
+
+// The detector passed over the pairs of sleeping bodies: without their contacts a blow on a
+// sleeping pile would pass through its top body unopposed. So the sleeping islands a restless
+// body touches wake, and their pairs get their narrow phase now, once; their contacts may show
+// them touching other sleeping islands, which wake in turn, until nothing more wakes.
+void World::wake_touched(StepStats& stats) {
+  for (;;) {
+    sleep_->build_islands(detector_.contacts(), dynamic_);
+    sleep_changes_.clear();
+    sleep_->wake_disturbed(settings_.sleep, sleep_changes_);
+    if (sleep_changes_.empty()) return;
+    for (const std::uint32_t body : sleep_changes_) {
+      detector_.set_asleep({body}, false);
+      // Still until the solver moves them: no motion from before they slept.
+      detector_.set_motion({body}, Vec3::Zero(), 0.0f);
+      moving_[body] = 1;
+    }
+    add_detection(detector_.detect_woken(), stats);
+  }
+}
+
+}  // namespace sphys

@@ -1,0 +1,33 @@
+// Stage 1 of a substep: the velocities under gravity (the first half of semi-implicit Euler), and
+// each moving body's reach in the substep for speculative contacts.
+
+#include <cmath>
+
+#include "core/stopwatch.h"
+#include "sphys/world.h"
+
+namespace sphys {
+
+void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
+  const StepClock::time_point start = StepClock::now();
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    if (moving_[i] == 0) continue;
+    RigidBody& body = bodies_[i];
+    integrate_velocity(body, settings_.gravity, dt);
+    if (plausible) {
+      const Vec3 displacement = body.linear_velocity * dt;
+      const float turn_reach = body.angular_velocity.norm() * dt * extent_[i];
+      // Speeds whose squares overflow single precision leave no bound on the motion to detect
+      // with: the simulation has gone non-finite in all but name.
+      if (!std::isfinite(displacement.norm()) || !std::isfinite(turn_reach)) {
+        stats.non_finite_body = i;
+        stopped_ = true;
+        return;
+      }
+      detector_.set_motion({i}, displacement, turn_reach);
+    }
+  }
+  stats.integration_ms += elapsed_ms(start);
+}
+
+}  // namespace sphys

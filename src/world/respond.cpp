@@ -1,0 +1,59 @@
+// Stage 4 of a substep: the response. Plausible mode: each contact's material, then the
+// sequential-impulse solver over the islands. Paper mode: eq. 4 per contact in order.
+
+#include "core/buffers.h"
+#include "core/stopwatch.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/paper_response.h"
+#include "sphys/world.h"
+#include "world/sleep_tracker.h"
+
+namespace sphys {
+
+// A pair's material: the one set for it, else the mix of its bodies' (sphys/material.h).
+void World::mix_materials() {
+  const std::span<const Contact> contacts = detector_.contacts();
+  resize_buffer(materials_, contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& contact = contacts[k];
+    const RigidBody& b = bodies_[contact.body_b];
+    if (contact.body_a == kGroundPlaneBody) {
+      materials_[k] = {mix_friction(settings_.ground_friction, b.friction),
+                       mix_restitution(settings_.ground_restitution, b.restitution)};
+      continue;
+    }
+    const RigidBody& a = bodies_[contact.body_a];
+    const auto pair = pair_materials_.empty()
+                          ? pair_materials_.end()
+                          : pair_materials_.find(pair_key(contact.body_a, contact.body_b));
+    materials_[k] = pair != pair_materials_.end()
+                        ? pair->second
+                        : PairMaterial{mix_friction(a.friction, b.friction),
+                                       mix_restitution(a.restitution, b.restitution)};
+  }
+}
+
+void World::respond(float dt, bool plausible, StepStats& stats) {
+  const StepClock::time_point start = StepClock::now();
+  const std::span<const Contact> contacts = detector_.contacts();
+  if (plausible) {
+    mix_materials();
+    const SolverSettings& solver = settings_.solver;
+    const ContactSolverStats solved =
+        solver_->solve(bodies_, moving_, sleep_->islands(), contacts, detector_.memory(),
+                       materials_, solver, settings_.gravity, dt, *parallel_);
+    stats.impulses += solved.constraints;
+    stats.warm_started += solved.warm_started;
+    stats.bounces += solved.bounces;
+    stats.response_passes += solver.velocity_iterations;
+  } else {
+    const PaperResponseStats response = apply_paper_response(
+        bodies_, contacts, settings_.ground_restitution, settings_.paper_passes);
+    stats.impulses += response.impulses;
+    stats.response_passes += response.passes;
+  }
+  stats.contacts += static_cast<std::uint32_t>(contacts.size());
+  stats.response_ms += elapsed_ms(start);
+}
+
+}  // namespace sphys
