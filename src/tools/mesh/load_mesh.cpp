@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
-#include <system_error>
 #include <unordered_map>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "io/input_file.h"
 #include "read_off.h"
 #include "sphys/error.h"
 
@@ -18,14 +18,6 @@ namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-void require_readable_file(const fs::path& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw Error::in_file(path, "no such file");
-  if (fs::is_directory(status)) throw Error::in_file(path, "is a directory, not a mesh file");
-  if (fs::file_size(path, ec) == 0 && !ec) throw Error::in_file(path, "file is empty");
-}
 
 // Assimp's own words, except where its validator speaks of its data structures rather than of
 // the file.
@@ -96,11 +88,18 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   return mesh;
 }
 
+// Our own reader for OFF, whose assimp reader clamps out-of-range indices; assimp for the rest.
+TriangleMesh read_by_extension(const fs::path& path) {
+  if (has_extension(path, ".off")) return read_off(path);
+  return read_with_assimp(path);
+}
+
 }  // namespace
 
 TriangleMesh load_mesh(const fs::path& path) {
-  require_readable_file(path);
-  const TriangleMesh mesh = has_extension(path, ".off") ? read_off(path) : read_with_assimp(path);
+  // Before any reader opens it: assimp would block on a named pipe or read a device for ever.
+  if (check_input_file(path, InputKind::kMesh) == 0) throw Error::in_file(path, "file is empty");
+  const TriangleMesh mesh = read_by_extension(path);
   if (mesh.triangles.empty()) throw Error::in_file(path, "the mesh has no triangles");
   return weld_vertices(mesh);
 }
