@@ -12,6 +12,7 @@
 
 #include "io/input_file.h"
 #include "read_off.h"
+#include "read_ply.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
@@ -88,9 +89,11 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   return mesh;
 }
 
-// Our own reader for OFF, whose assimp reader clamps out-of-range indices; assimp for the rest.
+// Readers of our own for OFF and PLY, whose assimp readers trust the file's counts and indices
+// (clamping indices, aborting, or looping for ever); assimp for the rest.
 TriangleMesh read_by_extension(const fs::path& path) {
   if (has_extension(path, ".off")) return read_off(path);
+  if (has_extension(path, ".ply")) return read_ply(path);
   return read_with_assimp(path);
 }
 
