@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "sphys/error.h"
+#include "sphys/tools/interrupt.h"
 
 namespace {
 
@@ -31,11 +32,16 @@ int main(int argc, char** argv) {
       return kBadInput;
     }
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kBadInput;
+    // --help and --version are "errors" that succeed: CLI11 prints them.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::cerr << "sphys: error: " << e.what() << '\n';
+    return kBadInput;
   } catch (const sphys::Error& e) {
     std::cerr << "sphys: error: " << e.what() << '\n';
     return kBadInput;
+  } catch (const sphys::tools::Interrupted& e) {
+    std::cerr << "sphys: " << e.what() << '\n';
+    return e.exit_code();
   } catch (const std::exception& e) {
     std::cerr << "sphys: internal error: " << e.what() << '\n';
     return kInternalError;
