@@ -110,15 +110,22 @@ TEST(ReadPly, BinaryBoxInBothByteOrders) {
   expect_box(load_mesh(dir.write("big.PLY", binary_box(true))));
 }
 
+// A tetrahedron with the header's counts as given.
+std::string tetrahedron_ply(int vertices, int faces) {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+         std::to_string(faces) +
+         "\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+}
+
 TEST(ReadPly, AVertexCountOneTooLowIsAnErrorNotAnAbort) {
-  // assimp's reader aborted the process on such files (ai_assert in TriangulateProcess).
   const test::TempDir dir;
-  const auto tet = dir.write(
-      "tet.ply",
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  // assimp's reader aborted the process on this one (ai_assert in TriangulateProcess.cpp).
+  const auto aborted = dir.write("aborted.ply", tetrahedron_ply(3, 1));
+  EXPECT_EQ(load_error(aborted), aborted.string() + ": the mesh has no triangles");
   // The fourth vertex line is read as faces: "0" and "0" corners, then "1" corner: "3".
+  const auto tet = dir.write("tet.ply", tetrahedron_ply(3, 4));
   EXPECT_EQ(load_error(tet),
             tet.string() + ":14: vertex index 3 is out of range (the file has 3 vertices)");
   std::string text = ascii_box();
