@@ -23,6 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::sphys_cli;
 
+// One bunny; with a one-level tree over the exact plane, the quickest scene to prepare.
+constexpr const char* kQuickScene = "stacks:1x1";
+
 // The exact standard error of a command that must fail with bad input.
 void expect_refused(const std::vector<std::string>& args, const std::string& err) {
   const test::CommandResult r = sphys_cli(args);
@@ -76,8 +79,8 @@ TEST(ReliabilityCommand, NamedPipesAreRefusedAtOnce) {
 TEST(ReliabilityCommand, ReplayFramesPastTheRecordingAreRefused) {
   test::use_shared_tree_cache();
   const test::TempDir dir;
-  const test::CommandResult r = sphys_cli(
-      {"simulate", "stacks:1x2", "--depth", "2", "--frames", "5", "--out", dir.path().string()});
+  const test::CommandResult r = sphys_cli({"simulate", kQuickScene, "--depth", "1", "--ground",
+                                           "plane", "--frames", "5", "--out", dir.path().string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string recording = (dir.path() / "recording.sphysrec").string();
   // Refused before a window opens, as sphys export refuses it.
@@ -101,8 +104,8 @@ std::vector<fs::path> temporaries(const fs::path& dir) {
 void expect_clean_interruption(int signal, int exit_code) {
   test::use_shared_tree_cache();
   const test::TempDir dir;
-  const std::vector<std::string> run = {"simulate", "stacks:1x2", "--depth",
-                                        "2",        "--out",      dir.path().string()};
+  const std::vector<std::string> run = {"simulate", kQuickScene, "--depth", "1",
+                                        "--ground", "plane",     "--out",   dir.path().string()};
   std::vector<std::string> short_run = run;
   short_run.insert(short_run.end(), {"--frames", "5"});
   ASSERT_EQ(sphys_cli(short_run).exit_code, 0);
@@ -110,7 +113,8 @@ void expect_clean_interruption(int signal, int exit_code) {
   const std::string recording = test::read_whole(dir.path() / "recording.sphysrec");
 
   std::vector<std::string> long_run = run;
-  long_run.insert(long_run.end(), {"--frames", "100000"});
+  // Far more frames than the signal lets it run: seconds even for one body.
+  long_run.insert(long_run.end(), {"--frames", "1000000"});
   test::RunningCommand command(SPHYS_CLI_PATH, long_run);
   constexpr auto kPatience = std::chrono::seconds(30);
   const auto start = std::chrono::steady_clock::now();
