@@ -12,7 +12,6 @@
 #include <limits>
 #include <optional>
 #include <string>
-#include <system_error>
 
 #include "atomic_file.h"
 #include "input_file.h"

@@ -7,13 +7,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -504,7 +501,8 @@ Vec3 read_vec3(const Node& node) {
   return out;
 }
 
-// The path of a file that must exist, as written; it resolves against the scene's folder.
+// The path of a file that must exist, as written; it resolves against the scene's folder. The
+// input gate's checks run now, so a named pipe or an oversized file is named at its JSON path.
 fs::path read_existing_file(const Node& node, std::string_view what, InputKind kind) {
   const std::string written = read_string(node);
   if (written.empty()) node.fail("expected the path of " + std::string(what) + ", got \"\"");
