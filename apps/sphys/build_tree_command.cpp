@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "progress.h"
 #include "sphys/tools/build_tree.h"
+#include "sphys/tools/interrupt.h"
 #include "sphys/tools/model.h"
 #include "sphys/tools/sph_file.h"
 #include "sphys/tools/tree_cache.h"
@@ -26,6 +27,7 @@ struct BuildTreeOptions {
 };
 
 void run(const BuildTreeOptions& options) {
+  tools::catch_interruptions();
   const tools::TriangleMesh mesh = tools::load_model(options.mesh, options.triangles);
   tools::BuildOptions build;
   build.method = tools::parse_method(options.method);
@@ -58,7 +60,9 @@ void run(const BuildTreeOptions& options) {
 void add_build_tree_command(CLI::App& app) {
   auto options = std::make_shared<BuildTreeOptions>();
   CLI::App* cmd = app.add_subcommand("build-tree", "Build a sphere-tree for a mesh");
-  cmd->add_option("mesh", options->mesh, "Mesh file, or 'bunny' for the default model")->required();
+  cmd->add_option("mesh", options->mesh, "Mesh file, or 'bunny' for the default model")
+      ->check(kFileName)
+      ->required();
   cmd->add_option("--triangles", options->triangles,
                   "Decimate to this many triangles first (bunny: 2000 by default; 0 keeps all)");
   cmd->add_option("--method", options->method,
@@ -68,7 +72,9 @@ void add_build_tree_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--depth", options->depth, "Levels including the root")->capture_default_str();
   cmd->add_option("--seed", options->seed, "Seed of every random choice")->capture_default_str();
-  cmd->add_option("-o,--output", options->output, "The .sph file to write")->required();
+  cmd->add_option("-o,--output", options->output, "The .sph file to write")
+      ->check(kFileName)
+      ->required();
   cmd->add_flag("--no-cache", options->no_cache, "Build even if the tree is in the cache");
   cmd->callback([options] { run(*options); });
 }

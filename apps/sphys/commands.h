@@ -23,6 +23,14 @@ auto parse_option(std::string_view option, std::string_view value, Parse parse) 
   }
 }
 
+// For options and arguments naming a file or folder: an empty name is refused by the option's
+// name ("--output: expected a file name, got \"\"") rather than failing later on a file called "".
+inline const CLI::Validator kFileName(
+    [](const std::string& value) {
+      return value.empty() ? std::string("expected a file name, got \"\"") : std::string();
+    },
+    "");
+
 // Each subcommand lives in its own file and registers itself on the top-level app. Its callback
 // throws sphys::Error for bad input (exit code 2) and anything else for internal errors (1).
 void add_mesh_info_command(CLI::App& app);

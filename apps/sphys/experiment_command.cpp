@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "sphys/error.h"
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/interrupt.h"
 #include "sphys/tools/machine.h"
 #include "sphys/tools/run_experiment.h"
 #include "sphys/tools/scene.h"
@@ -67,6 +68,7 @@ nlohmann::ordered_json row_json(const tools::RowResult& result) {
 }
 
 void run(const ExperimentCommandOptions& options) {
+  tools::catch_interruptions();
   if (options.frames < 1) throw Error("--frames must be at least 1");
   std::vector<tools::ExperimentRow> rows;
   if (options.only) {
@@ -148,6 +150,7 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--only", options->only,
                   "Comma-separated rows, e.g. d2-4x25,d3-8x10 (default: all eight)");
   cmd->add_option("--out", options->out, "Folder for report.md, the CSVs and the plots")
+      ->check(kFileName)
       ->capture_default_str();
   cmd->add_option("--ground", options->ground,
                   "octree: the paper's 5-level octree of a 16 m thin box; plane: the exact plane")

@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "sphys/error.h"
 #include "sphys/tools/gltf_export.h"
+#include "sphys/tools/interrupt.h"
 #include "sphys/tools/recording.h"
 #include "sphys/tools/scene_file.h"
 
@@ -46,11 +47,13 @@ void read_frames(const std::string& text, tools::GltfExportOptions& options) {
 }
 
 void run(const ExportOptions& options) {
+  tools::catch_interruptions();
   tools::GltfExportOptions gltf;
   if (options.frames) read_frames(*options.frames, gltf);
   gltf.every = options.every;
   const fs::path recording_path(options.recording);
   const tools::Recording recording = tools::read_recording(recording_path);
+  tools::throw_if_interrupted();
   tools::Scene scene;
   try {
     scene = tools::parse_scene(recording.metadata, recording_path);
@@ -74,8 +77,10 @@ void add_export_command(CLI::App& app) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* cmd = app.add_subcommand(
       "export", "Write a recording of sphys simulate as glTF 2.0 (meshes and their animation)");
-  cmd->add_option("recording", options->recording, "The .sphysrec file")->required();
-  cmd->add_option("--gltf", options->gltf, "The .glb file to write")->required();
+  cmd->add_option("recording", options->recording, "The .sphysrec file")
+      ->check(kFileName)
+      ->required();
+  cmd->add_option("--gltf", options->gltf, "The .glb file to write")->check(kFileName)->required();
   cmd->add_option("--frames", options->frames,
                   "FIRST:LAST, frames from 0, both included (either may be left out)");
   cmd->add_option("--every", options->every, "Keep every Nth frame of those")

@@ -3,11 +3,19 @@
 
 #include "commands.h"
 #include "sphys/error.h"
+#include "sphys/tools/interrupt.h"
 
 namespace {
 
 constexpr int kBadInput = 2;
 constexpr int kInternalError = 1;
+
+// An error that follows Ctrl-C is most likely its echo (gnuplot, in the same process group, was
+// interrupted too), so it reads as the interruption.
+int report_interruption(const sphys::tools::Interrupted& interrupted) {
+  std::cerr << "sphys: " << interrupted.what() << '\n';
+  return interrupted.exit_code();
+}
 
 }  // namespace
 
@@ -31,12 +39,22 @@ int main(int argc, char** argv) {
       return kBadInput;
     }
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kBadInput;
+    // --help and --version are "errors" that succeed: CLI11 prints them.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::cerr << "sphys: error: " << e.what() << '\n';
+    return kBadInput;
+  } catch (const sphys::tools::Interrupted& e) {
+    return report_interruption(e);
   } catch (const sphys::Error& e) {
+    if (const int signal = sphys::tools::interruption_signal()) {
+      return report_interruption(sphys::tools::Interrupted(signal));
+    }
     std::cerr << "sphys: error: " << e.what() << '\n';
     return kBadInput;
   } catch (const std::exception& e) {
+    if (const int signal = sphys::tools::interruption_signal()) {
+      return report_interruption(sphys::tools::Interrupted(signal));
+    }
     std::cerr << "sphys: internal error: " << e.what() << '\n';
     return kInternalError;
   }

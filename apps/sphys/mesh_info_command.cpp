@@ -119,7 +119,9 @@ void add_mesh_info_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "mesh-info",
       "Size, closedness and mass properties of a mesh (OBJ, PLY, STL, OFF or 'bunny')");
-  cmd->add_option("mesh", options->mesh, "Mesh file, or 'bunny' for the default model")->required();
+  cmd->add_option("mesh", options->mesh, "Mesh file, or 'bunny' for the default model")
+      ->check(kFileName)
+      ->required();
   cmd->add_option("--triangles", options->triangles,
                   "Decimate to this many triangles (bunny: 2000 by default; 0 keeps all)");
   cmd->add_option("--density", options->density, "Density in kg/m^3 (mesh units are metres)")

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <unistd.h>
 
+#include "sphys/tools/interrupt.h"
+
 namespace sphys::cli {
 
 ProgressBar::ProgressBar(std::string label)
@@ -14,6 +16,8 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::update(double fraction) {
+  // Every long loop reports its progress here, so this is where it notices Ctrl-C.
+  tools::throw_if_interrupted();
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   if (drawn_ && now - last_draw_ < std::chrono::milliseconds(100) && fraction < 1.0) return;

@@ -14,7 +14,9 @@ class ProgressBar {
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  void update(double fraction);  // 0..1
+  // Draws `fraction` (0..1); throws tools::Interrupted when Ctrl-C or SIGTERM came in the
+  // meantime (see sphys/tools/interrupt.h).
+  void update(double fraction);
 
  private:
   std::string label_;

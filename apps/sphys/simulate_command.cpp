@@ -20,6 +20,7 @@
 #include "sphys/tools/build_world.h"
 #include "sphys/tools/csv_file.h"
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/interrupt.h"
 #include "sphys/tools/model.h"
 #include "sphys/tools/overlap.h"
 #include "sphys/tools/recording.h"
@@ -390,6 +391,7 @@ void print_summary(const nlohmann::ordered_json& s) {
 }
 
 void run(const SimulateOptions& options) {
+  tools::catch_interruptions();
   tools::Scene scene = tools::load_scene(options.scene);
   apply_options(options, scene);
 
@@ -424,6 +426,8 @@ void run(const SimulateOptions& options) {
   {
     ProgressBar bar("simulating " + scene.name);
     for (int frame = 1; frame <= scene.frames; ++frame) {
+      // Unwinding from here removes the recording's temporary file; earlier outputs stay whole.
+      tools::throw_if_interrupted();
       const StepStats& stats = setup.world->step(dt);
       if (stats.non_finite_body) {
         failure = non_finite_message(setup, *stats.non_finite_body, frame);
@@ -457,6 +461,7 @@ void add_simulate_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("simulate", "Run a scene headless and record it");
   cmd->add_option("scene", options->scene,
                   "A scene file (.json, see docs/scenes.md) or a preset:\n" + tools::preset_help())
+      ->check(kFileName)
       ->required();
   cmd->add_option("--depth", options->depth, "Sphere-tree depth of every body (levels, 1..6)");
   cmd->add_option("--frames", options->frames, "Frames to run (one step each)");
@@ -473,7 +478,8 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--passes", options->passes,
                   "Paper mode: passes over the contacts per step at most (see docs/experiment.md)");
   cmd->add_option("--out", options->out,
-                  "Folder for frames.csv and recording.sphysrec (default out/<scene>)");
+                  "Folder for frames.csv and recording.sphysrec (default out/<scene>)")
+      ->check(kFileName);
   cmd->add_option("--threads", options->threads,
                   "Threads a step runs on (0: every hardware thread); the results are the same "
                   "bit for bit whatever the count")

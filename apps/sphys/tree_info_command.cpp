@@ -84,8 +84,9 @@ void add_tree_info_command(CLI::App& app) {
   auto options = std::make_shared<TreeInfoOptions>();
   CLI::App* cmd = app.add_subcommand(
       "tree-info", "Levels of a sphere-tree (.sph) and, given the mesh, how well each fits it");
-  cmd->add_option("tree", options->tree, "The .sph file")->required();
-  cmd->add_option("--mesh", options->mesh, "Mesh file or 'bunny': measure the fit");
+  cmd->add_option("tree", options->tree, "The .sph file")->check(kFileName)->required();
+  cmd->add_option("--mesh", options->mesh, "Mesh file or 'bunny': measure the fit")
+      ->check(kFileName);
   cmd->add_option("--triangles", options->triangles,
                   "Decimate the mesh first (bunny: 2000 by default; 0 keeps all)");
   cmd->add_flag("--toolkit-shift", options->toolkit_shift,

@@ -28,9 +28,11 @@ void add_view_command(CLI::App& app) {
       "view", "Watch a scene live or replay a recording in a window (or render a frame to a PNG)");
   cmd->add_option("scene", args->scene,
                   std::string("Scene file (.json) or preset, e.g. stacks:4x50; default ") +
-                      viewer::kDefaultScene);
+                      viewer::kDefaultScene)
+      ->check(kFileName);
   cmd->add_option("--replay", args->replay,
-                  "Play back a recording of sphys simulate (recording.sphysrec) instead");
+                  "Play back a recording of sphys simulate (recording.sphysrec) instead")
+      ->check(kFileName);
   cmd->add_option("--depth", options->depth, "Sphere-tree depth of every body (levels, 1..6)");
   cmd->add_option("--mode", args->mode, "Collision response: paper or plausible");
   cmd->add_option("--ground", args->ground, "octree or plane, instead of the scene's ground");
@@ -42,7 +44,8 @@ void add_view_command(CLI::App& app) {
   cmd->add_flag("--no-shadows", args->no_shadows, "Draw without the sun's shadows (faster)");
   cmd->add_option("--screenshot", args->screenshot,
                   "Render one frame to this PNG and exit, after --frames physics frames (with "
-                  "--replay: the recording's frame --frames)");
+                  "--replay: the recording's frame --frames)")
+      ->check(kFileName);
   cmd->add_option("--frames", options->frames,
                   "Physics frames before the screenshot; with --replay, the frame to start at")
       ->capture_default_str();

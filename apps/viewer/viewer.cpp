@@ -246,15 +246,24 @@ void run_live(const ViewerOptions& options, tools::Scene scene) {
   if (options.exit_after) clock.report(step_ms_sum, steps_run);
 }
 
+// --frames names a frame of the recording: past its end it is refused, as sphys export does.
+void check_replay_frame(const ViewerOptions& options, const Replay& replay) {
+  if (options.frames >= static_cast<int>(replay.frame_count())) {
+    throw Error(options.replay->string() + ": --frames " + std::to_string(options.frames) +
+                " is past the recording's last frame, " + std::to_string(replay.frame_count() - 1));
+  }
+}
+
 void run_replay(const ViewerOptions& options) {
   const Replay replay(*options.replay, build_options(options));
+  check_replay_frame(options, replay);
   Display display(options);
   auto& [window, renderer, lines, gui, input] = display;
   SceneDrawer drawer(renderer, replay.scene(), replay.shapes());
   OrbitCamera camera = frame_scene(replay.scene());
   ReplayControls controls;
   controls.overlays = overlays_of(options);
-  controls.frame = std::min(options.frames, static_cast<int>(replay.frame_count()) - 1);
+  controls.frame = options.frames;
   const int last = static_cast<int>(replay.frame_count()) - 1;
   const std::string title = options.replay->filename().string() + ": " + replay.scene().name +
                             ", " + std::to_string(replay.scene().bodies.size()) + " bodies";
@@ -320,10 +329,7 @@ void live_screenshot(const ViewerOptions& options, tools::Scene scene) {
 
 void replay_screenshot(const ViewerOptions& options) {
   const Replay replay(*options.replay, build_options(options));
-  if (options.frames >= static_cast<int>(replay.frame_count())) {
-    throw Error(options.replay->string() + ": --frames " + std::to_string(options.frames) +
-                " is past the recording's last frame, " + std::to_string(replay.frame_count() - 1));
-  }
+  check_replay_frame(options, replay);
   std::vector<BodyView> bodies;
   replay.bodies(static_cast<std::uint32_t>(options.frames), bodies);
   const Window window(options.width, options.height, options.msaa);

@@ -1,6 +1,7 @@
 #include "support/run_command.h"
 
 #include <array>
+#include <csignal>
 #include <fcntl.h>
 #include <spawn.h>
 #include <stdexcept>
@@ -25,19 +26,21 @@ std::string drain(int fd) {
 
 }  // namespace
 
-CommandResult run_command(const std::string& program, const std::vector<std::string>& args) {
+RunningCommand::RunningCommand(const std::string& program, const std::vector<std::string>& args) {
   // Output goes to temporary files rather than pipes so a chatty child cannot block on a full
   // pipe while we wait for it.
   char out_name[] = "/tmp/sphys_cmd_out_XXXXXX";
   char err_name[] = "/tmp/sphys_cmd_err_XXXXXX";
-  const int out_fd = mkstemp(out_name);
-  const int err_fd = mkstemp(err_name);
-  if (out_fd < 0 || err_fd < 0) throw std::runtime_error("cannot create capture files");
+  out_fd_ = mkstemp(out_name);
+  err_fd_ = mkstemp(err_name);
+  if (out_fd_ < 0 || err_fd_ < 0) throw std::runtime_error("cannot create capture files");
+  out_name_ = out_name;
+  err_name_ = err_name;
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, out_fd, STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, err_fd, STDERR_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, out_fd_, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, err_fd_, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
 
   std::vector<char*> argv;
@@ -45,23 +48,48 @@ CommandResult run_command(const std::string& program, const std::vector<std::str
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
 
-  pid_t pid = 0;
   const int spawn_error =
-      posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+      posix_spawnp(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0) throw std::runtime_error("cannot start " + program);
+  if (spawn_error != 0) {
+    pid_ = -1;
+    throw std::runtime_error("cannot start " + program);
+  }
+}
 
+RunningCommand::~RunningCommand() {
+  if (pid_ > 0) {
+    kill(pid_, SIGKILL);
+    (void)wait();
+  }
+  if (out_fd_ >= 0) close(out_fd_);
+  if (err_fd_ >= 0) close(err_fd_);
+  if (!out_name_.empty()) unlink(out_name_.c_str());
+  if (!err_name_.empty()) unlink(err_name_.c_str());
+}
+
+CommandResult RunningCommand::wait() {
   int status = 0;
-  waitpid(pid, &status, 0);
+  waitpid(pid_, &status, 0);
+  pid_ = -1;
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  lseek(out_fd, 0, SEEK_SET);
-  lseek(err_fd, 0, SEEK_SET);
-  result.out = drain(out_fd);
-  result.err = drain(err_fd);
-  unlink(out_name);
-  unlink(err_name);
+  lseek(out_fd_, 0, SEEK_SET);
+  lseek(err_fd_, 0, SEEK_SET);
+  result.out = drain(out_fd_);
+  result.err = drain(err_fd_);
+  out_fd_ = -1;
+  err_fd_ = -1;
+  unlink(out_name_.c_str());
+  unlink(err_name_.c_str());
+  out_name_.clear();
+  err_name_.clear();
   return result;
+}
+
+CommandResult run_command(const std::string& program, const std::vector<std::string>& args) {
+  RunningCommand command(program, args);
+  return command.wait();
 }
 
 }  // namespace sphys::test

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "sphys/error.h"
+#include "sphys/tools/interrupt.h"
 #include "sphys/tools/scene_meshes.h"
 
 namespace sphys::tools {
@@ -146,6 +147,8 @@ void add_animation(tinygltf::Model& model, Builder& builder, const Recording& re
   tinygltf::Animation animation;
   animation.name = "simulation";
   for (std::uint32_t body = 0; body < recording.body_count; ++body) {
+    // Each body's track is a pass over every frame: a long export stops here on Ctrl-C.
+    throw_if_interrupted();
     std::vector<float> translations;
     std::vector<float> rotations;
     Quat previous = recording.frame(frames.front())[body].orientation;

@@ -12,9 +12,9 @@
 #include <limits>
 #include <optional>
 #include <string>
-#include <system_error>
 
 #include "atomic_file.h"
+#include "input_file.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
@@ -232,13 +232,9 @@ std::span<const BodyPose> Recording::frame(std::uint32_t i) const {
 }
 
 Recording read_recording(const fs::path& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw Error::in_file(path, "no such file");
-  if (fs::is_directory(status)) throw Error::in_file(path, "is a directory, not a recording");
-  std::ifstream in(path, std::ios::binary);
-  const std::uintmax_t file_size = fs::file_size(path, ec);
-  if (!in || ec) throw Error::in_file(path, "cannot open file for reading");
+  InputFile file = open_input_file(path, InputKind::kRecording);
+  std::ifstream& in = file.stream;
+  const std::uint64_t file_size = file.size;
 
   if (file_size == 0) throw Error::in_file(path, "file is empty, not a sphys recording");
   std::array<char, kHeaderSize> header{};

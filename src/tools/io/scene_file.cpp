@@ -7,18 +7,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "input_file.h"
 #include "sphys/error.h"
 #include "sphys/material.h"
 #include "sphys/tools/model.h"
@@ -503,16 +501,14 @@ Vec3 read_vec3(const Node& node) {
   return out;
 }
 
-// The path of a file that must exist, as written; it resolves against the scene's folder.
-fs::path read_existing_file(const Node& node, std::string_view what) {
+// The path of a file that must exist, as written; it resolves against the scene's folder. The
+// input gate's checks run now, so a named pipe or an oversized file is named at its JSON path.
+fs::path read_existing_file(const Node& node, std::string_view what, InputKind kind) {
   const std::string written = read_string(node);
   if (written.empty()) node.fail("expected the path of " + std::string(what) + ", got \"\"");
   const fs::path resolved = node.source().base_directory / fs::path(written);
-  std::error_code ec;
-  const fs::file_status status = fs::status(resolved, ec);
-  if (!fs::exists(status)) node.fail("no such file: " + resolved.string());
-  if (fs::is_directory(status)) {
-    node.fail("is a directory, not " + std::string(what) + ": " + resolved.string());
+  if (const auto problem = input_file_problem(resolved, kind)) {
+    node.fail(*problem + ": " + resolved.string());
   }
   return written;
 }
@@ -521,7 +517,7 @@ std::string read_mesh(const Node& node) {
   if (node.json().is_string() && node.json().get<std::string>() == kBunnyName) {
     return std::string(kBunnyName);
   }
-  return read_existing_file(node, "a mesh file").string();
+  return read_existing_file(node, "a mesh file", InputKind::kMesh).string();
 }
 
 std::optional<std::size_t> read_triangles(const Node& node) {
@@ -542,7 +538,7 @@ std::optional<double> read_optional_positive(const Node& node) {
 TreeSpec read_tree(const Node& node, const TreeSpec& start) {
   if (node.json().is_string()) {
     TreeSpec tree;
-    tree.sph_file = read_existing_file(node, "a .sph file");
+    tree.sph_file = read_existing_file(node, "a .sph file", InputKind::kSphereTree);
     return tree;
   }
   if (!node.json().is_object()) {
@@ -980,15 +976,7 @@ Scene parse_scene(std::string_view json_text, const fs::path& name) {
 }
 
 Scene read_scene_file(const fs::path& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw Error::in_file(path, "no such file");
-  if (fs::is_directory(status)) throw Error::in_file(path, "is a directory, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error::in_file(path, "cannot open file for reading");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw Error::in_file(path, "cannot read the file");
-  return parse_scene(text, path);
+  return parse_scene(read_input_file(path, InputKind::kScene), path);
 }
 
 std::string_view response_mode_name(ResponseMode mode) { return name_of(mode, kResponseNames); }

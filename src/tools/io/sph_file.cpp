@@ -6,7 +6,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <istream>
 #include <limits>
 #include <optional>
@@ -18,6 +17,8 @@
 #include <vector>
 
 #include "atomic_file.h"
+#include "input_file.h"
+#include "shown_text.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
@@ -50,17 +51,6 @@ std::optional<std::uint64_t> complete_tree_size(long long levels, long long bran
     level_size *= static_cast<std::uint64_t>(branching);
   }
   return total;
-}
-
-// A field as it may be shown in a message: the file may hold anything, including binary data.
-std::string shown(std::string_view text) {
-  constexpr std::size_t kMaxShown = 40;
-  std::string out(text.substr(0, kMaxShown));
-  for (char& c : out) {
-    if (std::isprint(static_cast<unsigned char>(c)) == 0) c = '?';
-  }
-  if (text.size() > kMaxShown) out += "...";
-  return "'" + out + "'";
 }
 
 // Field separators. '\r' among them reads files with Windows line ends.
@@ -287,14 +277,9 @@ void write_slots(std::ostream& out, const SphereTree& tree) {
 }  // namespace
 
 SphereTree read_sph(const fs::path& path, const SphReadOptions& options) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw Error::in_file(path, "no such file");
-  if (fs::is_directory(status)) throw Error::in_file(path, "is a directory, not a .sph file");
   // Binary mode: a '\r' of a Windows line end is a blank to the field splitter anyway.
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error::in_file(path, "cannot open file for reading");
-  return read_sph(in, path, options);
+  InputFile file = open_input_file(path, InputKind::kSphereTree);
+  return read_sph(file.stream, path, options);
 }
 
 SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions& options) {

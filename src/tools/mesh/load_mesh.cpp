@@ -4,28 +4,21 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
-#include <system_error>
 #include <unordered_map>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "io/input_file.h"
 #include "read_off.h"
+#include "read_ply.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-void require_readable_file(const fs::path& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw Error::in_file(path, "no such file");
-  if (fs::is_directory(status)) throw Error::in_file(path, "is a directory, not a mesh file");
-  if (fs::file_size(path, ec) == 0 && !ec) throw Error::in_file(path, "file is empty");
-}
 
 // Assimp's own words, except where its validator speaks of its data structures rather than of
 // the file.
@@ -96,11 +89,20 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   return mesh;
 }
 
+// Readers of our own for OFF and PLY, whose assimp readers trust the file's counts and indices
+// (clamping indices, aborting, or looping for ever); assimp for the rest.
+TriangleMesh read_by_extension(const fs::path& path) {
+  if (has_extension(path, ".off")) return read_off(path);
+  if (has_extension(path, ".ply")) return read_ply(path);
+  return read_with_assimp(path);
+}
+
 }  // namespace
 
 TriangleMesh load_mesh(const fs::path& path) {
-  require_readable_file(path);
-  const TriangleMesh mesh = has_extension(path, ".off") ? read_off(path) : read_with_assimp(path);
+  // Before any reader opens it: assimp would block on a named pipe or read a device for ever.
+  if (check_input_file(path, InputKind::kMesh) == 0) throw Error::in_file(path, "file is empty");
+  const TriangleMesh mesh = read_by_extension(path);
   if (mesh.triangles.empty()) throw Error::in_file(path, "the mesh has no triangles");
   return weld_vertices(mesh);
 }

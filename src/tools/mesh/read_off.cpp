@@ -3,26 +3,29 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
 #include <sstream>
 #include <string>
 
+#include "io/input_file.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
 namespace {
 
+// The fewest bytes a number takes in the file: one digit and one separator. unit: bytes
+constexpr std::uint64_t kMinNumberBytes = 2;
+
 // Yields the file's meaningful lines (comments and blank lines skipped) with their numbers.
 class LineReader {
  public:
-  explicit LineReader(const std::filesystem::path& path) : path_(path), in_(path) {
-    if (!in_) throw Error::in_file(path, "cannot open file");
-  }
+  explicit LineReader(const std::filesystem::path& path)
+      : path_(path), file_(open_input_file(path, InputKind::kMesh)) {}
 
   // The next non-empty line with comments removed, as a stream; throws at the end of the file.
   std::istringstream next(const char* expected) {
     std::string line;
-    while (std::getline(in_, line)) {
+    while (std::getline(file_.stream, line)) {
       ++number_;
       if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
       if (line.find_first_not_of(" \t\r") != std::string::npos) return std::istringstream(line);
@@ -33,10 +36,12 @@ class LineReader {
   [[nodiscard]] Error error(const std::string& problem) const {
     return Error::at_line(path_, number_, problem);
   }
+  // unit: bytes
+  [[nodiscard]] std::uint64_t file_size() const { return file_.size; }
 
  private:
   std::filesystem::path path_;
-  std::ifstream in_;
+  InputFile file_;
   std::size_t number_ = 0;
 };
 
@@ -71,6 +76,15 @@ TriangleMesh read_off(const std::filesystem::path& path) {
   }
   if (vertex_count < 0 || face_count < 0) {
     throw reader.error("expected non-negative vertex and face counts");
+  }
+  // A vertex count the file cannot hold is refused before the vertices are allocated: a vertex
+  // line holds at least 3 numbers, each a digit and a separator. Faces are not allocated ahead,
+  // so a face count too large for the file ends at the line where the file does.
+  constexpr std::uint64_t kVertexLineBytes = 3 * kMinNumberBytes;
+  if (static_cast<std::uint64_t>(vertex_count) > (reader.file_size() + 1) / kVertexLineBytes) {
+    throw reader.error("the header announces " + std::to_string(vertex_count) +
+                       " vertices, more than the file's " + std::to_string(reader.file_size()) +
+                       " bytes can hold");
   }
 
   TriangleMesh mesh;

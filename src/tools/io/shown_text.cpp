@@ -1,0 +1,18 @@
+#include "shown_text.h"
+
+#include <cctype>
+#include <cstddef>
+
+namespace sphys::tools {
+
+std::string shown(std::string_view text) {
+  constexpr std::size_t kMaxShown = 40;
+  std::string out(text.substr(0, kMaxShown));
+  for (char& c : out) {
+    if (std::isprint(static_cast<unsigned char>(c)) == 0) c = '?';
+  }
+  if (text.size() > kMaxShown) out += "...";
+  return "'" + out + "'";
+}
+
+}  // namespace sphys::tools
