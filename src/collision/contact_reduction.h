@@ -9,11 +9,9 @@
 #include <vector>
 
 #include "sphys/contact.h"
+#include "sphys/setting_limits.h"
 
 namespace sphys {
-
-// Largest manifold a body pair may be reduced to.
-inline constexpr std::uint32_t kMaxManifoldPoints = 8;
 
 // Appends to `reduced` at most `max_points` (1..kMaxManifoldPoints) contacts for each run of
 // consecutive contacts with the same (body_a, body_b), in the order the runs come:
