@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "sphys/error.h"
+#include "sphys/settings_table.h"
 
 namespace sphys::cli {
 
@@ -30,6 +31,22 @@ inline const CLI::Validator kFileName(
       return value.empty() ? std::string("expected a file name, got \"\"") : std::string();
     },
     "");
+
+// An integer option's value, which must lie in the range of the setting it sets; else
+// sphys::Error "<option> must be between 1 and 64, got 0".
+inline int checked_count(std::string_view option, int value, const Setting& setting) {
+  if (!setting.range.contains(value)) {
+    std::string message(option);
+    message += " must be between " + number_text(setting.range.min) + " and " +
+               number_text(setting.range.max) + ", got " + std::to_string(value);
+    throw Error(message);
+  }
+  return value;
+}
+
+// The --help text of an option that sets a world setting: its documentation, valid values and
+// unit, from the settings table.
+inline std::string setting_help(std::string_view field) { return option_help(setting_of(field)); }
 
 // Each subcommand lives in its own file and registers itself on the top-level app. Its callback
 // throws sphys::Error for bad input (exit code 2) and anything else for internal errors (1).

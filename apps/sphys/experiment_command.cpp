@@ -155,12 +155,10 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_option("--ground", options->ground,
                   "octree: the paper's 5-level octree of a 16 m thin box; plane: the exact plane")
       ->capture_default_str();
-  cmd->add_option("--mode", options->mode,
-                  "Collision response: paper (eq. 4, as published) or plausible (friction, "
-                  "penetration recovery, sleeping)")
+  // The experiment's own defaults (tools::ExperimentMode), not the runtime's: shown by CLI11.
+  cmd->add_option("--mode", options->mode, std::string(setting_of("response").doc))
       ->capture_default_str();
-  cmd->add_option("--contacts", options->contacts,
-                  "Plausible mode: all (one per leaf pair) or reduced (a manifold per body pair)")
+  cmd->add_option("--contacts", options->contacts, std::string(setting_of("solver.contacts").doc))
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print the results as JSON");
   cmd->add_flag("--no-plots", options->no_plots, "Skip the gnuplot PNGs");

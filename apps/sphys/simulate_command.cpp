@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -43,7 +44,7 @@ struct SimulateOptions {
   std::optional<int> substeps;
   std::optional<int> passes;
   std::optional<std::string> out;
-  std::uint32_t threads = 1;
+  std::uint32_t threads = WorldSettings{}.threads;
   bool json = false;
   bool no_cache = false;
 };
@@ -186,7 +187,9 @@ void apply_options(const SimulateOptions& options, tools::Scene& scene) {
     if (*options.frames < 1) throw Error("--frames must be at least 1");
     scene.frames = *options.frames;
   }
-  if (options.passes) scene.paper_passes = *options.passes;
+  if (options.passes) {
+    scene.paper_passes = checked_count("--passes", *options.passes, setting_of("paper_passes"));
+  }
   if (options.ground) scene.ground.kind = tools::parse_ground_option(*options.ground);
   if (options.mode) {
     scene.response = parse_option("--mode", *options.mode, tools::parse_response_mode);
@@ -195,14 +198,7 @@ void apply_options(const SimulateOptions& options, tools::Scene& scene) {
     scene.solver.contacts = parse_option("--contacts", *options.contacts, tools::parse_contact_set);
   }
   if (options.substeps) {
-    if (*options.substeps < 1 || *options.substeps > tools::kMaxSubsteps) {
-      std::string message = "--substeps must be between 1 and ";
-      message += std::to_string(tools::kMaxSubsteps);
-      message += ", got ";
-      message += std::to_string(*options.substeps);
-      throw Error(message);
-    }
-    scene.substeps = *options.substeps;
+    scene.substeps = checked_count("--substeps", *options.substeps, setting_of("substeps"));
   }
   if (options.depth) {
     for (tools::BodySpec& body : scene.bodies) {
@@ -468,22 +464,21 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--ground", options->ground,
                   "Instead of the scene's ground: octree (the paper's 5-level octree of a 16 m "
                   "thin box) or plane (the exact plane, as the benchmark scene specifies)");
-  cmd->add_option("--mode", options->mode,
-                  "Collision response, instead of the scene's: paper (eq. 4, as published) or "
-                  "plausible (friction, penetration recovery, sleeping)");
-  cmd->add_option("--contacts", options->contacts,
-                  "Plausible mode: all (one per leaf pair) or reduced (a manifold per body pair)");
-  cmd->add_option("--substeps", options->substeps,
-                  "Pipeline runs per frame, each over an equal share of the time step (1..64)");
-  cmd->add_option("--passes", options->passes,
-                  "Paper mode: passes over the contacts per step at most (see docs/experiment.md)");
+  // Each replaces the scene's value; without it the scene's stands.
+  const auto instead = [](std::string_view field) {
+    return setting_help(field) + " Replaces the scene's value.";
+  };
+  cmd->add_option("--mode", options->mode, instead("response"));
+  cmd->add_option("--contacts", options->contacts, instead("solver.contacts"));
+  cmd->add_option("--substeps", options->substeps, instead("substeps"));
+  cmd->add_option("--passes", options->passes, instead("paper_passes"));
   cmd->add_option("--out", options->out,
                   "Folder for frames.csv and recording.sphysrec (default out/<scene>)")
       ->check(kFileName);
-  cmd->add_option("--threads", options->threads,
-                  "Threads a step runs on (0: every hardware thread); the results are the same "
-                  "bit for bit whatever the count")
-      ->check(CLI::Range(0, 1024))
+  const SettingRange& threads = setting_of("threads").range;
+  cmd->add_option("--threads", options->threads, setting_help("threads"))
+      ->check(CLI::Range(static_cast<std::uint32_t>(threads.min),
+                         static_cast<std::uint32_t>(threads.max)))
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print the summary as JSON");
   cmd->add_flag("--no-cache", options->no_cache, "Build sphere-trees even if they are cached");

@@ -34,7 +34,7 @@ void add_view_command(CLI::App& app) {
                   "Play back a recording of sphys simulate (recording.sphysrec) instead")
       ->check(kFileName);
   cmd->add_option("--depth", options->depth, "Sphere-tree depth of every body (levels, 1..6)");
-  cmd->add_option("--mode", args->mode, "Collision response: paper or plausible");
+  cmd->add_option("--mode", args->mode, setting_help("response") + " Replaces the scene's value.");
   cmd->add_option("--ground", args->ground, "octree or plane, instead of the scene's ground");
   cmd->add_option("--spheres", options->sphere_level,
                   "Draw each body's sphere-tree level N (1: the root; 0: none)")

@@ -13,6 +13,7 @@
 
 #include "sphys/contact.h"
 #include "sphys/parallel.h"
+#include "sphys/setting_limits.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/sweep_and_prune.h"
 #include "sphys/tree_descent.h"
@@ -62,9 +63,6 @@ struct CollisionSettings {
   // pair, so only on request.
   bool measure_penetration = false;
 };
-
-// Largest manifold a body pair may be reduced to (CollisionSettings::manifold_points).
-inline constexpr std::uint32_t kMaxManifoldPoints = 8;
 
 // What a contact carries from one narrow phase to the next for warm starting, matched by its leaf
 // pair within its body pair's record. The response writes it; the detector carries it over.

@@ -10,6 +10,7 @@
 
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
+#include "sphys/setting_limits.h"
 
 namespace sphys {
 

@@ -8,6 +8,7 @@
 #include "core/stopwatch.h"
 #include "dynamics/contact_solver.h"
 #include "sphys/error.h"
+#include "sphys/settings_table.h"
 #include "world/sleep_tracker.h"
 
 namespace sphys {
@@ -15,8 +16,6 @@ namespace {
 
 // Relative tolerance of the inertia's symmetry: the tensor comes from float or double sums.
 constexpr float kInertiaSymmetryTolerance = 1e-4f;
-// More threads than any machine has is a mistake in the settings, not a wish.
-constexpr std::uint32_t kMaxThreads = 1024;
 
 void check_material(float restitution, float friction) {
   if (!(restitution >= 0.0f && restitution <= 1.0f)) {
@@ -24,63 +23,6 @@ void check_material(float restitution, float friction) {
   }
   if (!(friction >= 0.0f) || !std::isfinite(friction)) {
     throw Error("friction must be finite and not negative, got " + std::to_string(friction));
-  }
-}
-
-void check_settings(const WorldSettings& settings) {
-  if (!settings.gravity.allFinite()) throw Error("gravity must be finite");
-  if (settings.paper_passes < 1) throw Error("paper_passes must be at least 1");
-  if (!(settings.ground_restitution >= 0.0f && settings.ground_restitution <= 1.0f)) {
-    throw Error("the ground's restitution must be between 0 and 1");
-  }
-  if (!(settings.ground_friction >= 0.0f) || !std::isfinite(settings.ground_friction)) {
-    throw Error("the ground's friction must be finite and not negative");
-  }
-  if (settings.threads > kMaxThreads) {
-    throw Error("threads must be at most " + std::to_string(kMaxThreads) + " (0: all), got " +
-                std::to_string(settings.threads));
-  }
-  if (settings.substeps < 1 || settings.substeps > 64) {
-    throw Error("substeps must be between 1 and 64, got " + std::to_string(settings.substeps));
-  }
-  if (settings.max_substeps < 1 || settings.max_substeps > 64) {
-    throw Error("max_substeps must be between 1 and 64, got " +
-                std::to_string(settings.max_substeps));
-  }
-  if (!(settings.substep_travel > 0.0f) || !std::isfinite(settings.substep_travel)) {
-    throw Error("substep_travel must be positive and finite, got " +
-                std::to_string(settings.substep_travel));
-  }
-  if (!(settings.collision.max_microseconds >= 0.0) ||
-      !std::isfinite(settings.collision.max_microseconds)) {
-    throw Error("the detection time budget must be finite and not negative, got " +
-                std::to_string(settings.collision.max_microseconds) + " µs");
-  }
-  const SolverSettings& solver = settings.solver;
-  if (solver.velocity_iterations < 1) throw Error("velocity_iterations must be at least 1");
-  if (solver.manifold_points < 1 || solver.manifold_points > kMaxManifoldPoints) {
-    throw Error("manifold_points must be between 1 and " + std::to_string(kMaxManifoldPoints) +
-                ", got " + std::to_string(solver.manifold_points));
-  }
-  const auto non_negative = [](float value, const char* name) {
-    if (!(value >= 0.0f) || !std::isfinite(value)) {
-      std::string message = name;
-      message += " must be finite and not negative, got ";
-      message += std::to_string(value);
-      throw Error(message);
-    }
-  };
-  non_negative(solver.restitution_threshold, "restitution_threshold");
-  non_negative(solver.linear_slop, "linear_slop");
-  non_negative(solver.max_correction_speed, "max_correction_speed");
-  non_negative(solver.contact_margin, "contact_margin");
-  non_negative(solver.shock_speed, "shock_speed");
-  non_negative(solver.rolling_resistance, "rolling_resistance");
-  non_negative(solver.reuse_distance, "reuse_distance");
-  non_negative(settings.sleep.speed, "the sleep speed");
-  non_negative(settings.sleep.time, "the sleep time");
-  if (!(solver.position_correction >= 0.0f && solver.position_correction <= 1.0f)) {
-    throw Error("position_correction must be between 0 and 1");
   }
 }
 
@@ -138,7 +80,7 @@ World::World(const WorldSettings& settings)
       detector_(collision_settings(settings)),
       solver_(std::make_unique<ContactSolver>()),
       sleep_(std::make_unique<SleepTracker>()) {
-  check_settings(settings);
+  check_world_settings(settings);
   parallel_ = std::make_unique<Parallel>(settings.threads);
   detector_.set_parallel(parallel_.get());
 }
@@ -215,7 +157,7 @@ void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_micr
   WorldSettings settings = settings_;
   settings.collision.max_sphere_tests = max_sphere_tests;
   settings.collision.max_microseconds = max_microseconds;
-  check_settings(settings);
+  check_world_settings(settings);
   settings_ = settings;
   detector_.set_settings(collision_settings(settings_));
 }

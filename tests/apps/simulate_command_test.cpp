@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli.h"
+#include "sphys/settings_table.h"
 #include "sphys/tools/recording.h"
 #include "support/temp_file.h"
 
@@ -188,6 +189,16 @@ TEST(SimulateCommand, BadSceneFilesExitWithCode2AndTheJsonPath) {
                    "absent.json: no such file");
 }
 
+// The options that set the world's settings say what the settings table says of them.
+TEST(SimulateCommand, HelpTakesTheSettingsFromTheTable) {
+  const test::CommandResult r = test::sphys_cli({"simulate", "--help"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  for (const char* field : {"response", "solver.contacts", "substeps", "paper_passes", "threads"}) {
+    EXPECT_THAT(r.out, HasSubstr(option_help(setting_of(field)))) << field;
+  }
+  EXPECT_THAT(r.out, HasSubstr("Valid: 1 to 64; unit: substeps."));
+}
+
 TEST(SimulateCommand, BadOptionsExitWithCode2) {
   const test::TempDir dir;
   const std::string out = (dir.path() / "out").string();
@@ -205,6 +216,8 @@ TEST(SimulateCommand, BadOptionsExitWithCode2) {
       {{"--substeps", "0"}, "--substeps must be between 1 and 64, got 0"},
       {{"--substeps", "65"}, "--substeps must be between 1 and 64, got 65"},
       {{"--substeps", "two"}, "--substeps"},
+      {{"--passes", "0"}, "--passes must be between 1 and 1000, got 0"},
+      {{"--passes", "1001"}, "--passes must be between 1 and 1000, got 1001"},
       {{"--ground", "box"}, "--ground must be octree or plane, got 'box'"},
   };
   for (const auto& [option, message] : cases) {

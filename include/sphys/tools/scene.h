@@ -79,11 +79,9 @@ struct PairMaterialSpec {
 // Throws sphys::Error listing the valid names.
 [[nodiscard]] ContactSet parse_contact_set(std::string_view name);
 
-// The most substeps a scene may ask for: World refuses more (WorldSettings::substeps).
-inline constexpr int kMaxSubsteps = 64;
-
 // The world's settings start from a default WorldSettings, so that a scene that leaves a key out
-// runs as the runtime would by default.
+// runs as the runtime would by default. Their ranges and units are those of the settings table
+// (sphys/settings_table.h).
 struct Scene {
   std::string name;                        // the file name or the preset, for reports
   Vec3 gravity = WorldSettings{}.gravity;  // unit: m/s²
@@ -91,9 +89,9 @@ struct Scene {
   int frames = 880;                        // one step per frame
   ResponseMode response = WorldSettings{}.response;
   int paper_passes = static_cast<int>(WorldSettings{}.paper_passes);
-  int substeps = static_cast<int>(WorldSettings{}.substeps);          // 1..kMaxSubsteps
-  int max_substeps = static_cast<int>(WorldSettings{}.max_substeps);  // 1..kMaxSubsteps
-  float substep_travel = WorldSettings{}.substep_travel;              // > 0
+  int substeps = static_cast<int>(WorldSettings{}.substeps);
+  int max_substeps = static_cast<int>(WorldSettings{}.max_substeps);
+  float substep_travel = WorldSettings{}.substep_travel;
   SolverSettings solver;  // plausible mode; solver.contacts is the scene's "contacts"
   SleepSettings sleep;    // plausible mode
   GroundSpec ground;
@@ -102,5 +100,11 @@ struct Scene {
   // Folder that relative mesh and .sph paths are taken from.
   std::filesystem::path base_directory;
 };
+
+// The world's settings the scene carries, over a default WorldSettings (threads and the
+// detection budgets are not a scene's). A negative count becomes 0, which World refuses by name.
+[[nodiscard]] WorldSettings world_settings(const Scene& scene);
+// The other way: the scene's fields from those settings.
+void set_world_settings(Scene& scene, const WorldSettings& settings);
 
 }  // namespace sphys::tools

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -17,8 +17,10 @@
 #include <nlohmann/json.hpp>
 
 #include "input_file.h"
+#include "io/setting_json.h"
 #include "sphys/error.h"
 #include "sphys/material.h"
+#include "sphys/settings_table.h"
 #include "sphys/tools/model.h"
 
 namespace sphys::tools {
@@ -47,28 +49,16 @@ constexpr double kUnitTolerance = 1e-6;
 // Longer values are cut short in messages.
 constexpr std::size_t kMaxShown = 40;
 
-constexpr std::array<std::string_view, 17> kSceneKeys = {
-    "format",       "version",  "gravity",  "time_step",    "frames",         "response",
-    "paper_passes", "contacts", "substeps", "max_substeps", "substep_travel", "solver",
-    "sleep",        "ground",   "defaults", "bodies",       "pair_materials"};
-// Passes over the contacts per step in paper mode, at most.
-constexpr long long kMaxPaperPasses = 1000;
-// Solver passes per step, at most: far beyond what converges, short of hanging a step.
-constexpr long long kMaxIterations = 1000;
-// Contacts kept per body pair when reduced, at most: World refuses more
-// (SolverSettings::manifold_points).
-constexpr long long kMaxManifoldPoints = 8;
+// The keys of the top level and of "ground" besides the world's settings, which the settings
+// table lists (sphys/settings_table.h).
+constexpr std::array<std::string_view, 10> kSceneOwnKeys = {
+    "format", "version", "time_step", "frames", "solver",
+    "sleep",  "ground",  "defaults",  "bodies", "pair_materials"};
+constexpr std::array<std::string_view, 5> kGroundOwnKeys = {"type", "height", "size", "thickness",
+                                                            "depth"};
 // Every integer up to here is exact in a double, as a JSON number is read.
 constexpr long long kMaxExactInteger = 9'007'199'254'740'992;  // 2^53
-constexpr std::array<std::string_view, 13> kSolverKeys = {
-    "velocity_iterations",  "position_iterations",   "warm_starting",   "shock_propagation",
-    "shock_speed",          "restitution_threshold", "linear_slop",     "position_correction",
-    "max_correction_speed", "rolling_resistance",    "manifold_points", "contact_margin",
-    "speculative_contacts"};
-constexpr std::array<std::string_view, 3> kSleepKeys = {"enabled", "speed", "time"};
 constexpr std::array<std::string_view, 3> kPairMaterialKeys = {"bodies", "friction", "restitution"};
-constexpr std::array<std::string_view, 7> kGroundKeys = {
-    "type", "height", "size", "thickness", "depth", "restitution", "friction"};
 constexpr std::array<std::string_view, 13> kBodyKeys = {"mesh",
                                                         "triangles",
                                                         "size",
@@ -94,14 +84,6 @@ constexpr std::array<std::string_view, 7> kOrientationKeys = {
 template <typename Enum, std::size_t N>
 using NameTable = std::array<std::pair<Enum, std::string_view>, N>;
 
-constexpr NameTable<ResponseMode, 2> kResponseNames{{
-    {ResponseMode::kPaper, "paper"},
-    {ResponseMode::kPlausible, "plausible"},
-}};
-constexpr NameTable<ContactSet, 2> kContactSets{{
-    {ContactSet::kAll, "all"},
-    {ContactSet::kReduced, "reduced"},
-}};
 constexpr NameTable<GroundSpec::Kind, 3> kGroundKinds{{
     {GroundSpec::Kind::kOctreeBox, "octree-box"},
     {GroundSpec::Kind::kPlane, "plane"},
@@ -114,6 +96,32 @@ std::string_view name_of(Enum value, const NameTable<Enum, N>& table) {
     if (entry == value) return name;
   }
   return "unknown";
+}
+
+// The keys of an object of the document: its own and the world settings it carries.
+std::vector<std::string_view> keys_of(std::string_view object,
+                                      std::span<const std::string_view> own) {
+  std::vector<std::string_view> keys(own.begin(), own.end());
+  for (const Setting& setting : settings_table()) {
+    if (setting.in_scene && setting.object == object) keys.push_back(setting.key);
+  }
+  return keys;
+}
+
+const std::vector<std::string_view>& scene_keys() {
+  static const std::vector<std::string_view> keys = keys_of("", kSceneOwnKeys);
+  return keys;
+}
+
+const std::vector<std::string_view>& ground_keys() {
+  static const std::vector<std::string_view> keys = keys_of("ground", kGroundOwnKeys);
+  return keys;
+}
+
+const std::vector<std::string_view>& setting_keys(std::string_view object) {
+  static const std::vector<std::string_view> solver = keys_of("solver", {});
+  static const std::vector<std::string_view> sleep = keys_of("sleep", {});
+  return object == "solver" ? solver : sleep;
 }
 
 std::string joined(const auto& names) {
@@ -357,12 +365,6 @@ std::string described(const Json& value) {
   node.fail("expected " + std::string(expected) + ", got " + described(node.json()));
 }
 
-std::string number_text(double value) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return {buffer.data(), result.ptr};
-}
-
 // Edit distance, for suggesting the key a misspelt one meant.
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -473,15 +475,22 @@ bool read_bool(const Node& node) {
   return node.json().get<bool>();
 }
 
-template <typename Enum, std::size_t N>
-Enum read_choice(const Node& node, const NameTable<Enum, N>& table) {
+// The index of the name among `names`.
+std::size_t read_choice_index(const Node& node, std::span<const std::string_view> names) {
   const std::string name = read_string(node);
   std::string valid;
-  for (const auto& [value, value_name] : table) {
-    if (value_name == name) return value;
-    valid += (valid.empty() ? "\"" : ", \"") + std::string(value_name) + "\"";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return i;
+    valid += (valid.empty() ? "\"" : ", \"") + std::string(names[i]) + "\"";
   }
   node.fail("unknown value " + shown(node.json()) + " (valid: " + valid + ")");
+}
+
+template <typename Enum, std::size_t N>
+Enum read_choice(const Node& node, const NameTable<Enum, N>& table) {
+  std::array<std::string_view, N> names{};
+  for (std::size_t i = 0; i < N; ++i) names[i] = table[i].second;
+  return table[read_choice_index(node, names)].first;
 }
 
 std::array<double, 3> read_triple(const Node& node) {
@@ -674,8 +683,9 @@ BodySpec read_defaults(const Node& node) {
   return defaults;
 }
 
+// The ground's own keys; its material is among the world's settings (read_settings).
 GroundSpec read_ground(const Node& node) {
-  check_keys(node, kGroundKeys);
+  check_keys(node, ground_keys());
   GroundSpec ground;
   if (const auto n = node.find("type")) ground.kind = read_choice(*n, kGroundKinds);
   if (const auto n = node.find("height")) ground.height = read_number(*n);
@@ -684,56 +694,67 @@ GroundSpec read_ground(const Node& node) {
   if (const auto n = node.find("depth")) {
     ground.depth = static_cast<int>(read_integer(*n, 1, kMaxGroundDepth));
   }
-  if (const auto n = node.find("restitution")) ground.restitution = read_fraction(*n);
-  if (const auto n = node.find("friction")) ground.friction = read_non_negative_single(*n);
   return ground;
 }
 
-std::uint32_t read_count(const Node& node, long long low, long long high) {
-  return static_cast<std::uint32_t>(read_integer(node, low, high));
+// "must not be negative", "must be positive", "must be between 0 and 1": what a figure in
+// `range` must be, as the messages of the other figures say it.
+std::string range_requirement(const SettingRange& range) {
+  if (range.has_min() && range.has_max()) {
+    return "must be between " + number_text(range.min) + " and " + number_text(range.max);
+  }
+  if (range.has_min() && range.min == 0.0) {
+    return range.min_inclusive ? "must not be negative" : "must be positive";
+  }
+  if (range.has_min()) {
+    return (range.min_inclusive ? "must be at least " : "must be above ") + number_text(range.min);
+  }
+  return "must be at most " + number_text(range.max);
 }
 
-// Applies the keys of "solver" over `solver`, which holds the runtime's defaults.
-void read_solver(const Node& node, SolverSettings& solver) {
-  check_keys(node, kSolverKeys);
-  if (const auto n = node.find("velocity_iterations")) {
-    solver.velocity_iterations = read_count(*n, 1, kMaxIterations);
-  }
-  if (const auto n = node.find("position_iterations")) {
-    solver.position_iterations = read_count(*n, 0, kMaxIterations);
-  }
-  if (const auto n = node.find("warm_starting")) solver.warm_starting = read_bool(*n);
-  if (const auto n = node.find("shock_propagation")) solver.shock_propagation = read_bool(*n);
-  if (const auto n = node.find("shock_speed")) solver.shock_speed = read_non_negative_single(*n);
-  if (const auto n = node.find("rolling_resistance")) {
-    solver.rolling_resistance = read_non_negative_single(*n);
-  }
-  if (const auto n = node.find("restitution_threshold")) {
-    solver.restitution_threshold = read_non_negative_single(*n);
-  }
-  if (const auto n = node.find("linear_slop")) solver.linear_slop = read_non_negative_single(*n);
-  if (const auto n = node.find("position_correction")) {
-    solver.position_correction = read_fraction(*n);
-  }
-  if (const auto n = node.find("max_correction_speed")) {
-    solver.max_correction_speed = read_non_negative_single(*n);
-  }
-  if (const auto n = node.find("manifold_points")) {
-    solver.manifold_points = read_count(*n, 1, kMaxManifoldPoints);
-  }
-  if (const auto n = node.find("contact_margin")) {
-    solver.contact_margin = read_non_negative_single(*n);
-  }
-  if (const auto n = node.find("speculative_contacts")) {
-    solver.speculative_contacts = read_bool(*n);
+// A setting's figure. Scene files carry floats only: the range is checked on the value as stored,
+// so that a positive figure that rounds to 0 in single precision is refused here, not by World.
+double read_setting_number(const Node& node, const SettingRange& range) {
+  const float value = to_single(node, read_number(node));
+  if (!range.contains(value)) node.fail(range_requirement(range) + ", got " + shown(node.json()));
+  return value;
+}
+
+void read_setting(const Node& node, const Setting& setting, WorldSettings& settings) {
+  switch (setting.kind) {
+    case SettingKind::kVector3:
+      setting.set_vector(settings, read_vec3(node));
+      return;
+    case SettingKind::kBool:
+      setting.set(settings, read_bool(node) ? 1.0 : 0.0);
+      return;
+    case SettingKind::kEnum:
+      setting.set(settings, static_cast<double>(read_choice_index(node, setting.choices)));
+      return;
+    case SettingKind::kInteger:
+      setting.set(settings,
+                  static_cast<double>(read_integer(node, static_cast<long long>(setting.range.min),
+                                                   static_cast<long long>(setting.range.max))));
+      return;
+    case SettingKind::kNumber:
+      setting.set(settings, read_setting_number(node, setting.range));
+      return;
   }
 }
 
-void read_sleep(const Node& node, SleepSettings& sleep) {
-  check_keys(node, kSleepKeys);
-  if (const auto n = node.find("enabled")) sleep.enabled = read_bool(*n);
-  if (const auto n = node.find("speed")) sleep.speed = read_non_negative_single(*n);
-  if (const auto n = node.find("time")) sleep.time = read_non_negative_single(*n);
+// Applies the world settings that `object` ("" for the top level, "solver", ...) carries over
+// `settings`.
+void read_settings(const Node& node, std::string_view object, WorldSettings& settings) {
+  for (const Setting& setting : settings_table()) {
+    if (!setting.in_scene || setting.object != object) continue;
+    if (const auto n = node.find(std::string(setting.key))) read_setting(*n, setting, settings);
+  }
+}
+
+// "solver" and "sleep": objects of world settings only.
+void read_settings_object(const Node& node, std::string_view object, WorldSettings& settings) {
+  check_keys(node, setting_keys(object));
+  read_settings(node, object, settings);
 }
 
 // An index into the scene's bodies.
@@ -811,12 +832,11 @@ Scene read_scene(const Json& document, const fs::path& name) {
   }
   const Node root(document, "", source);
   read_header(root);
-  check_keys(root, kSceneKeys);
+  check_keys(root, scene_keys());
 
   Scene scene;
   scene.name = name.filename().string();
   scene.base_directory = source.base_directory;
-  if (const auto n = root.find("gravity")) scene.gravity = read_vec3(*n);
   if (const auto n = root.find("time_step")) {
     scene.time_step = read_positive(*n);
     if (scene.time_step > kMaxTimeStep) {
@@ -826,23 +846,15 @@ Scene read_scene(const Json& document, const fs::path& name) {
   if (const auto n = root.find("frames")) {
     scene.frames = static_cast<int>(read_integer(*n, 1, kMaxFrames));
   }
-  if (const auto n = root.find("response")) scene.response = read_choice(*n, kResponseNames);
-  if (const auto n = root.find("paper_passes")) {
-    scene.paper_passes = static_cast<int>(read_integer(*n, 1, kMaxPaperPasses));
+  WorldSettings settings = world_settings(scene);
+  read_settings(root, "", settings);
+  if (const auto n = root.find("solver")) read_settings_object(*n, "solver", settings);
+  if (const auto n = root.find("sleep")) read_settings_object(*n, "sleep", settings);
+  if (const auto n = root.find("ground")) {
+    scene.ground = read_ground(*n);
+    read_settings(*n, "ground", settings);
   }
-  if (const auto n = root.find("contacts")) scene.solver.contacts = read_choice(*n, kContactSets);
-  if (const auto n = root.find("substeps")) {
-    scene.substeps = static_cast<int>(read_integer(*n, 1, kMaxSubsteps));
-  }
-  if (const auto n = root.find("max_substeps")) {
-    scene.max_substeps = static_cast<int>(read_integer(*n, 1, kMaxSubsteps));
-  }
-  if (const auto n = root.find("substep_travel")) {
-    scene.substep_travel = to_single(*n, read_positive(*n));
-  }
-  if (const auto n = root.find("solver")) read_solver(*n, scene.solver);
-  if (const auto n = root.find("sleep")) read_sleep(*n, scene.sleep);
-  if (const auto n = root.find("ground")) scene.ground = read_ground(*n);
+  set_world_settings(scene, settings);
 
   const BodySpec defaults =
       root.find("defaults") ? read_defaults(root.child("defaults")) : BodySpec{};
@@ -859,20 +871,10 @@ Scene read_scene(const Json& document, const fs::path& name) {
   return scene;
 }
 
-// A float as the double of its shortest decimal form, so that 0.3f is written "0.3" rather than
-// "0.30000001192092896". That double rounds back to the float for all finite floats but one pair
-// (±7.038531e-26, bits 0x15ae43fd, where rounding twice lands on a neighbour); those are written
-// exactly. Either way the scene reads back bit for bit.
-double written(float value) {
-  std::array<char, 32> buffer{};
-  const auto printed = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  double shortest = 0.0;
-  std::from_chars(buffer.data(), printed.ptr, shortest);
-  return static_cast<float>(shortest) == value ? shortest : static_cast<double>(value);
-}
-
+// Floats are written in their shortest decimal form (shortest_double), so that 0.3f is written
+// "0.3" rather than "0.30000001192092896" and reads back bit for bit.
 Json vec3_json(const Vec3& v) {
-  return Json::array({written(v.x()), written(v.y()), written(v.z())});
+  return Json::array({shortest_double(v.x()), shortest_double(v.y()), shortest_double(v.z())});
 }
 
 template <typename T>
@@ -897,14 +899,16 @@ Json body_json(const BodySpec& body) {
   out["sphere_tree"] = tree_json(body.tree);
   out["position"] = vec3_json(body.position);
   const Quat& q = body.orientation;
-  out["orientation"] = {
-      {"w", written(q.w())}, {"x", written(q.x())}, {"y", written(q.y())}, {"z", written(q.z())}};
+  out["orientation"] = {{"w", shortest_double(q.w())},
+                        {"x", shortest_double(q.x())},
+                        {"y", shortest_double(q.y())},
+                        {"z", shortest_double(q.z())}};
   out["linear_velocity"] = vec3_json(body.linear_velocity);
   out["angular_velocity"] = vec3_json(body.angular_velocity);
   out["density"] = body.density;
   out["mass"] = optional_json(body.mass);
-  out["restitution"] = written(body.restitution);
-  out["friction"] = written(body.friction);
+  out["restitution"] = shortest_double(body.restitution);
+  out["friction"] = shortest_double(body.friction);
   out["static"] = body.is_static;
   return out;
 }
@@ -916,46 +920,21 @@ Json ground_json(const GroundSpec& ground) {
   out["size"] = ground.size;
   out["thickness"] = ground.thickness;
   out["depth"] = ground.depth;
-  out["restitution"] = written(ground.restitution);
-  out["friction"] = written(ground.friction);
   return out;
-}
-
-Json solver_json(const SolverSettings& solver) {
-  return {{"velocity_iterations", solver.velocity_iterations},
-          {"position_iterations", solver.position_iterations},
-          {"warm_starting", solver.warm_starting},
-          {"shock_propagation", solver.shock_propagation},
-          {"shock_speed", written(solver.shock_speed)},
-          {"rolling_resistance", written(solver.rolling_resistance)},
-          {"restitution_threshold", written(solver.restitution_threshold)},
-          {"linear_slop", written(solver.linear_slop)},
-          {"position_correction", written(solver.position_correction)},
-          {"max_correction_speed", written(solver.max_correction_speed)},
-          {"manifold_points", solver.manifold_points},
-          {"contact_margin", written(solver.contact_margin)},
-          {"speculative_contacts", solver.speculative_contacts}};
-}
-
-Json sleep_json(const SleepSettings& sleep) {
-  return {
-      {"enabled", sleep.enabled}, {"speed", written(sleep.speed)}, {"time", written(sleep.time)}};
 }
 
 Json pair_material_json(const PairMaterialSpec& pair) {
   return {{"bodies", Json::array({pair.bodies[0], pair.bodies[1]})},
-          {"friction", written(pair.material.friction)},
-          {"restitution", written(pair.material.restitution)}};
+          {"friction", shortest_double(pair.material.friction)},
+          {"restitution", shortest_double(pair.material.restitution)}};
 }
 
-// "unknown <what> '<name>'; <what>s: a, b", for names given on the command line.
-template <typename Enum, std::size_t N>
-Enum parse_name(std::string_view name, const NameTable<Enum, N>& table, std::string_view what) {
-  for (const auto& [value, known] : table) {
-    if (known == name) return value;
-  }
-  std::vector<std::string_view> names;
-  for (const auto& entry : table) names.push_back(entry.second);
+// The index of `name` among the choices of an enum setting, else "unknown <what> '<name>';
+// <what>s: a, b", for names given on the command line.
+std::size_t parse_name(std::string_view name, const Setting& setting, std::string_view what) {
+  const std::span<const std::string_view> names = setting.choices;
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found != names.end()) return static_cast<std::size_t>(found - names.begin());
   std::string message = "unknown ";
   message += what;
   message += " '";
@@ -979,10 +958,12 @@ Scene read_scene_file(const fs::path& path) {
   return parse_scene(read_input_file(path, InputKind::kScene), path);
 }
 
-std::string_view response_mode_name(ResponseMode mode) { return name_of(mode, kResponseNames); }
+std::string_view response_mode_name(ResponseMode mode) {
+  return setting_of("response").choices[static_cast<std::size_t>(mode)];
+}
 
 ResponseMode parse_response_mode(std::string_view name) {
-  return parse_name(name, kResponseNames, "response mode");
+  return static_cast<ResponseMode>(parse_name(name, setting_of("response"), "response mode"));
 }
 
 GroundSpec::Kind parse_ground_option(std::string_view name) {
@@ -994,28 +975,26 @@ GroundSpec::Kind parse_ground_option(std::string_view name) {
   throw Error(message);
 }
 
-std::string_view contact_set_name(ContactSet contacts) { return name_of(contacts, kContactSets); }
+std::string_view contact_set_name(ContactSet contacts) {
+  return setting_of("solver.contacts").choices[static_cast<std::size_t>(contacts)];
+}
 
 ContactSet parse_contact_set(std::string_view name) {
-  return parse_name(name, kContactSets, "contact set");
+  return static_cast<ContactSet>(parse_name(name, setting_of("solver.contacts"), "contact set"));
 }
 
 std::string scene_to_json(const Scene& scene) {
   Json out = Json::object();
   out["format"] = kFormat;
   out["version"] = kVersion;
-  out["gravity"] = vec3_json(scene.gravity);
   out["time_step"] = scene.time_step;
   out["frames"] = scene.frames;
-  out["response"] = name_of(scene.response, kResponseNames);
-  out["paper_passes"] = scene.paper_passes;
-  out["contacts"] = name_of(scene.solver.contacts, kContactSets);
-  out["substeps"] = scene.substeps;
-  out["max_substeps"] = scene.max_substeps;
-  out["substep_travel"] = written(scene.substep_travel);
-  out["solver"] = solver_json(scene.solver);
-  out["sleep"] = sleep_json(scene.sleep);
+  const WorldSettings settings = world_settings(scene);
+  out.update(settings_json("", settings));
+  out["solver"] = settings_json("solver", settings);
+  out["sleep"] = settings_json("sleep", settings);
   out["ground"] = ground_json(scene.ground);
+  out["ground"].update(settings_json("ground", settings));
   Json bodies = Json::array();
   for (const BodySpec& body : scene.bodies) bodies.push_back(body_json(body));
   out["bodies"] = std::move(bodies);

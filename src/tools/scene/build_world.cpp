@@ -74,25 +74,6 @@ BodyShape make_shape(const Scene& scene, const BodySpec& body, const TreeSpec& t
   return shape;
 }
 
-// A negative count becomes 0, which World refuses by name.
-std::uint32_t count(int value) { return static_cast<std::uint32_t>(std::max(value, 0)); }
-
-WorldSettings world_settings(const Scene& scene) {
-  WorldSettings settings;
-  settings.gravity = scene.gravity;
-  settings.response = scene.response;
-  settings.paper_passes = count(scene.paper_passes);
-  settings.substeps = count(scene.substeps);
-  settings.max_substeps = count(scene.max_substeps);
-  settings.substep_travel = scene.substep_travel;
-  settings.solver = scene.solver;
-  settings.sleep = scene.sleep;
-  // The exact plane's material; the octree ground is a body and carries its own.
-  settings.ground_restitution = scene.ground.restitution;
-  settings.ground_friction = scene.ground.friction;
-  return settings;
-}
-
 // The world with its ground: the detector's plane or a static octree body.
 void make_world(const Scene& scene, const BuildWorldOptions& options, SimulationSetup& setup) {
   WorldSettings settings = world_settings(scene);

@@ -102,6 +102,7 @@ void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
   EXPECT_EQ(a.shock_propagation, b.shock_propagation);
   EXPECT_EQ(bits(a.shock_speed), bits(b.shock_speed));
   EXPECT_EQ(bits(a.rolling_resistance), bits(b.rolling_resistance));
+  EXPECT_EQ(bits(a.reuse_distance), bits(b.reuse_distance));
   EXPECT_EQ(bits(a.restitution_threshold), bits(b.restitution_threshold));
   EXPECT_EQ(bits(a.linear_slop), bits(b.linear_slop));
   EXPECT_EQ(bits(a.position_correction), bits(b.position_correction));
@@ -177,7 +178,7 @@ constexpr std::string_view kFullScene = R"({
   "solver": {"velocity_iterations": 12, "position_iterations": 0, "warm_starting": false,
              "shock_propagation": false, "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
              "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
-             "shock_speed": 0.75, "rolling_resistance": 0.02,
+             "shock_speed": 0.75, "rolling_resistance": 0.02, "reuse_distance": 0.001,
              "speculative_contacts": false},
   "sleep": {"enabled": false, "speed": 0.1, "time": 2},
   "ground": {"type": "plane", "height": -1.5, "size": 20, "thickness": 0.75, "depth": 4,
@@ -232,6 +233,7 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   solver.max_correction_speed = 2.0f;
   solver.shock_speed = 0.75f;
   solver.rolling_resistance = 0.02f;
+  solver.reuse_distance = 0.001f;
   solver.contacts = ContactSet::kAll;
   solver.manifold_points = 6;
   solver.contact_margin = 0.05f;
@@ -466,6 +468,7 @@ class RandomScene {
     solver.shock_propagation = coin();
     solver.shock_speed = std::abs(any_float());
     solver.rolling_resistance = std::abs(any_float());
+    solver.reuse_distance = std::abs(any_float());
     solver.restitution_threshold = std::abs(any_float());
     solver.linear_slop = std::abs(any_float());
     solver.position_correction = unit_float();

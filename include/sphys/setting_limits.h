@@ -1,0 +1,25 @@
+#pragma once
+
+// Limits of the world's settings that more than one place needs: the settings table
+// (sphys/settings_table.h) checks against them, the contact reduction sizes its buffers by one.
+// Each is declared here once.
+
+#include <cstdint>
+
+namespace sphys {
+
+// Largest manifold a body pair may be reduced to (SolverSettings::manifold_points). unit: contacts
+inline constexpr std::uint32_t kMaxManifoldPoints = 8;
+// Most substeps a step may run (WorldSettings::substeps and max_substeps): a step of 1/60 s cut
+// 64 ways is 0.26 ms, finer than any scene sphys runs needs.
+inline constexpr std::uint32_t kMaxSubsteps = 64;
+// Most solver passes per step (SolverSettings::velocity_iterations and position_iterations): far
+// beyond what converges, short of hanging a step. unit: passes
+inline constexpr std::uint32_t kMaxIterations = 1000;
+// Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
+inline constexpr std::uint32_t kMaxPaperPasses = 1000;
+// More threads than any machine has is a mistake in the settings, not a wish
+// (WorldSettings::threads).
+inline constexpr std::uint32_t kMaxWorldThreads = 1024;
+
+}  // namespace sphys

@@ -1,0 +1,97 @@
+#pragma once
+
+// The world's settings, each declared once: its name in scene files, kind, unit, valid range,
+// one line of documentation and where it lives in WorldSettings. The default is what a
+// default-constructed WorldSettings holds. Validation (check_world_settings), the scene reader and
+// writer, the command line's --help, docs/scene.schema.json and the tables of docs/scenes.md all
+// come from this table, so that a setting cannot mean one thing in one place and another
+// elsewhere.
+
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "sphys/math.h"
+#include "sphys/setting_limits.h"
+
+namespace sphys {
+
+struct WorldSettings;
+
+enum class SettingKind {
+  kInteger,  // an unsigned count, exact in a double
+  kNumber,   // a float or double figure
+  kBool,
+  kEnum,     // one of `choices`, by the enum's value (0, 1, ...)
+  kVector3,  // [x, y, z], each component finite
+};
+
+// The values a setting may take: a closed, open or half-open interval. An infinite end is no
+// bound; every number must be finite besides.
+struct SettingRange {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_inclusive = true;
+  bool max_inclusive = true;
+
+  [[nodiscard]] bool has_min() const { return min > -std::numeric_limits<double>::infinity(); }
+  [[nodiscard]] bool has_max() const { return max < std::numeric_limits<double>::infinity(); }
+  [[nodiscard]] bool contains(double value) const;
+};
+
+struct Setting {
+  // Where scene files carry it: the object ("" for the top level, "solver", "sleep", "ground")
+  // and the key inside it. Settings a scene does not carry (`in_scene` false) have no object.
+  std::string_view object{};
+  std::string_view key{};
+  bool in_scene = true;
+  // The field of WorldSettings, as C++ names it ("solver.velocity_iterations"); messages of the
+  // runtime name the setting so.
+  std::string_view field{};
+  SettingKind kind = SettingKind::kNumber;
+  std::string_view unit{};  // "" for a dimensionless figure, a flag or a choice
+  SettingRange range{};
+  std::span<const std::string_view> choices{};  // kEnum: the names, in the order of the values
+  std::string_view doc{};                       // one sentence or two, what it does and why
+  // The field's value as a double: a count, 0 or 1, an enum's value; a float as the double of
+  // its shortest decimal form (shortest_double), so that 0.3f reads "0.3". Not for kVector3.
+  double (*get)(const WorldSettings&) = nullptr;
+  void (*set)(WorldSettings&, double) = nullptr;
+  // kVector3 only.
+  Vec3 (*get_vector)(const WorldSettings&) = nullptr;
+  void (*set_vector)(WorldSettings&, const Vec3&) = nullptr;
+};
+
+// Every setting, in the order scene files and docs/scenes.md list them: the top level, then
+// "solver", "sleep", "ground", then those scene files do not carry.
+[[nodiscard]] std::span<const Setting> settings_table();
+
+// The setting of this WorldSettings field ("substeps", "solver.contacts"). Throws
+// std::out_of_range when there is none: a caller's mistake, not bad input.
+[[nodiscard]] const Setting& setting_of(std::string_view field);
+
+// Throws sphys::Error for the first setting outside its range, naming the field, the range and
+// the value with its unit ("solver.manifold_points must be between 1 and 8, got 9 contacts").
+void check_world_settings(const WorldSettings& settings);
+
+// "1 to 64", ">= 0", "> 0", "0 to 1", "finite", "paper or plausible", "true or false": the valid
+// values as a person reads them.
+[[nodiscard]] std::string range_text(const Setting& setting);
+// A value of the setting as scene files write it: "20", "0.0004", "true", "plausible",
+// "[0, -9.81, 0]".
+[[nodiscard]] std::string value_text(const Setting& setting, const WorldSettings& settings);
+// A --help text for a command-line option that sets this setting: its documentation, valid values
+// and unit ("... Valid: 1 to 64; unit: substeps."). The option's own default is the command's to
+// show: it need not be the runtime's.
+[[nodiscard]] std::string option_help(const Setting& setting);
+
+// The shortest decimal form of a float, as a double: 0.3f gives 0.3 rather than
+// 0.30000001192092896. It rounds back to the same float for every finite float but one pair
+// (±7.038531e-26, where rounding twice lands on a neighbour); those give the float's exact value.
+[[nodiscard]] double shortest_double(float value);
+// The shortest decimal text that reads back to this double ("0.0004", "1", "1e+39").
+[[nodiscard]] std::string number_text(double value);
+
+}  // namespace sphys

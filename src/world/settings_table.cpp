@@ -1,0 +1,501 @@
+#include "sphys/settings_table.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+#include "sphys/error.h"
+#include "sphys/world.h"
+
+namespace sphys {
+namespace {
+
+// Where a field lives: WorldSettings::*Member, or (WorldSettings::*Group).*Member.
+template <auto Member>
+struct Top {
+  static auto& in(WorldSettings& settings) { return settings.*Member; }
+  static const auto& in(const WorldSettings& settings) { return settings.*Member; }
+};
+
+template <auto Group, auto Member>
+struct Nested {
+  static auto& in(WorldSettings& settings) { return (settings.*Group).*Member; }
+  static const auto& in(const WorldSettings& settings) { return (settings.*Group).*Member; }
+};
+
+template <typename Path>
+double get_scalar(const WorldSettings& settings) {
+  const auto value = Path::in(settings);
+  using T = std::remove_cv_t<decltype(value)>;
+  if constexpr (std::is_enum_v<T>) {
+    return static_cast<double>(static_cast<std::underlying_type_t<T>>(value));
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return value ? 1.0 : 0.0;
+  } else if constexpr (std::is_same_v<T, float>) {
+    return shortest_double(value);
+  } else {
+    return static_cast<double>(value);
+  }
+}
+
+// `value` must be representable in the field's type (a count must not be negative).
+template <typename Path>
+void set_scalar(WorldSettings& settings, double value) {
+  auto& field = Path::in(settings);
+  using T = std::remove_cvref_t<decltype(field)>;
+  if constexpr (std::is_enum_v<T>) {
+    field = static_cast<T>(static_cast<std::underlying_type_t<T>>(value));
+  } else if constexpr (std::is_same_v<T, bool>) {
+    field = value != 0.0;
+  } else {
+    field = static_cast<T>(value);
+  }
+}
+
+template <typename Path>
+Setting scalar(Setting setting) {
+  setting.get = &get_scalar<Path>;
+  setting.set = &set_scalar<Path>;
+  return setting;
+}
+
+template <typename Path>
+Setting vector(Setting setting) {
+  setting.get_vector = [](const WorldSettings& settings) -> Vec3 { return Path::in(settings); };
+  setting.set_vector = [](WorldSettings& settings, const Vec3& value) {
+    Path::in(settings) = value;
+  };
+  return setting;
+}
+
+constexpr SettingRange between(double low, double high) { return {low, high, true, true}; }
+constexpr SettingRange at_least(double low) { return {.min = low}; }
+constexpr SettingRange above(double low) { return {.min = low, .min_inclusive = false}; }
+constexpr SettingRange kAnyFinite{};
+
+constexpr std::array<std::string_view, 2> kResponseChoices = {"paper", "plausible"};
+constexpr std::array<std::string_view, 2> kContactChoices = {"all", "reduced"};
+
+using W = WorldSettings;
+using S = SolverSettings;
+using Z = SleepSettings;
+using C = CollisionSettings;
+
+// Kept in the order of docs/scenes.md; the command line finds an entry by its field.
+const auto kTable = std::to_array<Setting>({
+    vector<Top<&W::gravity>>({
+        .key = "gravity",
+        .field = "gravity",
+        .kind = SettingKind::kVector3,
+        .unit = "m/s²",
+        .range = kAnyFinite,
+        .doc = "Acceleration of gravity, y up.",
+    }),
+    scalar<Top<&W::response>>({
+        .key = "response",
+        .field = "response",
+        .kind = SettingKind::kEnum,
+        .choices = kResponseChoices,
+        .doc = "How contacts change velocities. paper: the impulse of the paper's eq. 4 per "
+               "contact, no friction (docs/experiment.md). plausible: sequential impulses with "
+               "warm starting, Coulomb friction, restitution above a threshold, penetration "
+               "recovery, speculative contacts and sleeping (docs/dynamics.md).",
+    }),
+    scalar<Top<&W::paper_passes>>({
+        .key = "paper_passes",
+        .field = "paper_passes",
+        .kind = SettingKind::kInteger,
+        .unit = "passes",
+        .range = between(1, kMaxPaperPasses),
+        .doc = "Paper mode: passes over the contacts per step at most; a step stops after a pass "
+               "that finds no approaching contact. 1 gives every contact at most one impulse, as "
+               "published.",
+    }),
+    scalar<Nested<&W::solver, &S::contacts>>({
+        .key = "contacts",
+        .field = "solver.contacts",
+        .kind = SettingKind::kEnum,
+        .choices = kContactChoices,
+        .doc = "Plausible mode: the contacts the response sees. all: one per overlapping leaf "
+               "pair, as the paper makes them. reduced: at most solver.manifold_points per body "
+               "pair.",
+    }),
+    scalar<Top<&W::substeps>>({
+        .key = "substeps",
+        .field = "substeps",
+        .kind = SettingKind::kInteger,
+        .unit = "substeps",
+        .range = between(1, kMaxSubsteps),
+        .doc = "Runs of the whole step per frame (at least), each over an equal share of the time "
+               "step.",
+    }),
+    scalar<Top<&W::max_substeps>>({
+        .key = "max_substeps",
+        .field = "max_substeps",
+        .kind = SettingKind::kInteger,
+        .unit = "substeps",
+        .range = between(1, kMaxSubsteps),
+        .doc = "Plausible mode: more substeps in a frame where bodies move fast, up to this many; "
+               "at most substeps turns it off.",
+    }),
+    scalar<Top<&W::substep_travel>>({
+        .key = "substep_travel",
+        .field = "substep_travel",
+        .kind = SettingKind::kNumber,
+        .unit = "bounding radii",
+        .range = above(0),
+        .doc = "Plausible mode: a body's fastest point (|v| + |ω| · its bounding radius) travels "
+               "at most this much of its bounding radius per substep, within max_substeps.",
+    }),
+    scalar<Nested<&W::solver, &S::velocity_iterations>>({
+        .object = "solver",
+        .key = "velocity_iterations",
+        .field = "solver.velocity_iterations",
+        .kind = SettingKind::kInteger,
+        .unit = "passes",
+        .range = between(1, kMaxIterations),
+        .doc = "Passes over the contacts for velocities per step.",
+    }),
+    scalar<Nested<&W::solver, &S::position_iterations>>({
+        .object = "solver",
+        .key = "position_iterations",
+        .field = "solver.position_iterations",
+        .kind = SettingKind::kInteger,
+        .unit = "passes",
+        .range = between(0, kMaxIterations),
+        .doc = "Passes of the split-impulse penetration recovery per step.",
+    }),
+    scalar<Nested<&W::solver, &S::warm_starting>>({
+        .object = "solver",
+        .key = "warm_starting",
+        .field = "solver.warm_starting",
+        .kind = SettingKind::kBool,
+        .doc = "Start from the previous step's impulses.",
+    }),
+    scalar<Nested<&W::solver, &S::shock_propagation>>({
+        .object = "solver",
+        .key = "shock_propagation",
+        .field = "solver.shock_propagation",
+        .kind = SettingKind::kBool,
+        .doc = "After the passes, solve the contacts level by level from the ground up, so that "
+               "no body of a pile is left sinking into its support.",
+    }),
+    scalar<Nested<&W::solver, &S::shock_speed>>({
+        .object = "solver",
+        .key = "shock_speed",
+        .field = "solver.shock_speed",
+        .unit = "m/s",
+        .range = at_least(0),
+        .doc = "Shock propagation acts on contacts still closing faster than this after the "
+               "passes, leaving resting contacts to the solver.",
+    }),
+    scalar<Nested<&W::solver, &S::restitution_threshold>>({
+        .object = "solver",
+        .key = "restitution_threshold",
+        .field = "solver.restitution_threshold",
+        .unit = "m/s",
+        .range = at_least(0),
+        .doc = "Approach speeds below this get no restitution, so resting contacts do not bounce.",
+    }),
+    scalar<Nested<&W::solver, &S::linear_slop>>({
+        .object = "solver",
+        .key = "linear_slop",
+        .field = "solver.linear_slop",
+        .unit = "m",
+        .range = at_least(0),
+        .doc = "Penetration left alone, so that resting contacts keep touching.",
+    }),
+    scalar<Nested<&W::solver, &S::position_correction>>({
+        .object = "solver",
+        .key = "position_correction",
+        .field = "solver.position_correction",
+        .unit = "dimensionless",
+        .range = between(0, 1),
+        .doc = "Fraction of the penetration beyond the slop removed per step.",
+    }),
+    scalar<Nested<&W::solver, &S::max_correction_speed>>({
+        .object = "solver",
+        .key = "max_correction_speed",
+        .field = "solver.max_correction_speed",
+        .unit = "m/s",
+        .range = at_least(0),
+        .doc = "Largest speed of the penetration recovery.",
+    }),
+    scalar<Nested<&W::solver, &S::rolling_resistance>>({
+        .object = "solver",
+        .key = "rolling_resistance",
+        .field = "solver.rolling_resistance",
+        .unit = "m",
+        .range = at_least(0),
+        .doc = "Each contact resists the relative turning of its bodies (rolling and spinning) "
+               "with a torque up to this arm times its normal force, as a soft tyre or a dent in "
+               "the ground does.",
+    }),
+    scalar<Nested<&W::solver, &S::manifold_points>>({
+        .object = "solver",
+        .key = "manifold_points",
+        .field = "solver.manifold_points",
+        .kind = SettingKind::kInteger,
+        .unit = "contacts",
+        .range = between(1, kMaxManifoldPoints),
+        .doc = "Contacts kept per body pair when contacts are reduced.",
+    }),
+    scalar<Nested<&W::solver, &S::contact_margin>>({
+        .object = "solver",
+        .key = "contact_margin",
+        .field = "solver.contact_margin",
+        .unit = "m",
+        .range = at_least(0),
+        .doc = "Contacts are made this far before spheres touch.",
+    }),
+    scalar<Nested<&W::solver, &S::speculative_contacts>>({
+        .object = "solver",
+        .key = "speculative_contacts",
+        .field = "solver.speculative_contacts",
+        .kind = SettingKind::kBool,
+        .doc = "Widen the margin by how far each pair can close in a step, so that fast bodies "
+               "neither tunnel nor sink in.",
+    }),
+    scalar<Nested<&W::solver, &S::reuse_distance>>({
+        .object = "solver",
+        .key = "reuse_distance",
+        .field = "solver.reuse_distance",
+        .unit = "m",
+        .range = at_least(0),
+        .doc = "A body pair that moved relative to itself by at most this since its trees last "
+               "descended keeps its manifold, recomputed at the new poses, instead of descending "
+               "again; 0 descends every pair every substep.",
+    }),
+    scalar<Nested<&W::sleep, &Z::enabled>>({
+        .object = "sleep",
+        .key = "enabled",
+        .field = "sleep.enabled",
+        .kind = SettingKind::kBool,
+        .doc = "Put bodies at rest to sleep; false simulates every body in every step.",
+    }),
+    scalar<Nested<&W::sleep, &Z::speed>>({
+        .object = "sleep",
+        .key = "speed",
+        .field = "sleep.speed",
+        .unit = "m/s",
+        .range = at_least(0),
+        .doc = "A body is still while its fastest point (|v| + |ω| · its bounding radius) is "
+               "slower than this.",
+    }),
+    scalar<Nested<&W::sleep, &Z::time>>({
+        .object = "sleep",
+        .key = "time",
+        .field = "sleep.time",
+        .unit = "s",
+        .range = at_least(0),
+        .doc = "A group of touching bodies (an island) sleeps once all of them have been still "
+               "this long.",
+    }),
+    scalar<Top<&W::ground_restitution>>({
+        .object = "ground",
+        .key = "restitution",
+        .field = "ground_restitution",
+        .unit = "dimensionless",
+        .range = between(0, 1),
+        .doc = "The ground's restitution; a contact takes the larger of the ground's and the "
+               "body's.",
+    }),
+    scalar<Top<&W::ground_friction>>({
+        .object = "ground",
+        .key = "friction",
+        .field = "ground_friction",
+        .unit = "dimensionless",
+        .range = at_least(0),
+        .doc = "The ground's friction coefficient; a contact takes the geometric mean of the "
+               "ground's and the body's.",
+    }),
+    scalar<Top<&W::threads>>({
+        .key = "threads",
+        .in_scene = false,
+        .field = "threads",
+        .kind = SettingKind::kInteger,
+        .unit = "threads",
+        .range = between(0, kMaxWorldThreads),
+        .doc = "Threads a step runs on (oneTBB); 0 takes every hardware thread. The results are "
+               "the same bit for bit whatever the count.",
+    }),
+    scalar<Top<&W::plausibility_figures>>({
+        .key = "plausibility_figures",
+        .in_scene = false,
+        .field = "plausibility_figures",
+        .kind = SettingKind::kBool,
+        .doc = "Compute StepStats' plausibility figures (penetration, kinetic energy, rest, "
+               "jitter) every step: each a pass over every leaf pair or body.",
+    }),
+    scalar<Nested<&W::collision, &C::max_microseconds>>({
+        .key = "max_microseconds",
+        .in_scene = false,
+        .field = "collision.max_microseconds",
+        .unit = "µs",
+        .range = at_least(0),
+        .doc = "Time-critical narrow phase (paper §3.2): time the sphere-tree descents of a "
+               "detection may take, shared by the pairs in order; 0 turns the budget off.",
+    }),
+});
+
+// What a value must be, for messages: "between 1 and 64", "finite and not negative".
+std::string requirement(const Setting& setting) {
+  const SettingRange& range = setting.range;
+  if (setting.kind == SettingKind::kEnum) return "one of " + range_text(setting);
+  if (range.has_min() && range.has_max()) {
+    return "between " + number_text(range.min) + " and " + number_text(range.max);
+  }
+  std::string text;
+  if (range.has_min()) {
+    if (range.min == 0.0) {
+      text = range.min_inclusive ? "finite and not negative" : "positive and finite";
+    } else {
+      text = range.min_inclusive ? "at least " : "above ";
+      text += number_text(range.min);
+    }
+  } else {
+    text = "finite";
+  }
+  return text;
+}
+
+std::string with_unit(std::string text, std::string_view unit) {
+  if (!unit.empty() && unit != "dimensionless") {
+    text += ' ';
+    text += unit;
+  }
+  return text;
+}
+
+std::string vector_text(const Vec3& v) {
+  std::string text = "[";
+  for (int k = 0; k < 3; ++k) {
+    if (k > 0) text += ", ";
+    text += number_text(shortest_double(v[k]));
+  }
+  text += "]";
+  return text;
+}
+
+void check_setting(const Setting& setting, const WorldSettings& settings) {
+  if (setting.kind == SettingKind::kVector3) {
+    if (setting.get_vector(settings).allFinite()) return;
+  } else if (setting.kind == SettingKind::kBool) {
+    return;
+  } else {
+    const double value = setting.get(settings);
+    const bool valid = setting.kind == SettingKind::kEnum
+                           ? value >= 0.0 && value < static_cast<double>(setting.choices.size())
+                           : std::isfinite(value) && setting.range.contains(value);
+    if (valid) return;
+  }
+  throw Error(std::string(setting.field) + " must be " + requirement(setting) + ", got " +
+              with_unit(value_text(setting, settings), setting.unit));
+}
+
+}  // namespace
+
+bool SettingRange::contains(double value) const {
+  const bool above_min = min_inclusive ? value >= min : value > min;
+  const bool below_max = max_inclusive ? value <= max : value < max;
+  return above_min && below_max;
+}
+
+std::span<const Setting> settings_table() { return kTable; }
+
+const Setting& setting_of(std::string_view field) {
+  const auto found = std::find_if(kTable.begin(), kTable.end(),
+                                  [&](const Setting& setting) { return setting.field == field; });
+  if (found == kTable.end()) {
+    throw std::out_of_range("no setting " + std::string(field) + " in the settings table");
+  }
+  return *found;
+}
+
+void check_world_settings(const WorldSettings& settings) {
+  for (const Setting& setting : kTable) check_setting(setting, settings);
+}
+
+std::string range_text(const Setting& setting) {
+  switch (setting.kind) {
+    case SettingKind::kBool:
+      return "true or false";
+    case SettingKind::kEnum: {
+      std::string text;
+      for (std::size_t i = 0; i < setting.choices.size(); ++i) {
+        if (i > 0) text += i + 1 == setting.choices.size() ? " or " : ", ";
+        text += setting.choices[i];
+      }
+      return text;
+    }
+    case SettingKind::kVector3:
+      return "finite";
+    case SettingKind::kInteger:
+    case SettingKind::kNumber:
+      break;
+  }
+  const SettingRange& range = setting.range;
+  if (range.has_min() && range.has_max()) {
+    return number_text(range.min) + " to " + number_text(range.max);
+  }
+  std::string text = "finite";
+  if (range.has_min()) {
+    text = range.min_inclusive ? ">= " : "> ";
+    text += number_text(range.min);
+  } else if (range.has_max()) {
+    text = range.max_inclusive ? "<= " : "< ";
+    text += number_text(range.max);
+  }
+  return text;
+}
+
+std::string value_text(const Setting& setting, const WorldSettings& settings) {
+  switch (setting.kind) {
+    case SettingKind::kVector3:
+      return vector_text(setting.get_vector(settings));
+    case SettingKind::kBool:
+      return setting.get(settings) != 0.0 ? "true" : "false";
+    case SettingKind::kEnum: {
+      const double value = setting.get(settings);
+      if (value >= 0.0 && value < static_cast<double>(setting.choices.size())) {
+        return std::string(setting.choices[static_cast<std::size_t>(value)]);
+      }
+      return number_text(value);
+    }
+    case SettingKind::kInteger:
+    case SettingKind::kNumber:
+      break;
+  }
+  return number_text(setting.get(settings));
+}
+
+std::string option_help(const Setting& setting) {
+  std::string text(setting.doc);
+  text += " Valid: ";
+  text += range_text(setting);
+  if (!setting.unit.empty() && setting.unit != "dimensionless") {
+    text += "; unit: ";
+    text += setting.unit;
+  }
+  text += ".";
+  return text;
+}
+
+double shortest_double(float value) {
+  std::array<char, 32> buffer{};
+  const auto printed = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  double shortest = 0.0;
+  std::from_chars(buffer.data(), printed.ptr, shortest);
+  return static_cast<float>(shortest) == value ? shortest : static_cast<double>(value);
+}
+
+std::string number_text(double value) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return {buffer.data(), result.ptr};
+}
+
+}  // namespace sphys
