@@ -398,7 +398,7 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
 // its own, in the constraints' order, and the result is the same as one sweep over all of them in
 // that order, whatever thread solves which island. Each constraint belongs to the island of a
 // moving body of it.
-void ContactSolver::group_islands(std::span<const std::uint32_t> island) {
+void ContactSolver::group_islands(std::span<const std::uint32_t> island_of_body) {
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   island_number_.assign(linear_.size(), kNone);
   resize_buffer(constraint_island_, constraints_.size());
@@ -406,7 +406,7 @@ void ContactSolver::group_islands(std::span<const std::uint32_t> island) {
   // Islands numbered by their first constraint; constraints listed by island, in order.
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     const Constraint& c = constraints_[k];
-    const std::uint32_t name = island[c.a_moves ? c.a : c.b];
+    const std::uint32_t name = island_of_body[c.a_moves ? c.a : c.b];
     if (island_number_[name] == kNone) {
       island_number_[name] = static_cast<std::uint32_t>(island_begin_.size());
       island_begin_.push_back(0);
@@ -428,13 +428,13 @@ void ContactSolver::group_islands(std::span<const std::uint32_t> island) {
 
 ContactSolverStats ContactSolver::solve(
     std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-    std::span<const std::uint32_t> island, std::span<const Contact> contacts,
+    std::span<const std::uint32_t> island_of_body, std::span<const Contact> contacts,
     std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
     const SolverSettings& settings, const Vec3& gravity, float dt, const Parallel& parallel) {
   ContactSolverStats stats;
   load_bodies(bodies, moving);
   prepare(contacts, memory, materials, settings, dt, stats);
-  group_islands(island);
+  group_islands(island_of_body);
 
   std::span<const std::uint32_t> level;
   if (settings.shock_propagation) {

@@ -36,15 +36,16 @@ class ContactSolver {
   // push penetrating bodies apart: the caller moves the bodies by them for dt and forgets them,
   // so the recovery adds no kinetic energy. `gravity` is what the moving bodies were accelerated
   // by in this step before the call (it sets the speed a bounce starts from). Islands are solved
-  // on `parallel`'s threads; the result does not depend on how many there are. `island[i]` names
-  // moving body i's island: bodies of different islands share no contact through a moving body
-  // (a coarser grouping, joined through immovable bodies too, gives the same result). `memory[k]`
-  // is contact k's warm start on entry and what it leaves for the next step on return.
+  // on `parallel`'s threads; the result does not depend on how many there are.
+  // `island_of_body[i]` names moving body i's island: bodies of different islands share no
+  // contact through a moving body (a coarser grouping, joined through immovable bodies too, gives
+  // the same result). `memory[k]` is contact k's warm start on entry and what it leaves for the
+  // next step on return.
   ContactSolverStats solve(std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-                           std::span<const std::uint32_t> island, std::span<const Contact> contacts,
-                           std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
-                           const SolverSettings& settings, const Vec3& gravity, float dt,
-                           const Parallel& parallel);
+                           std::span<const std::uint32_t> island_of_body,
+                           std::span<const Contact> contacts, std::span<ContactMemory> memory,
+                           std::span<const PairMaterial> materials, const SolverSettings& settings,
+                           const Vec3& gravity, float dt, const Parallel& parallel);
 
   [[nodiscard]] std::span<const Vec3> position_linear() const { return pseudo_linear_; }
   [[nodiscard]] std::span<const Vec3> position_angular() const { return pseudo_angular_; }
@@ -108,7 +109,7 @@ class ContactSolver {
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                std::span<const PairMaterial> materials, const SolverSettings& settings, float dt,
                ContactSolverStats& stats);
-  void group_islands(std::span<const std::uint32_t> island);
+  void group_islands(std::span<const std::uint32_t> island_of_body);
   // The passes over one island's constraints (indices into constraints_, in order).
   void solve_velocities(std::span<const std::uint32_t> island, const SolverSettings& settings);
   void resist_rolling(std::uint32_t first, float arm);

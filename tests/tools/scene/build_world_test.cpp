@@ -419,7 +419,9 @@ TEST(BuildWorld, ABunnyDroppedOntoThePlaneStaysAboveIt) {
   bunny.position = Vec3(0.0f, 1.0f, 0.0f);
   Scene scene = scene_without_ground({bunny});
   scene.ground.kind = GroundSpec::Kind::kPlane;
-  const SimulationSetup setup = build_world(scene, {.plausibility_figures = true});
+  BuildWorldOptions options;
+  options.plausibility_figures = true;  // the penetration, checked below
+  const SimulationSetup setup = build_world(scene, options);
   const float reach = static_cast<float>(setup.shapes[0].max_vertex_distance);
   float lowest = 1.0f;
   bool touched = false;
