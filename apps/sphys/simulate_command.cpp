@@ -43,6 +43,7 @@ struct SimulateOptions {
   std::optional<std::string> contacts;
   std::optional<int> substeps;
   std::optional<int> passes;
+  std::vector<std::string> settings;  // --set FIELD=VALUE, in order
   std::optional<std::string> out;
   std::uint32_t threads = WorldSettings{}.threads;
   bool json = false;
@@ -199,6 +200,18 @@ void apply_options(const SimulateOptions& options, tools::Scene& scene) {
   }
   if (options.substeps) {
     scene.substeps = checked_count("--substeps", *options.substeps, setting_of("substeps"));
+  }
+  if (!options.settings.empty()) {
+    WorldSettings settings = tools::world_settings(scene);
+    for (const std::string& assignment : options.settings) {
+      const std::size_t equals = assignment.find('=');
+      if (equals == std::string::npos) {
+        throw Error("--set takes FIELD=VALUE, got '" + assignment + "'");
+      }
+      set_setting_from_text(settings, std::string_view(assignment).substr(0, equals),
+                            std::string_view(assignment).substr(equals + 1), "--set");
+    }
+    tools::set_world_settings(scene, settings);
   }
   if (options.depth) {
     for (tools::BodySpec& body : scene.bodies) {
@@ -472,6 +485,12 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--contacts", options->contacts, instead("solver.contacts"));
   cmd->add_option("--substeps", options->substeps, instead("substeps"));
   cmd->add_option("--passes", options->passes, instead("paper_passes"));
+  cmd->add_option(
+      "--set", options->settings,
+      "A setting of the world by its field, FIELD=VALUE: solver.method=sequential_impulses, "
+      "sleep.time=0.5, ground_friction=0.8 (docs/scenes.md's keys, with their object "
+      "and a dot for solver and sleep). Applied after the scene and the options "
+      "above; repeatable");
   cmd->add_option("--out", options->out,
                   "Folder for frames.csv and recording.sphysrec (default out/<scene>)")
       ->check(kFileName);

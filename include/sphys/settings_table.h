@@ -72,6 +72,13 @@ struct Setting {
 // std::out_of_range when there is none: a caller's mistake, not bad input.
 [[nodiscard]] const Setting& setting_of(std::string_view field);
 
+// Sets the field named as in Setting::field ("solver.method") from text as a command line gives
+// it: a number, true or false, or a choice's name. Throws sphys::Error for an unknown field, a
+// vector, or text that is none of these, naming `source` (e.g. "--set"); the range is
+// check_world_settings' to check.
+void set_setting_from_text(WorldSettings& settings, std::string_view field, std::string_view text,
+                           std::string_view source);
+
 // Throws sphys::Error for the first setting outside its range, naming the field, the range and
 // the value with its unit ("solver.manifold_points must be between 1 and 8, got 9 contacts").
 void check_world_settings(const WorldSettings& settings);

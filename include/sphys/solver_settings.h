@@ -12,8 +12,27 @@ enum class ContactSet {
   kReduced,  // a small manifold per body pair (see SolverSettings::manifold_points)
 };
 
+// How the plausible mode solves its contacts (docs/dynamics.md).
+enum class SolverMethod {
+  // Box2D v3's soft step: one collision pass, then substeps that each integrate, solve the
+  // contacts once with a spring-damper push out of penetration, and relax them once.
+  kSoftStep,
+  // Sequential impulses over the whole step (velocity_iterations passes), split-impulse
+  // penetration recovery and shock propagation.
+  kSequentialImpulses,
+};
+
 // The plausible mode's solver. See docs/dynamics.md for what each figure does and why.
 struct SolverSettings {
+  SolverMethod method = SolverMethod::kSequentialImpulses;
+  // Soft step: solver substeps per collision pass, each one solve and one relax pass.
+  std::uint32_t soft_substeps = 4;
+  // Soft step: the contacts' spring, as a frequency and a damping ratio. Capped at an eighth of
+  // the substep rate; contacts with an immovable body are twice as stiff. unit: Hz
+  float contact_hertz = 30.0f;
+  float contact_damping_ratio = 10.0f;  // unit: dimensionless, 1 is critical damping
+  // The passes below, position_iterations, shock propagation and position_correction are the
+  // sequential-impulse method's.
   std::uint32_t velocity_iterations = 20;  // passes over the contacts for velocities
   std::uint32_t position_iterations = 4;   // passes for the split-impulse penetration recovery
   bool warm_starting = true;               // start from the previous step's impulses
@@ -29,7 +48,7 @@ struct SolverSettings {
   float linear_slop = 0.0004f;
   // Fraction of the penetration beyond the slop removed per step. unit: dimensionless, 0..1
   float position_correction = 0.2f;
-  // Largest speed of the penetration recovery. unit: m/s
+  // Largest speed of the penetration recovery (both methods). unit: m/s
   float max_correction_speed = 3.0f;
   // Rolling resistance: each contact resists the relative turning of its bodies (rolling and
   // spinning) with a torque up to this arm times its normal force, as a soft tyre or a dent in

@@ -87,6 +87,7 @@ struct BodyDesc {
 };
 
 class ContactSolver;
+class SoftStepSolver;
 class SleepTracker;
 
 class World {
@@ -148,6 +149,8 @@ class World {
   [[nodiscard]] std::uint32_t substeps_for(float dt) const;
   // The stages of a substep, in order, each in the file named for it (docs/architecture.md).
   void substep(float dt, StepStats& stats);
+  // The soft step: the solver integrates the moving bodies in its own substeps.
+  [[nodiscard]] bool soft_step() const;
   void integrate_velocities(float dt, bool plausible, StepStats& stats);
   void detect_contacts(StepStats& stats);
   void add_detection(const CollisionStats& detection, StepStats& stats) const;
@@ -177,6 +180,7 @@ class World {
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
   // Plausible mode's machinery, private to the library.
   std::unique_ptr<ContactSolver> solver_;
+  std::unique_ptr<SoftStepSolver> soft_solver_;
   std::unique_ptr<SleepTracker> sleep_;
   // On the heap so that the detector's and solver's pointer to it survives moving the world.
   std::unique_ptr<Parallel> parallel_;

@@ -2,25 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <utility>
 
 #include "core/buffers.h"
 #include "dynamics/contact_levels.h"
+#include "dynamics/contact_pairs.h"
+#include "dynamics/group_by.h"
 
 namespace sphys {
 namespace {
-
-// A fixed tangent basis of a normal, so that the friction impulses kept in world space project
-// back onto the same directions from step to step.
-void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
-  if (std::abs(n.x()) >= 0.57735f) {
-    t1 = Vec3(n.y(), -n.x(), 0.0f).normalized();
-  } else {
-    t1 = Vec3(0.0f, n.z(), -n.y()).normalized();
-  }
-  t2 = n.cross(t1);
-}
 
 // Gauss–Seidel passes over the contacts of one level in shock propagation: a level's contacts
 // among themselves need a few to agree; more changes little as the velocity passes came first.
@@ -119,16 +109,8 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Contact& contact = contacts[k];
     Constraint c;
-    c.a = contact.body_a == kGroundPlaneBody ? ground : contact.body_a;
-    c.b = contact.body_b;
+    if (!place_constraint(contact, ground, inverse_mass_, position_, c)) continue;
     const float inverse_mass = inverse_mass_[c.a] + inverse_mass_[c.b];
-    if (!(inverse_mass > 0.0f)) continue;  // neither body moves
-    c.a_moves = inverse_mass_[c.a] > 0.0f;
-    c.b_moves = inverse_mass_[c.b] > 0.0f;
-    c.ra = contact.point - position_[c.a];
-    c.rb = contact.point - position_[c.b];
-    c.normal = contact.normal;
-    tangent_basis(c.normal, c.tangent1, c.tangent2);
     // Fills row r for direction d and returns the effective mass along d.
     const auto row = [&](std::size_t r, const Vec3& d) {
       Constraint::Row& out = c.rows[r];
@@ -164,47 +146,7 @@ void ContactSolver::prepare(std::span<const Contact> contacts,
     constraints_.push_back(c);
   }
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
-  if (settings.rolling_resistance > 0.0f) mark_pairs(contacts);
-}
-
-// A body pair's contacts come one after another (the detector and the reducer emit them by
-// pair): its first constraint gets the pair's size and the rolling resistance's mass.
-void ContactSolver::mark_pairs(std::span<const Contact> contacts) {
-  const auto same_pair = [&](const Constraint& x, const Constraint& y) {
-    const Contact& cx = contacts[x.contact];
-    const Contact& cy = contacts[y.contact];
-    return cx.body_a == cy.body_a && cx.body_b == cy.body_b;
-  };
-  for (std::size_t first = 0; first < constraints_.size();) {
-    std::size_t end = first + 1;
-    while (end < constraints_.size() && same_pair(constraints_[end], constraints_[first])) ++end;
-    Constraint& c = constraints_[first];
-    c.pair_size = static_cast<std::uint32_t>(end - first);
-    const Mat3 inverse_inertia = inverse_inertia_[c.a] + inverse_inertia_[c.b];
-    // A body with no inverse inertia at all (a point mass) cannot be turned.
-    if (inverse_inertia.determinant() > 0.0f) c.rolling_mass = inverse_inertia.inverse();
-    first = end;
-  }
-}
-
-// Rolling resistance: an angular impulse against the pair's relative turning (rolling and
-// spinning), at most the resistance arm times the pair's normal impulse. Once per pair rather
-// than per contact: the same bound on the whole, for a quarter of the work with four contacts.
-void ContactSolver::resist_rolling(std::uint32_t first, float arm) {
-  Constraint& c = constraints_[first];
-  float pair_normal_impulse = 0.0f;
-  for (std::uint32_t k = first; k < first + c.pair_size; ++k) {
-    pair_normal_impulse += constraints_[k].normal_impulse;
-  }
-  const Vec3 turning = angular_[c.b] - angular_[c.a];
-  Vec3 rolling = c.rolling_impulse - c.rolling_mass * turning;
-  const float limit = arm * pair_normal_impulse;
-  const float length = rolling.norm();
-  if (length > limit) rolling *= length > 0.0f ? limit / length : 0.0f;
-  const Vec3 change = rolling - c.rolling_impulse;
-  if (c.a_moves) angular_[c.a] -= inverse_inertia_[c.a] * change;
-  if (c.b_moves) angular_[c.b] += inverse_inertia_[c.b] * change;
-  c.rolling_impulse = rolling;
+  if (settings.rolling_resistance > 0.0f) mark_pairs(constraints_, contacts, inverse_inertia_);
 }
 
 void ContactSolver::solve_velocities(std::span<const std::uint32_t> island,
@@ -232,19 +174,13 @@ void ContactSolver::solve_velocities(std::span<const std::uint32_t> island,
       // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
       float t1 = c.tangent1_impulse - c.tangent1_mass * row_speed(c, 1, c.tangent1);
       float t2 = c.tangent2_impulse - c.tangent2_mass * row_speed(c, 2, c.tangent2);
-      const float limit = c.friction * c.normal_impulse;
-      const float length = std::sqrt(t1 * t1 + t2 * t2);
-      if (length > limit) {
-        const float scale = length > 0.0f ? limit / length : 0.0f;
-        t1 *= scale;
-        t2 *= scale;
-      }
+      keep_in_friction_disc(t1, t2, c.friction * c.normal_impulse);
       push_two(c, t1 - c.tangent1_impulse, t2 - c.tangent2_impulse);
       c.tangent1_impulse = t1;
       c.tangent2_impulse = t2;
 
       if (c.pair_size > 0 && settings.rolling_resistance > 0.0f) {
-        resist_rolling(index, settings.rolling_resistance);
+        resist_rolling(c, settings.rolling_resistance, angular_, inverse_inertia_);
       }
     }
   }
@@ -397,33 +333,20 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
 // Islands: constraints of different islands share no moving body, so each island is solved on
 // its own, in the constraints' order, and the result is the same as one sweep over all of them in
 // that order, whatever thread solves which island. Each constraint belongs to the island of a
-// moving body of it.
+// moving body of it; islands are numbered by their first constraint.
 void ContactSolver::group_islands(std::span<const std::uint32_t> island_of_body) {
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  island_number_.assign(linear_.size(), kNone);
-  resize_buffer(constraint_island_, constraints_.size());
-  island_begin_.clear();
-  // Islands numbered by their first constraint; constraints listed by island, in order.
-  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+  fill_buffer(island_number_, linear_.size(), kNoGroup);
+  std::uint32_t islands = 0;
+  const auto name = [&](std::size_t k) {
     const Constraint& c = constraints_[k];
-    const std::uint32_t name = island_of_body[c.a_moves ? c.a : c.b];
-    if (island_number_[name] == kNone) {
-      island_number_[name] = static_cast<std::uint32_t>(island_begin_.size());
-      island_begin_.push_back(0);
-    }
-    const std::uint32_t number = island_number_[name];
-    constraint_island_[k] = number;
-    ++island_begin_[number];
-  }
-  std::uint32_t total = 0;
-  for (std::uint32_t& begin : island_begin_) total += std::exchange(begin, total);
-  island_begin_.push_back(total);
-  resize_buffer(island_constraints_, constraints_.size());
-  resize_buffer(fill_, island_begin_.size() - 1);
-  std::copy(island_begin_.begin(), island_begin_.end() - 1, fill_.begin());
+    return island_of_body[c.a_moves ? c.a : c.b];
+  };
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
-    island_constraints_[fill_[constraint_island_[k]]++] = static_cast<std::uint32_t>(k);
+    if (island_number_[name(k)] == kNoGroup) island_number_[name(k)] = islands++;
   }
+  group_by(
+      constraints_.size(), islands, [&](std::size_t k) { return island_number_[name(k)]; },
+      island_begin_, island_constraints_);
 }
 
 ContactSolverStats ContactSolver::solve(

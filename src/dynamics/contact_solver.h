@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dynamics/contact_levels.h"
+#include "dynamics/solver_stats.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
@@ -19,12 +20,6 @@
 #include "sphys/solver_settings.h"
 
 namespace sphys {
-
-struct ContactSolverStats {
-  std::uint32_t constraints = 0;   // contacts solved (those with a moving body)
-  std::uint32_t warm_started = 0;  // of them, matched to a contact of the previous step
-  std::uint32_t bounces = 0;       // contacts given restitution
-};
 
 class ContactSolver {
  public:
@@ -112,8 +107,6 @@ class ContactSolver {
   void group_islands(std::span<const std::uint32_t> island_of_body);
   // The passes over one island's constraints (indices into constraints_, in order).
   void solve_velocities(std::span<const std::uint32_t> island, const SolverSettings& settings);
-  void resist_rolling(std::uint32_t first, float arm);
-  void mark_pairs(std::span<const Contact> contacts);
   [[nodiscard]] std::uint32_t bounce(std::span<const std::uint32_t> island,
                                      const SolverSettings& settings);
   void propagate_shock(std::span<const std::uint32_t> island, std::span<const std::uint32_t> level,
@@ -137,8 +130,6 @@ class ContactSolver {
   std::vector<std::uint32_t> island_begin_;
   std::vector<std::uint32_t> island_bounces_;
   std::vector<std::uint32_t> island_number_;  // per island name given, its number here
-  std::vector<std::uint32_t> constraint_island_;
-  std::vector<std::uint32_t> fill_;
   // Shock propagation's buffers, kept so that a step does not allocate them anew. The last three
   // are sliced like island_constraints_, one slice per island.
   ContactLevels levels_;

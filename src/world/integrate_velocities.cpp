@@ -1,5 +1,6 @@
 // Stage 1 of a substep: the velocities under gravity (the first half of semi-implicit Euler), and
-// each moving body's reach in the substep for speculative contacts.
+// each moving body's reach in the substep for speculative contacts. The soft step integrates in
+// its own substeps (stage 4): here it only bounds the reach, with gravity's speed at the end.
 
 #include <cmath>
 
@@ -10,12 +11,14 @@ namespace sphys {
 
 void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
   const StepClock::time_point start = StepClock::now();
+  const bool soft = soft_step();
+  const Vec3 gravity_speed = soft ? Vec3(settings_.gravity * dt) : Vec3::Zero();
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
     if (moving_[i] == 0) continue;
     RigidBody& body = bodies_[i];
-    integrate_velocity(body, settings_.gravity, dt);
+    if (!soft) integrate_velocity(body, settings_.gravity, dt);
     if (plausible) {
-      const Vec3 displacement = body.linear_velocity * dt;
+      const Vec3 displacement = (body.linear_velocity + gravity_speed) * dt;
       const float turn_reach = body.angular_velocity.norm() * dt * extent_[i];
       // Speeds whose squares overflow single precision leave no bound on the motion to detect
       // with: the simulation has gone non-finite in all but name.

@@ -1,10 +1,12 @@
-// Stage 4 of a substep: the response. Plausible mode: each contact's material, then the
-// sequential-impulse solver over the islands. Paper mode: eq. 4 per contact in order.
+// Stage 4 of a substep: the response. Plausible mode: each contact's material, then the solver
+// over the islands: the soft step (which moves the bodies too) or sequential impulses. Paper
+// mode: eq. 4 per contact in order.
 
 #include "core/buffers.h"
 #include "core/stopwatch.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/paper_response.h"
+#include "dynamics/soft_step_solver.h"
 #include "sphys/world.h"
 #include "world/sleep_tracker.h"
 
@@ -39,13 +41,22 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
   if (plausible) {
     mix_materials();
     const SolverSettings& solver = settings_.solver;
+    const bool soft = soft_step();
+    // Every collision pass gets all the soft step's substeps, even when fast bodies split a frame
+    // into several: sharing them out (a quarter each of four) let a blow into a pile sink bodies
+    // 10% of a bunny deep, against 4% (stacks:4x50, depth 2).
+    const std::uint32_t solver_substeps = solver.soft_substeps;
     const ContactSolverStats solved =
-        solver_->solve(bodies_, moving_, sleep_->islands(), contacts, detector_.memory(),
-                       materials_, solver, settings_.gravity, dt, *parallel_);
+        soft ? soft_solver_->solve(bodies_, moving_, sleep_->islands(), contacts,
+                                   detector_.memory(), materials_, solver, settings_.gravity, dt,
+                                   solver_substeps, *parallel_)
+             : solver_->solve(bodies_, moving_, sleep_->islands(), contacts, detector_.memory(),
+                              materials_, solver, settings_.gravity, dt, *parallel_);
     stats.impulses += solved.constraints;
     stats.warm_started += solved.warm_started;
     stats.bounces += solved.bounces;
-    stats.response_passes += solver.velocity_iterations;
+    // The soft step: a solve and a relax pass per substep.
+    stats.response_passes += soft ? 2 * solver_substeps : solver.velocity_iterations;
   } else {
     const PaperResponseStats response = apply_paper_response(
         bodies_, contacts, settings_.ground_restitution, settings_.paper_passes);

@@ -78,6 +78,7 @@ constexpr SettingRange kAnyFinite{};
 
 constexpr std::array<std::string_view, 2> kResponseChoices = {"paper", "plausible"};
 constexpr std::array<std::string_view, 2> kContactChoices = {"all", "reduced"};
+constexpr std::array<std::string_view, 2> kMethodChoices = {"soft_step", "sequential_impulses"};
 
 using W = WorldSettings;
 using S = SolverSettings;
@@ -149,6 +150,44 @@ const auto kTable = std::to_array<Setting>({
         .range = above(0),
         .doc = "Plausible mode: a body's fastest point (|v| + |ω| · its bounding radius) travels "
                "at most this much of its bounding radius per substep, within max_substeps.",
+    }),
+    scalar<Nested<&W::solver, &S::method>>({
+        .object = "solver",
+        .key = "method",
+        .field = "solver.method",
+        .kind = SettingKind::kEnum,
+        .choices = kMethodChoices,
+        .doc = "Plausible mode: how contacts are solved. soft_step: one collision pass, then "
+               "solver.soft_substeps substeps that each integrate, solve the contacts once with a "
+               "spring-damper push out of penetration and relax them once (Box2D v3). "
+               "sequential_impulses: solver.velocity_iterations passes per step, split-impulse "
+               "recovery and shock propagation.",
+    }),
+    scalar<Nested<&W::solver, &S::soft_substeps>>({
+        .object = "solver",
+        .key = "soft_substeps",
+        .field = "solver.soft_substeps",
+        .kind = SettingKind::kInteger,
+        .unit = "substeps",
+        .range = between(1, kMaxSubsteps),
+        .doc = "Soft step: solver substeps per collision pass.",
+    }),
+    scalar<Nested<&W::solver, &S::contact_hertz>>({
+        .object = "solver",
+        .key = "contact_hertz",
+        .field = "solver.contact_hertz",
+        .unit = "Hz",
+        .range = above(0),
+        .doc = "Soft step: the contacts' spring frequency, capped at an eighth of the substep "
+               "rate; contacts with an immovable body are twice as stiff.",
+    }),
+    scalar<Nested<&W::solver, &S::contact_damping_ratio>>({
+        .object = "solver",
+        .key = "contact_damping_ratio",
+        .field = "solver.contact_damping_ratio",
+        .unit = "dimensionless",
+        .range = at_least(0),
+        .doc = "Soft step: the contacts' damping ratio (1 is critical damping).",
     }),
     scalar<Nested<&W::solver, &S::velocity_iterations>>({
         .object = "solver",
@@ -413,6 +452,44 @@ const Setting& setting_of(std::string_view field) {
     throw std::out_of_range("no setting " + std::string(field) + " in the settings table");
   }
   return *found;
+}
+
+void set_setting_from_text(WorldSettings& settings, std::string_view field, std::string_view text,
+                           std::string_view source) {
+  const std::string where = std::string(source) + " " + std::string(field) + ": ";
+  const auto found = std::find_if(kTable.begin(), kTable.end(),
+                                  [&](const Setting& setting) { return setting.field == field; });
+  if (found == kTable.end())
+    throw Error(std::string(source) + ": no setting " + std::string(field));
+  const Setting& setting = *found;
+  double value = 0.0;
+  switch (setting.kind) {
+    case SettingKind::kVector3:
+      throw Error(where + "a vector is set in a scene file");
+    case SettingKind::kBool:
+      if (text != "true" && text != "false") throw Error(where + "must be true or false");
+      value = text == "true" ? 1.0 : 0.0;
+      break;
+    case SettingKind::kEnum: {
+      const auto choice = std::find(setting.choices.begin(), setting.choices.end(), text);
+      if (choice == setting.choices.end()) {
+        throw Error(where + "must be " + range_text(setting) + ", got '" + std::string(text) + "'");
+      }
+      value = static_cast<double>(choice - setting.choices.begin());
+      break;
+    }
+    default: {
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value)) {
+        throw Error(where + "must be a finite number, got '" + std::string(text) + "'");
+      }
+      if (setting.kind == SettingKind::kInteger &&
+          (value != std::floor(value) || value < 0.0 || value > 4294967295.0)) {
+        throw Error(where + "must be a whole number from 0, got '" + std::string(text) + "'");
+      }
+    }
+  }
+  setting.set(settings, value);
 }
 
 void check_world_settings(const WorldSettings& settings) {

@@ -104,7 +104,8 @@ TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
   const test::TempDir dir;
   const fs::path scene =
       dir.write("fall.json", scene_text(R"("gravity": [0, -6, 0], "time_step": 0.1, "frames": 4,
-                                "max_substeps": 1, "ground": {"type": "none"}, "bodies": [)" +
+                                "max_substeps": 1, "solver": {"method": "soft_step", "soft_substeps": 4},
+                                "ground": {"type": "none"}, "bodies": [)" +
                                         std::string(kQuickBody) + "]"));
   const fs::path out = dir.path() / "out";
   const test::CommandResult r = sphys_cli({"simulate", scene.string(), "--out", out.string()});
@@ -112,9 +113,11 @@ TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
   const tools::Recording recording = tools::read_recording(out / "recording.sphysrec");
   ASSERT_EQ(recording.frame_count, 5u);
   EXPECT_DOUBLE_EQ(recording.time_step, 0.1);
-  // v_n = −g·n·dt, then y_n = y_{n−1} + v_n·dt: y_n = 1 − g·dt²·n(n+1)/2 = 1 − 0.03·n(n+1).
+  // The soft step integrates in 4 substeps of h = dt/4 per frame: v_k = −g·k·h, then
+  // y_k = y_{k−1} + v_k·h, so y_k = 1 − g·h²·k(k+1)/2, and frame n is substep k = 4n:
+  // y = 1 − 6 · 0.025² · 4n(4n+1) / 2 = 1 − 0.0075·n(4n+1).
   for (std::uint32_t n = 0; n <= 4; ++n) {
-    EXPECT_NEAR(recording.frame(n)[0].position.y(), 1.0 - 0.03 * n * (n + 1), 1e-5) << n;
+    EXPECT_NEAR(recording.frame(n)[0].position.y(), 1.0 - 0.0075 * n * (4 * n + 1), 1e-5) << n;
   }
   EXPECT_EQ(read_lines(out / "frames.csv").size(), 5u);
 }
@@ -219,6 +222,18 @@ TEST(SimulateCommand, BadOptionsExitWithCode2) {
       {{"--passes", "0"}, "--passes must be between 1 and 1000, got 0"},
       {{"--passes", "1001"}, "--passes must be between 1 and 1000, got 1001"},
       {{"--ground", "box"}, "--ground must be octree or plane, got 'box'"},
+      {{"--set", "solver.method"}, "--set takes FIELD=VALUE, got 'solver.method'"},
+      {{"--set", "solver.nope=1"}, "--set: no setting solver.nope"},
+      {{"--set", "solver.method=fast"},
+       "--set solver.method: must be soft_step or sequential_impulses, got 'fast'"},
+      {{"--set", "sleep.enabled=yes"}, "--set sleep.enabled: must be true or false"},
+      {{"--set", "solver.soft_substeps=2.5"},
+       "--set solver.soft_substeps: must be a whole number from 0, got '2.5'"},
+      {{"--set", "solver.contact_hertz=fast"},
+       "--set solver.contact_hertz: must be a finite number, got 'fast'"},
+      {{"--set", "gravity=1"}, "--set gravity: a vector is set in a scene file"},
+      {{"--set", "solver.soft_substeps=0"},
+       "solver.soft_substeps must be between 1 and 64, got 0 substeps"},
   };
   for (const auto& [option, message] : cases) {
     std::vector<std::string> args = {"simulate", "stacks:1x1", "--no-cache", "--out", out};
@@ -355,6 +370,16 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
   EXPECT_EQ(recorded["contacts"], "all");
   EXPECT_EQ(recorded["substeps"], 3);
   EXPECT_EQ(recorded["ground"]["type"], "plane");
+
+  const test::CommandResult set =
+      sphys_cli({"simulate", scene.string(), "--set", "solver.method=soft_step", "--set",
+                 "solver.soft_substeps=2", "--set", "sleep.enabled=false", "--out", out.string()});
+  ASSERT_EQ(set.exit_code, 0) << set.err;
+  const auto set_scene =
+      nlohmann::json::parse(tools::read_recording(out / "recording.sphysrec").metadata);
+  EXPECT_EQ(set_scene["solver"]["method"], "soft_step");
+  EXPECT_EQ(set_scene["solver"]["soft_substeps"], 2);
+  EXPECT_EQ(set_scene["sleep"]["enabled"], false);
 
   const test::CommandResult plausible =
       sphys_cli({"simulate", scene.string(), "--contacts", "all", "--out", out.string()});

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -64,9 +66,24 @@ BodyDesc ball(float radius, const Vec3& position, float restitution) {
   return desc;
 }
 
+// The solver method of the running test: the scenes below hold for both methods, so the suites
+// that use it run once per method (the fixture sets it; the other tests use the default).
+SolverMethod solver_method = SolverSettings{}.method;
+
+class BothMethods : public ::testing::TestWithParam<SolverMethod> {
+ protected:
+  void SetUp() override { solver_method = GetParam(); }
+  void TearDown() override { solver_method = SolverSettings{}.method; }
+};
+
+std::string method_name(const ::testing::TestParamInfo<SolverMethod>& info) {
+  return info.param == SolverMethod::kSoftStep ? "SoftStep" : "SequentialImpulses";
+}
+
 // The exact plane y <= 0 as the floor, with the given material.
 WorldSettings on_plane(float friction, float restitution) {
   WorldSettings settings;
+  settings.solver.method = solver_method;
   settings.collision.ground_plane_height = 0.0f;
   settings.ground_friction = friction;
   settings.ground_restitution = restitution;
@@ -82,6 +99,13 @@ WorldSettings slope(float angle, float friction) {
   return settings;
 }
 
+class PlausibleFriction : public BothMethods {};
+class PlausibleRollingResistance : public BothMethods {};
+class PlausibleStack : public BothMethods {};
+class PlausibleRestitution : public BothMethods {};
+class PlausibleSleep : public BothMethods {};
+class PlausibleImpactBoth : public BothMethods {};
+
 void run(World& world, float seconds) {
   const int steps = static_cast<int>(std::lround(seconds / kDt));
   for (int i = 0; i < steps; ++i) ASSERT_FALSE(world.step(kDt).non_finite_body);
@@ -89,7 +113,7 @@ void run(World& world, float seconds) {
 
 // 1. Coulomb friction on a slope.
 
-TEST(PlausibleFriction, ABoxStaysPutOnASlopeGentlerThanItsFrictionAngle) {
+TEST_P(PlausibleFriction, ABoxStaysPutOnASlopeGentlerThanItsFrictionAngle) {
   const float mu = 0.5f;
   const float angle = std::atan(0.8f * mu);  // tan θ = 0.4 < μ
   World world(slope(angle, mu));
@@ -101,7 +125,21 @@ TEST(PlausibleFriction, ABoxStaysPutOnASlopeGentlerThanItsFrictionAngle) {
   EXPECT_LT(world.body(box).linear_velocity.norm(), 0.01f);
 }
 
-TEST(PlausibleFriction, ABoxSlidesDownASteeperSlopeAtGTimesSinMinusMuCos) {
+// Static friction just above the slope: μ = 0.6 holds a 30° slope (tan 30° = 0.577, 4% less).
+// From rest, the box must stay put, not creep down by what each step's gravity adds.
+TEST_P(PlausibleFriction, ABoxOnA30DegreeSlopeWithMu06MovesUnder1MillimetreIn5Seconds) {
+  const float mu = 0.6f;
+  const float angle = std::numbers::pi_v<float> / 6.0f;
+  World world(slope(angle, mu));
+  const Vec3 start(0.0f, cube_half_height(), 0.0f);
+  const BodyId box = world.add_body(cube(start, mu));
+  run(world, 5.0f);
+  const Vec3 moved = world.body(box).pose.translation - start;
+  // Along the slope only: settling into the slope's slop is not sliding.
+  EXPECT_LT(std::hypot(moved.x(), moved.z()), 0.001f);
+}
+
+TEST_P(PlausibleFriction, ABoxSlidesDownASteeperSlopeAtGTimesSinMinusMuCos) {
   const float mu = 0.5f;
   for (const float tangent : {0.7f, 1.0f}) {
     const float angle = std::atan(tangent);
@@ -123,7 +161,7 @@ TEST(PlausibleFriction, ABoxSlidesDownASteeperSlopeAtGTimesSinMinusMuCos) {
 
 // 2. Sliding to a stop on the floor.
 
-TEST(PlausibleFriction, ABoxLaunchedAlongTheFloorStopsAfterVSquaredOverTwoMuG) {
+TEST_P(PlausibleFriction, ABoxLaunchedAlongTheFloorStopsAfterVSquaredOverTwoMuG) {
   const float mu = 0.5f;
   for (const float speed : {3.0f, 6.0f}) {
     World world(on_plane(mu, 0.0f));
@@ -139,7 +177,7 @@ TEST(PlausibleFriction, ABoxLaunchedAlongTheFloorStopsAfterVSquaredOverTwoMuG) {
   }
 }
 
-TEST(PlausibleFriction, APairMaterialReplacesTheMixOfTheBodiesOwn) {
+TEST_P(PlausibleFriction, APairMaterialReplacesTheMixOfTheBodiesOwn) {
   // A box sliding on a huge static ball (locally flat): with the pair made frictionless it keeps
   // sliding; with the mix of its own μ = 0.5 it stops within v²/(2μg) = 0.92 m.
   for (const bool frictionless : {false, true}) {
@@ -173,7 +211,7 @@ TEST(PlausibleFriction, APairMaterialReplacesTheMixOfTheBodiesOwn) {
 
 // A solid ball rolling without slipping: the resisting torque e m g slows it at
 // a = e g / (R + I / (m R)) = e g / (1.4 R), so it stops after v0² / (2a).
-TEST(PlausibleRollingResistance, ARollingBallStopsAfterVSquaredOverTwoA) {
+TEST_P(PlausibleRollingResistance, ARollingBallStopsAfterVSquaredOverTwoA) {
   const float radius = 0.25f;
   for (const float speed : {1.0f, 2.0f}) {
     WorldSettings settings = on_plane(0.5f, 0.0f);
@@ -195,7 +233,7 @@ TEST(PlausibleRollingResistance, ARollingBallStopsAfterVSquaredOverTwoA) {
 
 // A frictionless box spinning about the vertical on its four lowest spheres: the pair's
 // contacts together resist with e m g, so ω falls at e m g / I and it turns ω0² / (2α).
-TEST(PlausibleRollingResistance, ASpinningBoxStopsAsItsWholeWeightResists) {
+TEST_P(PlausibleRollingResistance, ASpinningBoxStopsAsItsWholeWeightResists) {
   WorldSettings settings = on_plane(0.0f, 0.0f);
   settings.solver.rolling_resistance = 0.01f;
   World world(settings);
@@ -219,7 +257,7 @@ TEST(PlausibleRollingResistance, ASpinningBoxStopsAsItsWholeWeightResists) {
 
 // 3. A stack of ten boxes stands, then sleeps.
 
-TEST(PlausibleStack, TenBoxesStandForTenSecondsAndFallAsleep) {
+TEST_P(PlausibleStack, TenBoxesStandForTenSecondsAndFallAsleep) {
   const WorldSettings settings = on_plane(0.5f, 0.0f);
   World world(settings);
   std::vector<BodyId> boxes;
@@ -275,6 +313,10 @@ struct Bounce {
 Bounce drop_ball(float restitution, float height, bool fixed_step = true) {
   WorldSettings settings = on_plane(0.5f, restitution);
   if (fixed_step) settings.max_substeps = 1;
+  // The soft step integrates in its own substeps.
+  const double integrator_step = settings.solver.method == SolverMethod::kSoftStep
+                                     ? kDt / static_cast<float>(settings.solver.soft_substeps)
+                                     : kDt;
   World world(settings);
   const float radius = 0.25f;
   const BodyId id = world.add_body(ball(radius, Vec3(0.0f, radius + height, 0.0f), restitution));
@@ -285,7 +327,7 @@ Bounce drop_ball(float restitution, float height, bool fixed_step = true) {
     const RigidBody& body = world.body(id);
     const double above = body.pose.translation.y() - radius;
     return body.kinetic_energy() + body.mass() * kGravity * above -
-           0.5 * body.mass() * kGravity * body.linear_velocity.y() * kDt;
+           0.5 * body.mass() * kGravity * body.linear_velocity.y() * integrator_step;
   };
   const double start = energy();
   Bounce bounce;
@@ -304,7 +346,7 @@ Bounce drop_ball(float restitution, float height, bool fixed_step = true) {
   return bounce;
 }
 
-TEST(PlausibleRestitution, BallsReboundToEpsilonSquaredTimesTheDropHeight) {
+TEST_P(PlausibleRestitution, BallsReboundToEpsilonSquaredTimesTheDropHeight) {
   const float height = 2.0f;
   for (const float restitution : {0.0f, 0.5f, 1.0f}) {
     const Bounce bounce = drop_ball(restitution, height);
@@ -321,7 +363,7 @@ TEST(PlausibleRestitution, BallsReboundToEpsilonSquaredTimesTheDropHeight) {
   }
 }
 
-TEST(PlausibleRestitution, SlowImpactsUnderTheThresholdDoNotBounce) {
+TEST_P(PlausibleRestitution, SlowImpactsUnderTheThresholdDoNotBounce) {
   // Dropped from 2 cm: 0.63 m/s at impact, under the 1 m/s threshold, so even ε = 1 stays put.
   const Bounce bounce = drop_ball(1.0f, 0.02f);
   EXPECT_LT(bounce.rebound_height, 0.002f);
@@ -360,7 +402,7 @@ Impact drop_box_fast(bool speculative, float gap) {
 // Gaps that put the last step before the impact anywhere in the 0.5 m it covers.
 constexpr float kGaps[] = {3.0f, 3.1f, 3.2f, 3.3f, 3.4f};
 
-TEST(PlausibleImpact, ABoxAt30MetresPerSecondStopsOnAnotherWithin5PercentOfItsSize) {
+TEST_P(PlausibleImpactBoth, ABoxAt30MetresPerSecondStopsOnAnotherWithin5PercentOfItsSize) {
   for (const float gap : kGaps) {
     const Impact impact = drop_box_fast(true, gap);
     EXPECT_LT(impact.deepest, 0.05f * kBoxSide) << "gap " << gap;
@@ -419,7 +461,7 @@ TEST(PlausibleImpact, WithoutShockPropagationFewPassesLetTheColumnSinkIn) {
   EXPECT_GT(deepest_in_ball_column_hit_at_30_metres_per_second(false), 0.05f);
 }
 
-TEST(PlausibleImpact, ABlowOnASleepingStackMeetsAllOfIt) {
+TEST_P(PlausibleImpactBoth, ABlowOnASleepingStackMeetsAllOfIt) {
   // The detector skips pairs of sleeping bodies; a body landing on a sleeping stack wakes it
   // and must meet the stack's own contacts in the same step, or the stack's top box is driven
   // into the next one unopposed (seen with one step per frame and 20 passes: 19% of a box deep
@@ -449,7 +491,7 @@ TEST(PlausibleImpact, ABlowOnASleepingStackMeetsAllOfIt) {
 
 // 6. Sleep and waking.
 
-TEST(PlausibleSleep, ARestingBodySleepsAndAnImpulseOrAnImpactWakesIt) {
+TEST_P(PlausibleSleep, ARestingBodySleepsAndAnImpulseOrAnImpactWakesIt) {
   World world(on_plane(0.5f, 0.0f));
   const BodyId box = world.add_body(cube(Vec3(0.0f, cube_half_height(), 0.0f), 0.5f));
   run(world, 1.5f);
@@ -479,7 +521,7 @@ TEST(PlausibleSleep, ARestingBodySleepsAndAnImpulseOrAnImpactWakesIt) {
   EXPECT_TRUE(world.asleep(dropped));
 }
 
-TEST(PlausibleSleep, SleepingCanBeTurnedOff) {
+TEST_P(PlausibleSleep, SleepingCanBeTurnedOff) {
   WorldSettings settings = on_plane(0.5f, 0.0f);
   settings.sleep.enabled = false;
   World world(settings);
@@ -512,6 +554,31 @@ TEST(PlausibleSettings, ImpossibleSolverSettingsAreRefused) {
   refused([](WorldSettings& s) { s.sleep.time = -1.0f; });
   refused([](WorldSettings& s) { s.ground_friction = -0.5f; });
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleFriction,
+                         ::testing::Values(SolverMethod::kSequentialImpulses,
+                                           SolverMethod::kSoftStep),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleRollingResistance,
+                         ::testing::Values(SolverMethod::kSequentialImpulses,
+                                           SolverMethod::kSoftStep),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleStack,
+                         ::testing::Values(SolverMethod::kSequentialImpulses,
+                                           SolverMethod::kSoftStep),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleRestitution,
+                         ::testing::Values(SolverMethod::kSequentialImpulses,
+                                           SolverMethod::kSoftStep),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleSleep,
+                         ::testing::Values(SolverMethod::kSequentialImpulses,
+                                           SolverMethod::kSoftStep),
+                         method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleImpactBoth,
+                         ::testing::Values(SolverMethod::kSequentialImpulses,
+                                           SolverMethod::kSoftStep),
+                         method_name);
 
 }  // namespace
 }  // namespace sphys

@@ -96,6 +96,10 @@ void expect_same_body(const BodySpec& a, const BodySpec& b) {
 }
 
 void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_EQ(a.soft_substeps, b.soft_substeps);
+  EXPECT_EQ(bits(a.contact_hertz), bits(b.contact_hertz));
+  EXPECT_EQ(bits(a.contact_damping_ratio), bits(b.contact_damping_ratio));
   EXPECT_EQ(a.velocity_iterations, b.velocity_iterations);
   EXPECT_EQ(a.position_iterations, b.position_iterations);
   EXPECT_EQ(a.warm_starting, b.warm_starting);
@@ -175,7 +179,9 @@ constexpr std::string_view kFullScene = R"({
   "substeps": 4,
   "max_substeps": 12,
   "substep_travel": 0.25,
-  "solver": {"velocity_iterations": 12, "position_iterations": 0, "warm_starting": false,
+  "solver": {"method": "soft_step", "soft_substeps": 6, "contact_hertz": 45,
+             "contact_damping_ratio": 2.5,
+             "velocity_iterations": 12, "position_iterations": 0, "warm_starting": false,
              "shock_propagation": false, "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
              "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
              "shock_speed": 0.75, "rolling_resistance": 0.02, "reuse_distance": 0.001,
@@ -223,6 +229,10 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   EXPECT_EQ(scene.max_substeps, 12);
   EXPECT_EQ(scene.substep_travel, 0.25f);
   SolverSettings solver;
+  solver.method = SolverMethod::kSoftStep;
+  solver.soft_substeps = 6;
+  solver.contact_hertz = 45.0f;
+  solver.contact_damping_ratio = 2.5f;
   solver.velocity_iterations = 12;
   solver.position_iterations = 0;
   solver.warm_starting = false;
@@ -462,6 +472,10 @@ class RandomScene {
  private:
   SolverSettings solver() {
     SolverSettings solver;
+    solver.method = pick(std::array{SolverMethod::kSoftStep, SolverMethod::kSequentialImpulses});
+    solver.soft_substeps = std::uniform_int_distribution<std::uint32_t>(1, 64)(rng_);
+    solver.contact_hertz = std::abs(any_float()) + 1.0f;
+    solver.contact_damping_ratio = std::abs(any_float());
     solver.velocity_iterations = std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
     solver.position_iterations = std::uniform_int_distribution<std::uint32_t>(0, 1000)(rng_);
     solver.warm_starting = coin();
