@@ -86,7 +86,7 @@ TEST(BuildTree, CombinedIsTighterThanOctreeOnTheBunny) {
     const LevelQuality octree = measure_tree(build_sphere_tree(bunny, options), query).back();
     options.method = BuildMethod::Combined;
     const LevelQuality combined = measure_tree(build_sphere_tree(bunny, options), query).back();
-    EXPECT_LT(combined.tightness, octree.tightness) << "depth " << depth;
+    EXPECT_LT(combined.outside_volume, octree.outside_volume) << "depth " << depth;
     EXPECT_LT(combined.worst_protrusion, octree.worst_protrusion) << "depth " << depth;
   }
 }
