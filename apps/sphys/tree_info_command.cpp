@@ -32,49 +32,52 @@ void run(const TreeInfoOptions& options) {
   if (options.mesh) mesh = tools::load_model(*options.mesh, options.triangles);
   tools::SphReadOptions read;
   if (options.toolkit_shift) read.shift = mesh->bounds().center();
-  const SphereTree tree = tools::read_sph(options.tree, read);
+  // Any file the toolkit writes, flat sphere sets of more than 8 included: only measured here.
+  const tools::SphSpheres file = tools::read_sph_spheres(options.tree, read);
+  const std::vector<std::vector<Sphere>> levels = file.levels();
+  const int depth = static_cast<int>(levels.size());
 
   std::vector<tools::LevelQuality> quality;
-  if (mesh) quality = tools::measure_tree(tree, tools::MeshQuery(*mesh));
+  if (mesh) quality = tools::measure_levels(levels, tools::MeshQuery(*mesh));
 
   if (options.json) {
-    nlohmann::json levels = nlohmann::json::array();
-    for (int level = 0; level < tree.depth(); ++level) {
+    nlohmann::json entries = nlohmann::json::array();
+    for (int level = 0; level < depth; ++level) {
       nlohmann::json entry = {{"level", level},
-                              {"spheres", tree.level_end(level) - tree.level_begin(level)}};
+                              {"spheres", levels[static_cast<std::size_t>(level)].size()}};
       if (mesh) {
         const tools::LevelQuality& q = quality[static_cast<std::size_t>(level)];
         entry["coverage"] = q.coverage;
         entry["worst_gap"] = q.worst_gap;
-        entry["tightness"] = q.tightness;
+        entry["outside_volume"] = q.outside_volume;
         entry["worst_protrusion"] = q.worst_protrusion;
       }
-      levels.push_back(entry);
+      entries.push_back(entry);
     }
     nlohmann::json out = {{"tree", options.tree},
-                          {"branching", tree.branching()},
-                          {"depth", tree.depth()},
-                          {"spheres", tree.size()},
-                          {"levels", levels}};
+                          {"branching", file.branching},
+                          {"depth", depth},
+                          {"spheres", file.nodes.size()},
+                          {"levels", entries}};
     if (mesh) out["mesh"] = mesh->name;
     std::cout << out.dump(2) << '\n';
     return;
   }
 
-  std::printf("%s: branching %d, %d levels, %zu spheres\n", options.tree.c_str(), tree.branching(),
-              tree.depth(), tree.size());
+  std::printf("%s: branching %d, %d levels, %zu spheres\n", options.tree.c_str(), file.branching,
+              depth, file.nodes.size());
   if (!mesh) {
-    for (int level = 0; level < tree.depth(); ++level) {
-      std::printf("level %d: %u spheres\n", level, tree.level_end(level) - tree.level_begin(level));
+    for (int level = 0; level < depth; ++level) {
+      std::printf("level %d: %zu spheres\n", level, levels[static_cast<std::size_t>(level)].size());
     }
     return;
   }
   std::printf("measured against %s (distances / bounding-box diagonal, volumes / mesh volume)\n",
               mesh->name.c_str());
-  std::printf("level  spheres   coverage  worst gap  tightness  worst protrusion\n");
+  std::printf("level  spheres   coverage  worst gap  outside volume  worst protrusion\n");
   for (const tools::LevelQuality& q : quality) {
-    std::printf("%5d  %7zu  %8.4f%%  %9.5f  %9.4f  %16.5f\n", q.level, q.spheres,
-                100.0 * q.coverage, q.worst_gap, q.tightness, q.worst_protrusion);
+    std::printf("%5d  %7zu  %8.4f%%  %9.5f  %14.4f  %16.5f\n", q.level, q.spheres,
+                100.0 * q.coverage, q.worst_gap, q.outside_volume, q.worst_protrusion);
   }
 }
 

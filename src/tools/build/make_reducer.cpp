@@ -36,6 +36,19 @@ class PointSetReducer final : public Reducer {
       std::iota(all.begin(), all.end(), 0U);
       return finish(samples, region, {fit_cluster(region, measure_, std::move(all))});
     }
+    Cover result = method_cover(samples, region, max_balls);
+    // A method that found nothing to split by (no medial sphere where the surface encloses no
+    // volume, as in an open sheet) would hand back the node's own ball as its only child, and
+    // every level below would repeat it. The grid splits by position alone.
+    if (result.balls.size() < 2 && region.points.size() >= 2 && method_ != BuildMethod::Grid) {
+      result = finish(samples, region, grid_clusters(region, measure_, max_balls));
+    }
+    return result;
+  }
+
+ private:
+  Cover method_cover(std::span<const std::uint32_t> samples, const Region& region,
+                     int max_balls) const {
     switch (method_) {
       case BuildMethod::Grid:
         return finish(samples, region, grid_clusters(region, measure_, max_balls));
@@ -58,7 +71,6 @@ class PointSetReducer final : public Reducer {
     throw Error("the Octree method has no point-set reducer");
   }
 
- private:
   MedialAxis axis(const Region& region, bool adaptive) const {
     return region_medial_axis(region, context_points_, measure_, adaptive);
   }

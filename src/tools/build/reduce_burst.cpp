@@ -14,6 +14,8 @@ namespace sphys::tools::build {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Spheres that overlap nothing get this many of their nearest as neighbours.
+constexpr std::size_t kNearestNeighbours = 8;
 
 struct Candidate {
   double cost;
@@ -57,10 +59,12 @@ class Burster {
     auto alive_count = static_cast<int>(clusters_.size());
     for (std::uint32_t a = 0; a < clusters_.size(); ++a) push(a);
     while (alive_count > max_balls) {
+      // Void entries go first, so that only a live sphere with no neighbours connects them.
+      while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
       if (queue_.empty() || queue_.top().cost == kInfinity) connect_all();
       const Candidate top = queue_.top();
       queue_.pop();
-      if (!alive_[top.cluster] || stamp_[top.cluster] != top.stamp) continue;
+      if (!valid(top)) continue;
       // Lazy greedy: a sphere whose neighbours changed is costed again only when it comes up.
       // Neighbours only grow, so its cost only rises, and if it is still the cheapest it goes.
       if (dirty_[top.cluster]) {
@@ -83,6 +87,10 @@ class Burster {
     const double reach =
         clusters_[a].ball.radius + clusters_[b].ball.radius + 1e-3 * region_.radius;
     return (clusters_[a].ball.center - clusters_[b].ball.center).squaredNorm() <= reach * reach;
+  }
+
+  bool valid(const Candidate& candidate) const {
+    return alive_[candidate.cluster] && stamp_[candidate.cluster] == candidate.stamp;
   }
 
   Burst plan(std::uint32_t s) const {
@@ -148,14 +156,16 @@ class Burster {
     for (const std::uint32_t u : stale) dirty_[u] = true;
   }
 
-  // Left with spheres that touch nothing (a disconnected mesh): every pair are neighbours now.
+  // Left with spheres that touch nothing (a disconnected mesh, a thin part): each neighbours its
+  // nearest ones now too. Making every pair neighbours would cost the cube of the sphere count.
   void connect_all() {
+    const std::vector<std::vector<std::uint32_t>> nearest =
+        nearest_clusters(clusters_, alive_, kNearestNeighbours);
     for (std::uint32_t a = 0; a < clusters_.size(); ++a) {
-      if (!alive_[a]) continue;
-      neighbours_[a].clear();
-      for (std::uint32_t b = 0; b < clusters_.size(); ++b) {
-        if (b != a && alive_[b]) neighbours_[a].push_back(b);
-      }
+      std::vector<std::uint32_t>& list = neighbours_[a];
+      list.insert(list.end(), nearest[a].begin(), nearest[a].end());
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
     }
     for (std::uint32_t a = 0; a < clusters_.size(); ++a) {
       if (!alive_[a]) continue;

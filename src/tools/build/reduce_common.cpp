@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "reducers_impl.h"
+#include "shrinking_ball.h"
 
 namespace sphys::tools::build {
 namespace {
@@ -95,7 +97,47 @@ MedialAxis region_medial_axis(const Region& region, std::span<const Vec3d> conte
     options.max_added_points = kRefinementPoints;
     options.tolerance = kRefinementTolerance * region.radius;
   }
-  return approximate_medial_axis(points, region.points.size(), measure, options);
+  MedialAxis axis = approximate_medial_axis(points, region.points.size(), measure, options);
+  // Where the part is thinner than the spacing of the points (a plate, a wire), no Voronoi
+  // vertex lies inside it and its points touch no sphere; each gets the medial sphere tangent
+  // to it instead, so that the reductions have spheres to work with there too.
+  for (std::uint32_t i = 0; i < region.points.size(); ++i) {
+    if (!axis.point_spheres[i].empty()) continue;
+    if (const std::optional<MedialSphere> sphere =
+            shrinking_ball(region.points[i], region.normals[i], i, region.radius, measure)) {
+      axis.point_spheres[i].push_back(static_cast<std::uint32_t>(axis.spheres.size()));
+      axis.spheres.push_back(*sphere);
+    }
+  }
+  return axis;
+}
+
+std::vector<std::vector<std::uint32_t>> nearest_clusters(std::span<const Cluster> clusters,
+                                                         const std::vector<bool>& alive,
+                                                         std::size_t count) {
+  std::vector<std::vector<std::uint32_t>> nearest(clusters.size());
+  std::vector<std::pair<double, std::uint32_t>> gaps;
+  for (std::uint32_t a = 0; a < clusters.size(); ++a) {
+    if (!alive[a]) continue;
+    gaps.clear();
+    for (std::uint32_t b = 0; b < clusters.size(); ++b) {
+      if (b == a || !alive[b]) continue;
+      const Ball& x = clusters[a].ball;
+      const Ball& y = clusters[b].ball;
+      gaps.emplace_back((x.center - y.center).norm() - x.radius - y.radius, b);
+    }
+    const std::size_t kept = std::min(count, gaps.size());
+    std::partial_sort(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(kept), gaps.end());
+    for (std::size_t k = 0; k < kept; ++k) {
+      nearest[a].push_back(gaps[k].second);
+      nearest[gaps[k].second].push_back(a);
+    }
+  }
+  for (std::vector<std::uint32_t>& list : nearest) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return nearest;
 }
 
 std::vector<Cluster> medial_clusters(const Region& region, const MedialAxis& axis,

@@ -13,6 +13,9 @@
 namespace sphys::tools::build {
 namespace {
 
+// Spheres that overlap nothing may merge with this many of their nearest.
+constexpr std::size_t kNearestNeighbours = 8;
+
 struct Candidate {
   double cost;
   std::uint32_t a;
@@ -108,10 +111,16 @@ std::vector<Cluster> merge_clusters(std::vector<Cluster> clusters, const Region&
 
   while (alive_count > static_cast<std::uint32_t>(max_balls)) {
     if (queue.empty()) {
-      // Islands that touch nothing (a disconnected mesh): any pair may merge now.
+      // Spheres that overlap nothing (a disconnected mesh, a thin part): each may now merge
+      // with its nearest ones. Every pair would cost the square of the sphere count.
+      const std::vector<std::vector<std::uint32_t>> nearest =
+          nearest_clusters(clusters, alive, kNearestNeighbours);
       for (std::uint32_t a = 0; a < count; ++a) {
-        for (std::uint32_t b = a + 1; b < count; ++b) {
-          if (alive[a] && alive[b]) consider(a, b);
+        for (const std::uint32_t b : nearest[a]) {
+          if (std::find(neighbours[a].begin(), neighbours[a].end(), b) == neighbours[a].end()) {
+            neighbours[a].push_back(b);
+          }
+          if (a < b) consider(a, b);
         }
       }
     }

@@ -42,6 +42,13 @@ struct Cluster {
 [[nodiscard]] Cluster fit_cluster(const Region& region, const ErrorMeasure& measure,
                                   std::vector<std::uint32_t> members);
 
+// For each alive cluster, the `count` other alive clusters whose balls are nearest to its own (by
+// the gap between them), the relation made symmetric; dead clusters get none. The neighbours of
+// last resort of the Merge and Burst reductions when balls overlap nothing: the parts of a
+// disconnected mesh, or the small medial balls of a thin part, which lie a sample spacing apart.
+[[nodiscard]] std::vector<std::vector<std::uint32_t>> nearest_clusters(
+    std::span<const Cluster> clusters, const std::vector<bool>& alive, std::size_t count);
+
 // The medial spheres as a partition of the representatives: each point joins the least-error
 // sphere it lies on (Bradshaw §4.1, the starting set of the Merge and Burst reductions).
 [[nodiscard]] std::vector<Cluster> medial_clusters(const Region& region, const MedialAxis& axis,

@@ -10,6 +10,8 @@ namespace sphys::tools::build {
 // Points spread over the whole surface: what the nodes of a sphere-tree must cover. Made by
 // splitting every triangle evenly until its pieces have edges no longer than `spacing`; the
 // points are the pieces' corners. Every surface point is within spacing/√3 of some sample.
+// Long slivers are sampled in rows along their longest edge instead, so that a wire's sides cost
+// samples in proportion to their area, not to the square of their length.
 struct SurfaceSamples {
   std::vector<Vec3d> points;
   std::vector<std::uint32_t> triangle;  // the mesh triangle each point lies on

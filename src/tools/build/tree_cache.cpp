@@ -12,7 +12,7 @@ namespace sphys::tools {
 namespace {
 
 // Bumped whenever a builder changes what it produces, so old cache entries are not reused.
-constexpr int kBuilderVersion = 1;
+constexpr int kBuilderVersion = 2;
 
 // FNV-1a, 64 bits: stable across platforms and runs, unlike std::hash.
 class Fnv1a {

@@ -350,7 +350,7 @@ LevelQuality measure(std::span<const Sphere> spheres, const Reference& reference
   }
   const double union_outside_volume = static_cast<double>(outside_mesh) /
                                       static_cast<double>(options.volume_samples) * box_size.prod();
-  quality.tightness = union_outside_volume / reference.volume;
+  quality.outside_volume = union_outside_volume / reference.volume;
 
   // Protrusion: points of each sphere's surface that lie on the union's boundary and outside the
   // mesh. A point is asked whether it is inside the mesh only when it is farther from the mesh
@@ -386,13 +386,23 @@ LevelQuality measure_level(std::span<const Sphere> spheres, const MeshQuery& mes
 
 std::vector<LevelQuality> measure_tree(const SphereTree& tree, const MeshQuery& mesh,
                                        const QualityOptions& options) {
-  const Reference reference = make_reference(mesh, options);
-  std::vector<LevelQuality> levels;
+  std::vector<std::vector<Sphere>> levels;
   for (int level = 0; level < tree.depth(); ++level) {
-    levels.push_back(measure(tree.level_spheres(level), reference, options));
-    levels.back().level = level;
+    const std::span<const Sphere> spheres = tree.level_spheres(level);
+    levels.emplace_back(spheres.begin(), spheres.end());
   }
-  return levels;
+  return measure_levels(levels, mesh, options);
+}
+
+std::vector<LevelQuality> measure_levels(std::span<const std::vector<Sphere>> levels,
+                                         const MeshQuery& mesh, const QualityOptions& options) {
+  const Reference reference = make_reference(mesh, options);
+  std::vector<LevelQuality> qualities;
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    qualities.push_back(measure(levels[level], reference, options));
+    qualities.back().level = static_cast<int>(level);
+  }
+  return qualities;
 }
 
 }  // namespace sphys::tools

@@ -31,6 +31,11 @@ namespace fs = std::filesystem;
 // sphere-tree the narrow phase can use.
 constexpr std::uint64_t kMaxSlots = 10'000'000;
 
+// The branching factors a SphereTree takes, and the most a file may state: a complete tree of two
+// levels must fit in kMaxSlots.
+constexpr long long kMaxTreeBranching = 8;
+constexpr long long kMaxFileBranching = static_cast<long long>(kMaxSlots) - 1;
+
 // A double from here on rounds to infinity as a float: FLT_MAX plus half its ulp. Below it a
 // conversion to float is defined and finite.
 constexpr double kFloatOverflow = 0x1.ffffffp127;
@@ -129,7 +134,7 @@ std::optional<long long> parse_integer(std::string_view field) {
   return value;
 }
 
-Header read_header(const LineReader& reader) {
+Header read_header(const LineReader& reader, long long max_branching) {
   const auto& fields = reader.fields();
   std::optional<long long> levels;
   std::optional<long long> branching;
@@ -144,8 +149,16 @@ Header read_header(const LineReader& reader) {
   if (*levels < 1) {
     throw reader.error("levels must be at least 1 (the root), got " + std::to_string(*levels));
   }
-  if (*branching < 2 || *branching > 8) {
-    throw reader.error("branching factor " + std::to_string(*branching) + " is outside 2..8");
+  if (*branching < 2) {
+    throw reader.error("branching factor " + std::to_string(*branching) + " is below 2");
+  }
+  if (*branching > max_branching) {
+    throw reader.error("branching factor " + std::to_string(*branching) + " is above " +
+                       std::to_string(max_branching) +
+                       (max_branching == kMaxTreeBranching
+                            ? ", the most a sphere-tree may have (a flat set of that many "
+                              "spheres can be measured with `sphys tree-info`)"
+                            : ", the most a sphere file may have"));
   }
   const std::optional<std::uint64_t> slots = complete_tree_size(*levels, *branching);
   if (!slots) {
@@ -153,7 +166,8 @@ Header read_header(const LineReader& reader) {
                        std::to_string(*branching) + " need more than " + std::to_string(kMaxSlots) +
                        " node lines, more than a sphere-tree file may have");
   }
-  // Both fit in an int: levels is at most 23 once the size check passed.
+  // Both fit in an int: levels is at most 23 once the size check passed, and branching is at most
+  // kMaxSlots.
   return {static_cast<int>(*levels), static_cast<int>(*branching), *slots};
 }
 
@@ -274,15 +288,10 @@ void write_slots(std::ostream& out, const SphereTree& tree) {
   }
 }
 
-}  // namespace
-
-SphereTree read_sph(const fs::path& path, const SphReadOptions& options) {
-  // Binary mode: a '\r' of a Windows line end is a blank to the field splitter anyway.
-  InputFile file = open_input_file(path, InputKind::kSphereTree);
-  return read_sph(file.stream, path, options);
-}
-
-SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions& options) {
+// Reads the file's used spheres; a header whose branching factor exceeds `max_branching` is
+// refused before anything is allocated.
+SphSpheres read_spheres(std::istream& in, const fs::path& name, const SphReadOptions& options,
+                        long long max_branching) {
   if (!options.shift.allFinite()) {
     throw Error::in_file(name, "the shift to add to the centres is not finite");
   }
@@ -290,7 +299,7 @@ SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions
   if (!reader.next()) {
     throw Error::at_line(name, 1, "file is empty; expected the header '<levels> <branching>'");
   }
-  const Header header = read_header(reader);
+  const Header header = read_header(reader, max_branching);
   const auto branching = static_cast<std::size_t>(header.branching);
 
   std::vector<SphereTreeNode> nodes;
@@ -301,7 +310,6 @@ SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions
     const std::size_t level_size = level == 0 ? 1 : parents.size() * branching;
     slots.clear();
     slots.reserve(level_size);
-    bool unused_in_block = false;
     for (std::size_t j = 0; j < level_size; ++j) {
       if (!reader.next()) {
         throw reader.error_at(reader.line() + 1,
@@ -333,19 +341,13 @@ SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions
       const Slot* parent = level == 0 ? nullptr : &parents[j / branching];
       if (parent == nullptr) {
         if (!used) throw reader.error("the root sphere is unused (radius <= 0)");
-      } else {
-        if (j % branching == 0) unused_in_block = false;
-        if (used && parent->node < 0) {
-          throw reader.error("used sphere under an unused parent (line " +
-                             std::to_string(parent->line) + ")");
-        }
-        if (used && unused_in_block) {
-          throw reader.error("used sphere after an unused one among the children of line " +
-                             std::to_string(parent->line) + "; used children must come first");
-        }
-        unused_in_block = unused_in_block || !used;
+      } else if (used && parent->node < 0) {
+        throw reader.error("used sphere under an unused parent (line " +
+                           std::to_string(parent->line) + ")");
       }
 
+      // The toolkit leaves unused slots between used siblings; only the used ones become nodes,
+      // in slot order, so siblings stay adjacent and in their order.
       Slot slot{-1, reader.line()};
       if (used) {
         slot.node = static_cast<std::int32_t>(nodes.size());
@@ -356,7 +358,40 @@ SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions
     }
     std::swap(parents, slots);
   }
-  return SphereTree::from_nodes(nodes, header.branching);
+  return {header.branching, std::move(nodes)};
+}
+
+}  // namespace
+
+SphereTree read_sph(std::istream& in, const fs::path& name, const SphReadOptions& options) {
+  const SphSpheres spheres = read_spheres(in, name, options, kMaxTreeBranching);
+  return SphereTree::from_nodes(spheres.nodes, spheres.branching);
+}
+
+SphSpheres read_sph_spheres(const fs::path& path, const SphReadOptions& options) {
+  InputFile file = open_input_file(path, InputKind::kSphereTree);
+  return read_sph_spheres(file.stream, path, options);
+}
+
+SphSpheres read_sph_spheres(std::istream& in, const fs::path& name, const SphReadOptions& options) {
+  return read_spheres(in, name, options, kMaxFileBranching);
+}
+
+std::vector<std::vector<Sphere>> SphSpheres::levels() const {
+  std::vector<std::vector<Sphere>> result;
+  std::vector<std::size_t> level(nodes.size(), 0);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].parent >= 0) level[i] = level[static_cast<std::size_t>(nodes[i].parent)] + 1;
+    if (level[i] == result.size()) result.emplace_back();
+    result[level[i]].push_back(nodes[i].sphere);
+  }
+  return result;
+}
+
+SphereTree read_sph(const fs::path& path, const SphReadOptions& options) {
+  // Binary mode: a '\r' of a Windows line end is a blank to the field splitter anyway.
+  InputFile file = open_input_file(path, InputKind::kSphereTree);
+  return read_sph(file.stream, path, options);
 }
 
 void write_sph(std::ostream& out, const SphereTree& tree) {

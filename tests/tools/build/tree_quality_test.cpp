@@ -18,12 +18,13 @@ const double kSqrt3 = std::sqrt(3.0);
 
 double sphere_volume(double radius) { return 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3); }
 
-// Five standard errors of the Monte Carlo tightness: `volume_samples` points in a box of volume
-// `box_volume`, of which a fraction `tightness · mesh_volume / box_volume` is expected to count.
-// A fixed seed makes the figure reproducible; the margin keeps the test honest for any seed.
-double tightness_tolerance(double tightness, double mesh_volume, double box_volume,
-                           std::size_t volume_samples) {
-  const double p = tightness * mesh_volume / box_volume;
+// Five standard errors of the Monte Carlo outside_volume: `volume_samples` points in a box of
+// volume `box_volume`, of which a fraction `outside_volume · mesh_volume / box_volume` is expected
+// to count. A fixed seed makes the figure reproducible; the margin keeps the test honest for any
+// seed.
+double outside_volume_tolerance(double outside_volume, double mesh_volume, double box_volume,
+                                std::size_t volume_samples) {
+  const double p = outside_volume * mesh_volume / box_volume;
   return 5.0 * box_volume / mesh_volume *
          std::sqrt(p * (1.0 - p) / static_cast<double>(volume_samples));
 }
@@ -47,7 +48,7 @@ void expect_identical(const LevelQuality& a, const LevelQuality& b) {
   EXPECT_EQ(a.spheres, b.spheres);
   EXPECT_EQ(a.coverage, b.coverage);
   EXPECT_EQ(a.worst_gap, b.worst_gap);
-  EXPECT_EQ(a.tightness, b.tightness);
+  EXPECT_EQ(a.outside_volume, b.outside_volume);
   EXPECT_EQ(a.worst_protrusion, b.worst_protrusion);
 }
 
@@ -62,9 +63,10 @@ TEST(TreeQuality, SphereCircumscribingTheUnitCube) {
   EXPECT_EQ(quality.coverage, 1.0);
   EXPECT_EQ(quality.worst_gap, 0.0);
 
-  const double tightness = sphere_volume(r) - 1.0;  // the cube's volume is 1
-  EXPECT_NEAR(quality.tightness, tightness,
-              tightness_tolerance(tightness, 1.0, std::pow(2.0 * r, 3), options.volume_samples));
+  const double outside_volume = sphere_volume(r) - 1.0;  // the cube's volume is 1
+  EXPECT_NEAR(
+      quality.outside_volume, outside_volume,
+      outside_volume_tolerance(outside_volume, 1.0, std::pow(2.0 * r, 3), options.volume_samples));
 
   // The sphere's farthest point from the cube is over a face centre, r - 1/2 out.
   const double protrusion = (r - 0.5) / kSqrt3;
@@ -119,10 +121,10 @@ TEST(TreeQuality, EnlargedSphereAroundAnIcosphereGivesTheShellVolume) {
   // The facets lie inside the sphere, so the union outside the mesh is the sphere less the
   // polyhedron, whose volume is exact.
   const double mesh_volume = compute_mass_properties(mesh).volume;
-  const double tightness = (sphere_volume(r) - mesh_volume) / mesh_volume;
-  EXPECT_NEAR(
-      quality.tightness, tightness,
-      tightness_tolerance(tightness, mesh_volume, std::pow(2.0 * r, 3), options.volume_samples));
+  const double outside_volume = (sphere_volume(r) - mesh_volume) / mesh_volume;
+  EXPECT_NEAR(quality.outside_volume, outside_volume,
+              outside_volume_tolerance(outside_volume, mesh_volume, std::pow(2.0 * r, 3),
+                                       options.volume_samples));
 
   // Every boundary point is at least r - 1 from the mesh (its vertices are on the unit sphere)
   // and at most that plus the facets' depth below the unit sphere.
@@ -161,7 +163,7 @@ TEST(TreeQuality, SameInputsGiveIdenticalFiguresOnAnyThreadCount) {
   EXPECT_GT(first.coverage, 0.5);
   EXPECT_LT(first.coverage, 1.0);
   EXPECT_GT(first.worst_gap, 0.0);
-  EXPECT_GT(first.tightness, 0.0);
+  EXPECT_GT(first.outside_volume, 0.0);
   EXPECT_GT(first.worst_protrusion, 0.0);
 
   expect_identical(measure_level(spheres, torus, options), first);
@@ -174,7 +176,7 @@ TEST(TreeQuality, SameInputsGiveIdenticalFiguresOnAnyThreadCount) {
   QualityOptions reseeded = options;
   reseeded.seed = options.seed + 1;
   const LevelQuality other = measure_level(spheres, torus, reseeded);
-  EXPECT_NE(other.tightness, first.tightness);
+  EXPECT_NE(other.outside_volume, first.outside_volume);
   EXPECT_NEAR(other.coverage, first.coverage, 0.02);
 }
 
@@ -251,7 +253,7 @@ TEST(TreeQuality, MeasureTreeGivesOneEntryPerLevel) {
     EXPECT_EQ(level.coverage, 1.0);
     EXPECT_EQ(level.worst_gap, 0.0);
   }
-  EXPECT_LT(levels[1].tightness, levels[0].tightness);
+  EXPECT_LT(levels[1].outside_volume, levels[0].outside_volume);
   // From a centre inside a convex solid, a sphere sticks out farthest along the normal of the
   // nearest face: by its radius less that face's distance (1/4 for an octant's centre).
   const double protrusion = (child_radius - 0.25) / kSqrt3;
