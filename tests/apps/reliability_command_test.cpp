@@ -21,17 +21,11 @@ namespace sphys {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expect_refused;
 using test::sphys_cli;
 
 // One bunny; with a one-level tree over the exact plane, the quickest scene to prepare.
 constexpr const char* kQuickScene = "stacks:1x1";
-
-// The exact standard error of a command that must fail with bad input.
-void expect_refused(const std::vector<std::string>& args, const std::string& err) {
-  const test::CommandResult r = sphys_cli(args);
-  EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_EQ(r.err, err);
-}
 
 TEST(ReliabilityCommand, CommandLineParseErrorsSayWhoSpeaks) {
   expect_refused({"simulate"}, "sphys: error: scene is required\n");
