@@ -25,6 +25,13 @@ inline void expect_bad_input(const std::vector<std::string>& args, const std::st
   EXPECT_THAT(r.err, testing::HasSubstr(message));
 }
 
+// The exact standard error of a command that must fail with bad input, and its exit code 2.
+inline void expect_refused(const std::vector<std::string>& args, const std::string& err) {
+  const CommandResult r = sphys_cli(args);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.err, err);
+}
+
 // The lines of a text file the command wrote; none if it is missing.
 inline std::vector<std::string> read_lines(const std::filesystem::path& path) {
   std::ifstream in(path);

@@ -4,6 +4,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -11,7 +12,9 @@ namespace sphys::test {
 
 TempDir::TempDir() {
   const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-  std::string name = "sphys_test";
+  // The process id keeps two runs of the same test apart (two checkouts testing on one machine
+  // removed each other's directories).
+  std::string name = "sphys_test_" + std::to_string(getpid());
   if (info != nullptr) name += std::string("_") + info->test_suite_name() + "_" + info->name();
   for (char& c : name) {
     if (c == '/') c = '_';

@@ -7,7 +7,7 @@
 
 namespace sphys::test {
 
-// A scratch directory unique to the running test, removed with the object.
+// A scratch directory unique to the running test and process, removed with the object.
 class TempDir {
  public:
   TempDir();

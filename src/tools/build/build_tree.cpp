@@ -1,6 +1,5 @@
 #include "sphys/tools/build_tree.h"
 
-#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -17,17 +16,6 @@ namespace {
 
 using build::Ball;
 using build::BallNode;
-
-constexpr std::array<std::pair<BuildMethod, std::string_view>, 8> kMethodNames{{
-    {BuildMethod::Octree, "octree"},
-    {BuildMethod::Grid, "grid"},
-    {BuildMethod::Spawn, "spawn"},
-    {BuildMethod::Hubbard, "hubbard"},
-    {BuildMethod::Merge, "merge"},
-    {BuildMethod::Burst, "burst"},
-    {BuildMethod::Expand, "expand"},
-    {BuildMethod::Combined, "combined"},
-}};
 
 constexpr int kMaxDepth = 6;
 // Surface samples the point-set methods cover: enough for the deepest level's regions to keep a
@@ -94,22 +82,6 @@ Sphere to_sphere(const Ball& ball) {
 }
 
 }  // namespace
-
-std::string_view method_name(BuildMethod method) {
-  for (const auto& [m, name] : kMethodNames) {
-    if (m == method) return name;
-  }
-  return "unknown";
-}
-
-BuildMethod parse_method(std::string_view name) {
-  std::string valid;
-  for (const auto& [method, method_name] : kMethodNames) {
-    if (method_name == name) return method;
-    valid += (valid.empty() ? "" : ", ") + std::string(method_name);
-  }
-  throw Error("unknown sphere-tree method '" + std::string(name) + "' (valid: " + valid + ")");
-}
 
 SphereTree build_sphere_tree(const TriangleMesh& mesh, const BuildOptions& options) {
   validate(mesh, options);

@@ -280,7 +280,8 @@ Recording read_recording(const fs::path& path) {
 
   recording.metadata.resize(metadata_length);
   read_exactly(in, recording.metadata.data(), metadata_length, path);
-  if (recording.body_count == 0) return recording;
+  // With no poses to read, a body count the file need not back must not size a frame buffer.
+  if (recording.body_count == 0 || recording.frame_count == 0) return recording;
 
   recording.poses.resize(std::size_t{recording.frame_count} * recording.body_count);
   std::string bytes(std::size_t{recording.body_count} * kPoseSize, '\0');

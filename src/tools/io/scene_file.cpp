@@ -48,6 +48,10 @@ constexpr double kFloatOverflow = 0x1.ffffffp127;
 constexpr double kUnitTolerance = 1e-6;
 // Longer values are cut short in messages.
 constexpr std::size_t kMaxShown = 40;
+// Arrays and objects nested deeper are refused as they open. A scene's deepest value, a body's
+// orientation axis, is 5 deep; each open container keeps its JSON pointer, so without a bound
+// 10^5 unclosed '[' (100 kB) took 30 s and 9.8 GB.
+constexpr std::size_t kMaxNesting = 16;
 
 // The keys of the top level and of "ground" besides the world's settings, which the settings
 // table lists (sphys/settings_table.h).
@@ -277,7 +281,13 @@ class DocumentBuilder final : public nlohmann::json_sax<Json> {
   }
   // Only the innermost container grows, so the pointers to the enclosing ones stay valid.
   bool open(Json container) {
-    open_.push_back(place(std::move(container)));
+    Container placed = place(std::move(container));
+    if (open_.size() == kMaxNesting) {
+      throw Error::at_json_path(
+          name_, placed.pointer,
+          "arrays and objects nested more than " + std::to_string(kMaxNesting) + " deep");
+    }
+    open_.push_back(std::move(placed));
     return true;
   }
   bool close() {

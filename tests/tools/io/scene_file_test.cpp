@@ -830,6 +830,16 @@ TEST(SceneFile, TextThatIsNotJsonNamesLineAndColumn) {
               Eq("scene.json: expected a JSON object at the top level, got an array [1,2]"));
 }
 
+// Each open array or object keeps its JSON pointer: unbounded, 10^5 unclosed '[' took 9.8 GB.
+TEST(SceneFile, NestingIsBoundedAsContainersOpen) {
+  EXPECT_EQ(parse_error(std::string(100'000, '[')),
+            "scene.json: /0/0/0/0/0/0/0/0/0/0/0/0/0/0/0/0: arrays and objects nested more than "
+            "16 deep");
+  // 16 deep is still read (and refused for what it is).
+  EXPECT_THAT(parse_error(std::string(16, '[') + std::string(16, ']')),
+              StartsWith("scene.json: expected a JSON object at the top level"));
+}
+
 TEST_F(SceneFileOnDisk, RelativePathsResolveAgainstTheScenesFolder) {
   const std::string text =
       scene_text(R"("bodies": [{"mesh": "meshes/box.obj", "sphere_tree": "trees/bunny.sph"}])");
