@@ -33,9 +33,13 @@ struct SolverSettings {
   float contact_damping_ratio = 10.0f;  // unit: dimensionless, 1 is critical damping
   // The passes below, position_iterations, shock propagation and position_correction are the
   // sequential-impulse method's.
-  std::uint32_t velocity_iterations = 20;  // passes over the contacts for velocities
-  std::uint32_t position_iterations = 4;   // passes for the split-impulse penetration recovery
-  bool warm_starting = true;               // start from the previous step's impulses
+  std::uint32_t velocity_iterations = 20;  // passes over the contacts for velocities per step
+  // A step cut into n substeps shares its velocity passes out, velocity_iterations / n each
+  // (rounded up), but gives each substep at least this many: each substep starts from the last
+  // one's impulses, so a short substep needs fewer passes than a whole step. unit: passes
+  std::uint32_t substep_velocity_iterations = 10;
+  std::uint32_t position_iterations = 4;  // passes for the split-impulse penetration recovery
+  bool warm_starting = true;              // start from the previous step's impulses
   // After the passes, solve the contacts once more level by level from the ground up, each level
   // against the one below held fixed, so that no body of a pile is left sinking into its support.
   bool shock_propagation = true;

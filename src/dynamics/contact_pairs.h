@@ -34,20 +34,20 @@ bool place_constraint(const Contact& contact, std::uint32_t ground,
   return true;
 }
 
+// Whether two constraints act between the same two bodies (the same body pair).
+template <class Constraint>
+bool same_bodies(const Constraint& x, const Constraint& y) {
+  return x.a == y.a && x.b == y.b;
+}
+
 // A body pair's contacts come one after another (the detector and the reducer emit them by
 // pair): its first constraint gets the pair's size and the rolling resistance's mass, the inverse
 // of the sum of the two bodies' inverse world inertias.
 template <class Constraint>
-void mark_pairs(std::vector<Constraint>& constraints, std::span<const Contact> contacts,
-                const std::vector<Mat3>& inverse_inertia) {
-  const auto same_pair = [&](const Constraint& x, const Constraint& y) {
-    const Contact& cx = contacts[x.contact];
-    const Contact& cy = contacts[y.contact];
-    return cx.body_a == cy.body_a && cx.body_b == cy.body_b;
-  };
+void mark_pairs(std::vector<Constraint>& constraints, const std::vector<Mat3>& inverse_inertia) {
   for (std::size_t first = 0; first < constraints.size();) {
     std::size_t end = first + 1;
-    while (end < constraints.size() && same_pair(constraints[end], constraints[first])) ++end;
+    while (end < constraints.size() && same_bodies(constraints[end], constraints[first])) ++end;
     Constraint& c = constraints[first];
     c.pair_size = static_cast<std::uint32_t>(end - first);
     const Mat3 sum = inverse_inertia[c.a] + inverse_inertia[c.b];
@@ -70,9 +70,10 @@ void resist_rolling(Constraint& first, float arm, std::vector<Vec3>& angular,
   }
   const Vec3 turning = angular[first.b] - angular[first.a];
   Vec3 rolling = first.rolling_impulse - first.rolling_mass * turning;
+  // Squares compared first: the square root is paid only when the bound bites.
   const float limit = arm * pair_normal_impulse;
-  const float length = rolling.norm();
-  if (length > limit) rolling *= length > 0.0f ? limit / length : 0.0f;
+  const float length_squared = rolling.squaredNorm();
+  if (length_squared > limit * limit) rolling *= limit / std::sqrt(length_squared);
   const Vec3 change = rolling - first.rolling_impulse;
   if (first.a_moves) angular[first.a] -= inverse_inertia[first.a] * change;
   if (first.b_moves) angular[first.b] += inverse_inertia[first.b] * change;
@@ -81,9 +82,9 @@ void resist_rolling(Constraint& first, float arm, std::vector<Vec3>& angular,
 
 // Coulomb: the tangential impulse (t1, t2) is scaled back into the disc of radius `limit` (μ λn).
 inline void keep_in_friction_disc(float& t1, float& t2, float limit) {
-  const float length = std::sqrt(t1 * t1 + t2 * t2);
-  if (length > limit) {
-    const float scale = length > 0.0f ? limit / length : 0.0f;
+  const float length_squared = t1 * t1 + t2 * t2;
+  if (length_squared > limit * limit) {
+    const float scale = limit / std::sqrt(length_squared);
     t1 *= scale;
     t2 *= scale;
   }

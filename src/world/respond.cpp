@@ -2,6 +2,8 @@
 // over the islands: the soft step (which moves the bodies too) or sequential impulses. Paper
 // mode: eq. 4 per contact in order.
 
+#include <algorithm>
+
 #include "core/buffers.h"
 #include "core/stopwatch.h"
 #include "dynamics/contact_solver.h"
@@ -40,7 +42,14 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
   const std::span<const Contact> contacts = detector_.contacts();
   if (plausible) {
     mix_materials();
-    const SolverSettings& solver = settings_.solver;
+    // A step cut into substeps shares its velocity passes out among them, each substep running at
+    // least substep_velocity_iterations: at 4 × 50 bunnies, depth 2, a step ran 4.5 substeps on
+    // average while stacks landed, and twenty passes in each bought no plausibility.
+    SolverSettings solver = settings_.solver;
+    const std::uint32_t substeps = std::max(stats.substeps, 1u);
+    solver.velocity_iterations =
+        std::max(std::min(solver.substep_velocity_iterations, solver.velocity_iterations),
+                 (solver.velocity_iterations + substeps - 1) / substeps);
     const bool soft = soft_step();
     // Every collision pass gets all the soft step's substeps, even when fast bodies split a frame
     // into several: sharing them out (a quarter each of four) let a blow into a pile sink bodies

@@ -198,6 +198,16 @@ const auto kTable = std::to_array<Setting>({
         .range = between(1, kMaxIterations),
         .doc = "Passes over the contacts for velocities per step.",
     }),
+    scalar<Nested<&W::solver, &S::substep_velocity_iterations>>({
+        .object = "solver",
+        .key = "substep_velocity_iterations",
+        .field = "solver.substep_velocity_iterations",
+        .kind = SettingKind::kInteger,
+        .unit = "passes",
+        .range = between(1, kMaxIterations),
+        .doc = "Fewest velocity passes of a substep: a step cut into n substeps gives each the "
+               "larger of this and velocity_iterations / n.",
+    }),
     scalar<Nested<&W::solver, &S::position_iterations>>({
         .object = "solver",
         .key = "position_iterations",

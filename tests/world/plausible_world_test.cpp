@@ -416,6 +416,39 @@ TEST_P(PlausibleImpactBoth, ABoxAt30MetresPerSecondStopsOnAnotherWithin5PercentO
   }
 }
 
+// A step cut into n substeps runs velocity_iterations / n passes in each (rounded up), at least
+// substep_velocity_iterations (never more than velocity_iterations).
+TEST(PlausibleImpact, SubstepsShareTheStepsVelocityPasses) {
+  struct Case {
+    std::uint32_t per_step;
+    std::uint32_t fewest;
+    std::uint32_t expected[5];  // passes in a step of 1, 2, 3 and 4 substeps; [0] unused
+  };
+  for (const Case& c : {Case{20, 10, {0, 20, 20, 30, 40}}, Case{60, 10, {0, 60, 60, 60, 60}},
+                        Case{20, 1, {0, 20, 20, 21, 20}}, Case{4, 10, {0, 4, 8, 12, 16}}}) {
+    WorldSettings settings = on_plane(0.5f, 0.0f);
+    settings.solver.velocity_iterations = c.per_step;
+    settings.solver.substep_velocity_iterations = c.fewest;
+    settings.max_substeps = 4;
+    World world(settings);
+    const float rest = cube_half_height();
+    world.add_body(cube(Vec3(0.0f, rest, 0.0f), 0.5f));
+    BodyDesc top = cube(Vec3(0.1f, 6.0f, 0.05f), 0.5f);
+    top.linear_velocity = Vec3(0.0f, -25.0f, 0.0f);
+    world.add_body(top);
+    std::uint32_t cut_steps = 0;
+    for (int frame = 0; frame < 60; ++frame) {
+      const StepStats& stats = world.step(kDt);
+      ASSERT_GE(stats.substeps, 1u);
+      ASSERT_LE(stats.substeps, settings.max_substeps);
+      EXPECT_EQ(stats.response_passes, c.expected[stats.substeps])
+          << c.per_step << " passes per step, at least " << c.fewest << ", frame " << frame;
+      if (stats.substeps > 2) ++cut_steps;
+    }
+    EXPECT_GT(cut_steps, 0u) << "the scene must cut some steps into three or four";
+  }
+}
+
 TEST(PlausibleImpact, WithoutSpeculativeContactsTheSameImpactSinksDeep) {
   // The scene is hard: the step alone, without contacts ahead of the impact, lets the box in by
   // more than the bound above for some of the gaps.
@@ -546,6 +579,7 @@ TEST(PlausibleSettings, ImpossibleSolverSettingsAreRefused) {
   refused([](WorldSettings& s) { s.solver.shock_speed = -1.0f; });
   refused([](WorldSettings& s) { s.solver.rolling_resistance = std::nanf(""); });
   refused([](WorldSettings& s) { s.solver.velocity_iterations = 0; });
+  refused([](WorldSettings& s) { s.solver.substep_velocity_iterations = 0; });
   refused([](WorldSettings& s) { s.solver.manifold_points = 0; });
   refused([](WorldSettings& s) { s.solver.manifold_points = 9; });
   refused([](WorldSettings& s) { s.solver.linear_slop = -0.1f; });

@@ -1,8 +1,9 @@
 // A step allocates nothing once the world's buffers have grown to the scene: a bunny pile settling
 // in plausible mode (sleep off, so that every bunny stays in the step) and the same pile in paper
 // mode, each counted over 200 steps. Buffers grow while the counts they hold reach new maxima: in
-// the plausible pile the contacts creep up for some 500 steps as it settles (measured: 4
-// allocations in steps 300 to 500, none after), in paper mode for about 300. Every allocation of
+// the plausible pile the contacts creep up for some 600 steps as it settles (measured, in windows
+// of 100 steps: 6 allocations in steps 400 to 500, 4 in 500 to 600, none from 600 to 900), in
+// paper mode for about 300. Every allocation of
 // this test program goes through the counting operator new below.
 
 #include <atomic>
@@ -59,7 +60,7 @@ std::size_t allocations_while_stepping(ResponseMode response, int warm_up, int c
 
 TEST(StepAllocation, ASettlingPileInPlausibleModeAllocatesNothingOnceGrown) {
   if (test::sanitized_run()) GTEST_SKIP() << "the sanitizers allocate on their own";
-  EXPECT_EQ(allocations_while_stepping(ResponseMode::kPlausible, 500, 200), 0u);
+  EXPECT_EQ(allocations_while_stepping(ResponseMode::kPlausible, 600, 200), 0u);
 }
 
 TEST(StepAllocation, PaperModeAllocatesNothingOnceGrown) {

@@ -101,6 +101,7 @@ void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
   EXPECT_EQ(bits(a.contact_hertz), bits(b.contact_hertz));
   EXPECT_EQ(bits(a.contact_damping_ratio), bits(b.contact_damping_ratio));
   EXPECT_EQ(a.velocity_iterations, b.velocity_iterations);
+  EXPECT_EQ(a.substep_velocity_iterations, b.substep_velocity_iterations);
   EXPECT_EQ(a.position_iterations, b.position_iterations);
   EXPECT_EQ(a.warm_starting, b.warm_starting);
   EXPECT_EQ(a.shock_propagation, b.shock_propagation);
@@ -181,7 +182,8 @@ constexpr std::string_view kFullScene = R"({
   "substep_travel": 0.25,
   "solver": {"method": "soft_step", "soft_substeps": 6, "contact_hertz": 45,
              "contact_damping_ratio": 2.5,
-             "velocity_iterations": 12, "position_iterations": 0, "warm_starting": false,
+             "velocity_iterations": 12, "substep_velocity_iterations": 5,
+             "position_iterations": 0, "warm_starting": false,
              "shock_propagation": false, "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
              "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
              "shock_speed": 0.75, "rolling_resistance": 0.02, "reuse_distance": 0.001,
@@ -234,6 +236,7 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   solver.contact_hertz = 45.0f;
   solver.contact_damping_ratio = 2.5f;
   solver.velocity_iterations = 12;
+  solver.substep_velocity_iterations = 5;
   solver.position_iterations = 0;
   solver.warm_starting = false;
   solver.shock_propagation = false;
@@ -477,6 +480,8 @@ class RandomScene {
     solver.contact_hertz = std::abs(any_float()) + 1.0f;
     solver.contact_damping_ratio = std::abs(any_float());
     solver.velocity_iterations = std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
+    solver.substep_velocity_iterations =
+        std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
     solver.position_iterations = std::uniform_int_distribution<std::uint32_t>(0, 1000)(rng_);
     solver.warm_starting = coin();
     solver.shock_propagation = coin();
