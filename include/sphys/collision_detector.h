@@ -174,9 +174,11 @@ class CollisionDetector {
     // unit: m
     float descent_margin = -1.0f;
     // Its contacts of the last narrow phase: [first, first + count) of contacts_ (of
-    // previous_contacts_ once the next narrow phase begins).
+    // previous_contacts_ once the next narrow phase begins), or of asleep_contacts_ while
+    // neither body moves (`kept_asleep`).
     std::uint32_t first = 0;
     std::uint32_t count = 0;
+    bool kept_asleep = false;
     bool done = false;  // had its narrow phase in this step
   };
 
@@ -228,6 +230,16 @@ class CollisionDetector {
   void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
   void make_contacts(NarrowChunk& chunk) const;
   void carry_memory(const PairRecord& record, std::size_t first, std::size_t count);
+  // A record whose bodies both stopped moving (asleep, or asleep and static) keeps its contacts
+  // and their memory in asleep_contacts_, so that the pair warm starts when it wakes.
+  void keep_asleep(PairRecord& record);
+  static std::uint32_t append_range(const std::vector<Contact>& contacts,
+                                    const std::vector<ContactMemory>& memory,
+                                    const PairRecord& record, std::vector<Contact>& to_contacts,
+                                    std::vector<ContactMemory>& to_memory);
+  void compact_asleep();
+  [[nodiscard]] std::span<const Contact> last_contacts(const PairRecord& record) const;
+  [[nodiscard]] std::span<const ContactMemory> last_memory(const PairRecord& record) const;
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
                                                float margin) const;
 
@@ -250,6 +262,13 @@ class CollisionDetector {
   std::vector<ContactMemory> memory_;
   std::vector<Contact> previous_contacts_;
   std::vector<ContactMemory> previous_memory_;
+  // The contacts and memory of the records kept asleep, and how many of them are a live record's
+  // (records gone or woken leave theirs behind until the store is compacted).
+  std::vector<Contact> asleep_contacts_;
+  std::vector<ContactMemory> asleep_memory_;
+  std::vector<Contact> compacted_contacts_;  // compact_asleep's scratch
+  std::vector<ContactMemory> compacted_memory_;
+  std::size_t live_asleep_ = 0;
   // Per contact, what reusing it needs: its depth beyond its own leaf pair's (a reduced contact
   // carries its cluster's deepest overlap) and its normal in body a's frame. unit: m
   struct ContactShape {

@@ -35,8 +35,8 @@ struct SleepSettings {
   // A body is still while its fastest point (|v| + |ω| · its bounding radius) is under this.
   // unit: m/s
   float speed = 0.05f;
-  // A group of touching bodies (an island) sleeps once all of them have been still this long.
-  // unit: s
+  // A body sleeps once it and every moving body it touches have been still this long (a
+  // restless body keeps only its neighbours awake). unit: s
   float time = 0.5f;
 };
 

@@ -225,16 +225,16 @@ const CollisionStats& CollisionDetector::detect() {
   memory_.clear();
   shapes_.clear();
 
-  // Pairs with no moving body make no contacts, and their records nothing to carry over.
+  // Pairs with no moving body make no contacts; their records keep the last ones asleep.
   jobs_.clear();
+  live_asleep_ = 0;
   for (std::size_t p = 0; p < records_.size(); ++p) {
     PairRecord& record = records_[p];
     record.done = false;
     if (moves(body_of_proxy_[record.proxies.a]) || moves(body_of_proxy_[record.proxies.b])) {
       jobs_.push_back({static_cast<std::uint32_t>(p), false});
     } else {
-      record.descent_margin = -1.0f;
-      record.count = 0;
+      keep_asleep(record);
     }
   }
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
@@ -242,13 +242,68 @@ const CollisionStats& CollisionDetector::detect() {
     if (!settings_.ground_plane_height) continue;
     if (moves(i)) {
       jobs_.push_back({i, true});
-    } else {
-      ground_records_[i].descent_margin = -1.0f;
-      ground_records_[i].count = 0;
+    } else if (bodies_[i].alive) {
+      keep_asleep(ground_records_[i]);
     }
   }
+  compact_asleep();
   run_jobs();
   return stats_;
+}
+
+// Appends a record's contacts and their memory from one store to another; returns where they
+// begin there.
+std::uint32_t CollisionDetector::append_range(const std::vector<Contact>& contacts,
+                                              const std::vector<ContactMemory>& memory,
+                                              const PairRecord& record,
+                                              std::vector<Contact>& to_contacts,
+                                              std::vector<ContactMemory>& to_memory) {
+  const auto first = static_cast<std::uint32_t>(to_contacts.size());
+  const auto begin = static_cast<std::ptrdiff_t>(record.first);
+  const auto end = begin + static_cast<std::ptrdiff_t>(record.count);
+  to_contacts.insert(to_contacts.end(), contacts.begin() + begin, contacts.begin() + end);
+  to_memory.insert(to_memory.end(), memory.begin() + begin, memory.begin() + end);
+  return first;
+}
+
+void CollisionDetector::keep_asleep(PairRecord& record) {
+  // Kept contacts are matched again by leaf pair only: the pair descends anew when it wakes.
+  record.descent_margin = -1.0f;
+  if (!record.kept_asleep) {
+    record.first = append_range(previous_contacts_, previous_memory_, record, asleep_contacts_,
+                                asleep_memory_);
+    record.kept_asleep = true;
+  }
+  live_asleep_ += record.count;
+}
+
+// Once less than half of the store is live, it is rebuilt from the live records.
+void CollisionDetector::compact_asleep() {
+  if (2 * live_asleep_ >= asleep_contacts_.size()) return;
+  compacted_contacts_.clear();
+  compacted_memory_.clear();
+  const auto move = [&](PairRecord& record) {
+    if (!record.kept_asleep) return;
+    record.first = append_range(asleep_contacts_, asleep_memory_, record, compacted_contacts_,
+                                compacted_memory_);
+  };
+  for (PairRecord& record : records_) move(record);
+  for (PairRecord& record : ground_records_) move(record);
+  asleep_contacts_.swap(compacted_contacts_);
+  asleep_memory_.swap(compacted_memory_);
+}
+
+// The record's contacts of its last narrow phase (a record that had none, none).
+std::span<const Contact> CollisionDetector::last_contacts(const PairRecord& record) const {
+  if (record.count == 0) return {};
+  const std::vector<Contact>& from = record.kept_asleep ? asleep_contacts_ : previous_contacts_;
+  return std::span<const Contact>(from).subspan(record.first, record.count);
+}
+
+std::span<const ContactMemory> CollisionDetector::last_memory(const PairRecord& record) const {
+  if (record.count == 0) return {};
+  const std::vector<ContactMemory>& from = record.kept_asleep ? asleep_memory_ : previous_memory_;
+  return std::span<const ContactMemory>(from).subspan(record.first, record.count);
 }
 
 const CollisionStats& CollisionDetector::detect_woken() {
@@ -344,6 +399,7 @@ void CollisionDetector::run_jobs() {
       carry_memory(*pair.record, first, base + end - first);
       pair.record->first = static_cast<std::uint32_t>(first);
       pair.record->count = static_cast<std::uint32_t>(base + end - first);
+      pair.record->kept_asleep = false;
     }
     stats_.sphere_tests += chunk.sphere_tests;
     stats_.leaf_pairs += chunk.leaf_pairs;
@@ -364,11 +420,12 @@ void CollisionDetector::run_jobs() {
 // starts after the last match.
 void CollisionDetector::carry_memory(const PairRecord& record, std::size_t first,
                                      std::size_t count) {
-  const std::size_t old_first = record.first;
-  const std::size_t old_count = record.count;
+  const std::span<const Contact> old_contacts = last_contacts(record);
+  const std::span<const ContactMemory> old_memory = last_memory(record);
+  const std::size_t old_count = old_contacts.size();
   float pair_stopped = 0.0f;
-  for (std::size_t i = 0; i < old_count; ++i) {
-    pair_stopped = std::min(pair_stopped, previous_memory_[old_first + i].stopped_approach);
+  for (const ContactMemory& old : old_memory) {
+    pair_stopped = std::min(pair_stopped, old.stopped_approach);
   }
   std::size_t hint = 0;
   for (std::size_t k = first; k < first + count; ++k) {
@@ -376,9 +433,9 @@ void CollisionDetector::carry_memory(const PairRecord& record, std::size_t first
     ContactMemory memory;
     for (std::size_t tried = 0; tried < old_count; ++tried) {
       const std::size_t i = (hint + tried) % old_count;
-      const Contact& old = previous_contacts_[old_first + i];
+      const Contact& old = old_contacts[i];
       if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
-        memory = previous_memory_[old_first + i];
+        memory = old_memory[i];
         hint = i + 1;
         break;
       }
@@ -575,12 +632,8 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
     if (settings_.manifold_points == 0) {
       chunk.contacts.insert(chunk.contacts.end(), chunk.run.begin(), chunk.run.end());
     } else {
-      // The record still holds the last narrow phase's range (a record that had none, none).
-      const std::span<const Contact> kept =
-          pair.record->count == 0 ? std::span<const Contact>{}
-                                  : std::span<const Contact>(previous_contacts_)
-                                        .subspan(pair.record->first, pair.record->count);
-      chunk.reducer.reduce(chunk.run, settings_.manifold_points, kept, chunk.contacts);
+      chunk.reducer.reduce(chunk.run, settings_.manifold_points, last_contacts(*pair.record),
+                           chunk.contacts);
     }
     for (std::size_t k = reduced_begin; k < chunk.contacts.size(); ++k) {
       const Contact& contact = chunk.contacts[k];

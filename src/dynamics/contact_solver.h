@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dynamics/contact_levels.h"
+#include "dynamics/contact_pairs.h"
 #include "dynamics/solver_stats.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
@@ -72,13 +73,9 @@ class ContactSolver {
     float tangent2_mass = 0.0f;
     float friction = 0.0f;
     float restitution = 0.0f;
-    // Rolling resistance acts once per body pair, from the pair's first constraint: the number
-    // of the pair's constraints (consecutive from this one) there, 0 on the others.
-    std::uint32_t pair_size = 0;
-    // Inverse of the sum of the two bodies' inverse world inertias: the angular impulse that
-    // stops their relative turning (first constraint of a pair only). unit: kg m²
-    Mat3 rolling_mass = Mat3::Zero();
-    Vec3 rolling_impulse = Vec3::Zero();  // angular, on body b. unit: N m s
+    // The body pair's rolling resistance (contact_pairs.h), done from one of its constraints.
+    std::uint32_t pair = kNoRollingPair;
+    bool rolls = false;
     float depth = 0.0f;
     float target_speed = 0.0f;  // normal speed the velocity pass aims at (≤ 0 for a gap)
     float approach = 0.0f;      // relative normal speed before the solve, for the bounce
@@ -92,12 +89,24 @@ class ContactSolver {
   };
   [[nodiscard]] static Vec3 relative_velocity(const Constraint& c, const std::vector<Vec3>& linear,
                                               const std::vector<Vec3>& angular);
+  // The velocity passes' own: the two bodies' velocities held in locals while one contact is
+  // solved (writes through the body arrays would each be read back by the next row, as the
+  // compiler cannot tell that they do not alias), the speed along row r of c (direction d), and
+  // impulses along one row or the two tangents at once.
+  struct PairVelocities {
+    Vec3 linear_a;
+    Vec3 angular_a;
+    Vec3 linear_b;
+    Vec3 angular_b;
+  };
+  [[nodiscard]] PairVelocities load_velocities(const Constraint& c) const;
+  void store_velocities(const Constraint& c, const PairVelocities& v);
+  [[nodiscard]] static float row_speed(const Constraint& c, int row, const Vec3& direction,
+                                       const PairVelocities& v);
+  void push(const Constraint& c, int row, const Vec3& direction, float impulse,
+            PairVelocities& v) const;
+  void push_two(const Constraint& c, float impulse1, float impulse2, PairVelocities& v) const;
   // Applies `impulse` (world frame, from body a to body b) at the contact point.
-  // The velocity passes' own: the speed along row r of c (direction d), and an impulse along up
-  // to two rows at once.
-  [[nodiscard]] float row_speed(const Constraint& c, int row, const Vec3& direction) const;
-  void push(const Constraint& c, int row, const Vec3& direction, float impulse);
-  void push_two(const Constraint& c, float impulse1, float impulse2);
   void apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
              std::vector<Vec3>& angular) const;
   void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
@@ -117,6 +126,7 @@ class ContactSolver {
                      std::span<ContactMemory> memory) const;
 
   std::vector<Constraint> constraints_;
+  std::vector<RollingPair> rolling_pairs_;
   // Per body, and one more slot at the end for the ground plane.
   std::vector<Vec3> linear_;
   std::vector<Vec3> angular_;

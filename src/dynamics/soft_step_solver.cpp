@@ -126,7 +126,10 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
     constraints_.push_back(c);
   }
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
-  if (settings.rolling_resistance > 0.0f) mark_pairs(constraints_, inverse_inertia_);
+  rolling_pairs_.clear();
+  if (settings.rolling_resistance > 0.0f) {
+    gather_rolling_pairs(constraints_, inverse_inertia_, rolling_pairs_);
+  }
 }
 
 // Islands numbered by their first moving body; each lists its moving bodies and its constraints
@@ -161,9 +164,10 @@ void SoftStepSolver::warm_start(std::span<const std::uint32_t> island) const {
   for (const std::uint32_t k : island) {
     const Constraint& c = constraints_[k];
     push(c, c.normal_impulse, c.tangent1_impulse, c.tangent2_impulse);
-    if (c.pair_size == 0) continue;
-    if (c.a_moves) angular_[c.a] -= inverse_inertia_[c.a] * c.rolling_impulse;
-    if (c.b_moves) angular_[c.b] += inverse_inertia_[c.b] * c.rolling_impulse;
+    if (!c.rolls) continue;
+    const RollingPair& pair = rolling_pairs_[c.pair];
+    if (pair.a_moves) angular_[pair.a] -= inverse_inertia_[pair.a] * pair.impulse;
+    if (pair.b_moves) angular_[pair.b] += inverse_inertia_[pair.b] * pair.impulse;
   }
 }
 
@@ -199,7 +203,7 @@ void SoftStepSolver::solve_contacts(std::span<const std::uint32_t> island,
                      impulse_scale * c.normal_impulse,
                  0.0f);
     const float normal_change = normal_total - c.normal_impulse;
-    c.normal_impulse = normal_total;
+    set_normal_impulse(c, normal_total, rolling_pairs_);
     c.max_normal_impulse = std::max(c.max_normal_impulse, normal_total);
 
     push(c, normal_change, 0.0f, 0.0f);
@@ -212,8 +216,9 @@ void SoftStepSolver::solve_contacts(std::span<const std::uint32_t> island,
     c.tangent1_impulse = t1;
     c.tangent2_impulse = t2;
 
-    if (c.pair_size > 0 && settings.rolling_resistance > 0.0f) {
-      resist_rolling(c, settings.rolling_resistance, angular_, inverse_inertia_);
+    if (c.rolls) {
+      resist_rolling(rolling_pairs_[c.pair], settings.rolling_resistance, angular_,
+                     inverse_inertia_);
     }
   }
 }

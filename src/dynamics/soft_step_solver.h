@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "dynamics/contact_pairs.h"
 #include "dynamics/solver_stats.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
@@ -82,13 +83,10 @@ class SoftStepSolver {
     float tangent1_impulse = 0.0f;
     float tangent2_impulse = 0.0f;
     float max_normal_impulse = 0.0f;  // over the step: did the contact push at all
-    // Rolling resistance acts once per body pair, from the pair's first constraint: the number of
-    // the pair's constraints (consecutive from this one) there, 0 on the others.
-    std::uint32_t pair_size = 0;
-    // Inverse of the sum of the two bodies' inverse world inertias (first of a pair). unit: kg m²
-    Mat3 rolling_mass = Mat3::Zero();
-    Vec3 rolling_impulse = Vec3::Zero();  // angular, on body b. unit: N m s
-    std::uint32_t contact = 0;            // its index in the contacts given to solve()
+    // The body pair's rolling resistance (contact_pairs.h), done from one of its constraints.
+    std::uint32_t pair = kNoRollingPair;
+    bool rolls = false;
+    std::uint32_t contact = 0;  // its index in the contacts given to solve()
   };
 
   void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
@@ -120,6 +118,7 @@ class SoftStepSolver {
   void push(const Constraint& c, float normal, float tangent1, float tangent2) const;
 
   std::vector<Constraint> constraints_;
+  std::vector<RollingPair> rolling_pairs_;
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one thread that solves its island.
   mutable std::vector<Vec3> linear_;

@@ -35,15 +35,15 @@ void World::detect_contacts(StepStats& stats) {
 }
 
 // The detector passed over the pairs of sleeping bodies: without their contacts a blow on a
-// sleeping pile would pass through its top body unopposed. So the sleeping islands a restless
+// sleeping pile would pass through its top body unopposed. So the sleeping groups a restless
 // body touches wake, and their pairs get their narrow phase now, once; their contacts may show
-// them touching other sleeping islands, which wake in turn, until nothing more wakes.
+// them touching other sleeping groups, which wake in turn, until nothing more wakes. Then the
+// islands of this substep.
 void World::wake_touched(StepStats& stats) {
   for (;;) {
-    sleep_->build_islands(detector_.contacts(), dynamic_);
     sleep_changes_.clear();
-    sleep_->wake_disturbed(settings_.sleep, sleep_changes_);
-    if (sleep_changes_.empty()) return;
+    sleep_->wake_disturbed(detector_.contacts(), dynamic_, settings_.sleep, sleep_changes_);
+    if (sleep_changes_.empty()) break;
     for (const std::uint32_t body : sleep_changes_) {
       detector_.set_asleep({body}, false);
       // Still until the solver moves them: no motion from before they slept.
@@ -52,6 +52,7 @@ void World::wake_touched(StepStats& stats) {
     }
     add_detection(detector_.detect_woken(), stats);
   }
+  sleep_->build_islands(detector_.contacts(), dynamic_);
 }
 
 }  // namespace sphys

@@ -340,8 +340,8 @@ const auto kTable = std::to_array<Setting>({
         .field = "sleep.time",
         .unit = "s",
         .range = at_least(0),
-        .doc = "A group of touching bodies (an island) sleeps once all of them have been still "
-               "this long.",
+        .doc = "A body sleeps once it and every moving body it touches have been still this "
+               "long.",
     }),
     scalar<Top<&W::ground_restitution>>({
         .object = "ground",

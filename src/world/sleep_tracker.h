@@ -1,7 +1,9 @@
 #pragma once
 
-// Islands of touching bodies and their sleep (Box2D's scheme): an island whose bodies have all
-// been still for a while sleeps, and wakes as a whole when a body that is not still joins it.
+// Islands of touching bodies, and sleep by neighbourhood: a body sleeps once it and every moving
+// body it touches have been still for a while, so that a restless body keeps awake only its
+// neighbours and not a whole heap; the bodies that fall asleep touching one another (or bodies
+// asleep already) sleep as one group, and a restless body touching any of them wakes them all.
 
 #include <cstdint>
 #include <span>
@@ -26,19 +28,25 @@ class SleepTracker {
   // Per body, the island it is in (a name shared by the island's bodies), as of the last
   // build_islands(). Valid until the next call of any other member.
   [[nodiscard]] std::span<const std::uint32_t> islands();
-  // Wakes the sleeping bodies of every island that holds an awake body not still for long enough,
-  // appending them to `woken`.
-  void wake_disturbed(const SleepSettings& settings, std::vector<std::uint32_t>& woken);
+  // Wakes the group of every sleeping body that a contact joins to a restless body (an awake
+  // moving body not still for settings.time), appending them to `woken`.
+  void wake_disturbed(std::span<const Contact> contacts, std::span<const std::uint8_t> dynamic,
+                      const SleepSettings& settings, std::vector<std::uint32_t>& woken);
   // Counts how long each awake moving body has been still (`speeds[i]`: its fastest point's
-  // speed, unit: m/s), then puts to sleep every island whose bodies have all been still for
-  // settings.time, appending them to `fell_asleep`. Returns the number of islands.
+  // speed, unit: m/s), then puts to sleep every body still for settings.time that touches no
+  // restless body, appending them to `fell_asleep`. Returns the number of islands as of the last
+  // build_islands().
   std::uint32_t update(std::span<const float> speeds, std::span<const std::uint8_t> dynamic,
-                       float dt, const SleepSettings& settings,
+                       std::span<const Contact> contacts, float dt, const SleepSettings& settings,
                        std::vector<std::uint32_t>& fell_asleep);
 
  private:
   [[nodiscard]] std::uint32_t root(std::uint32_t body);
   void join(std::uint32_t a, std::uint32_t b);
+  [[nodiscard]] bool restless(std::uint32_t body, std::span<const std::uint8_t> dynamic,
+                              const SleepSettings& settings) const {
+    return dynamic[body] != 0 && asleep_[body] == 0 && still_time_[body] < settings.time;
+  }
 
   std::vector<std::uint32_t> parent_;  // union-find of the islands
   std::vector<std::uint32_t> island_;  // islands(), scratch
@@ -46,6 +54,7 @@ class SleepTracker {
   std::vector<float> still_time_;           // unit: s
   std::vector<std::uint32_t> next_asleep_;  // circular list of the bodies that fell asleep together
   std::vector<std::uint8_t> flags_;         // per island root, scratch
+  std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch
   std::vector<std::uint32_t> ring_first_;   // per island root, scratch
   std::vector<std::uint32_t> ring_last_;
 };

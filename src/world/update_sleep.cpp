@@ -1,6 +1,5 @@
 // Stage 6 of a substep (plausible mode): how long each moving body has been still, and the
-// islands (built once in this substep, when waking) whose bodies have all been still long enough
-// fall asleep.
+// bodies still long enough that touch no restless body fall asleep.
 
 #include "sphys/world.h"
 #include "world/sleep_tracker.h"
@@ -13,7 +12,8 @@ void World::update_sleep(float dt, StepStats& stats) {
     if (moving_[i] != 0) speeds_[i] = fastest_point_speed(i);
   }
   sleep_changes_.clear();
-  stats.islands = sleep_->update(speeds_, dynamic_, dt, settings_.sleep, sleep_changes_);
+  stats.islands =
+      sleep_->update(speeds_, dynamic_, detector_.contacts(), dt, settings_.sleep, sleep_changes_);
   for (const std::uint32_t body : sleep_changes_) {
     bodies_[body].linear_velocity.setZero();
     bodies_[body].angular_velocity.setZero();

@@ -554,6 +554,67 @@ TEST_P(PlausibleSleep, ARestingBodySleepsAndAnImpulseOrAnImpactWakesIt) {
   EXPECT_TRUE(world.asleep(dropped));
 }
 
+// A row of boxes on the floor, each within the contact margin of the next (one island): box 0
+// slides to and fro beside the row, driven, and never rests. Boxes two places away and more
+// sleep; box 1, which touches it, stays awake. Then box 0 is driven into box 1, which wakes the
+// sleeping boxes with it.
+TEST_P(PlausibleSleep, ARestlessBodyKeepsOnlyItsNeighboursAwake) {
+  World world(on_plane(0.5f, 0.0f));
+  const float half = cube_half_height();
+  std::vector<BodyId> row;
+  for (int i = 0; i < 6; ++i) {
+    // 1 cm between box 0 and box 1, 5 mm between the others: all within the 2 cm margin.
+    const float x = static_cast<float>(i) * (2.0f * half + 0.005f) + (i > 0 ? 0.005f : 0.0f);
+    row.push_back(world.add_body(cube(Vec3(x, half, 0.0f), 0.5f)));
+  }
+  const auto drive = [&](int frames, const Vec3& velocity) {
+    for (int frame = 0; frame < frames; ++frame) {
+      // Along z, face to face with box 1: no force on it, and 0.1 m/s is above the sleep speed.
+      const float side = (frame / 30) % 2 == 0 ? 1.0f : -1.0f;
+      world.set_velocity(row[0], velocity.isZero() ? Vec3(0.0f, 0.0f, 0.1f * side) : velocity,
+                         Vec3::Zero());
+      world.step(kDt);
+    }
+  };
+  drive(180, Vec3::Zero());
+  EXPECT_FALSE(world.asleep(row[0]));
+  EXPECT_FALSE(world.asleep(row[1]));
+  for (std::size_t i = 2; i < row.size(); ++i) EXPECT_TRUE(world.asleep(row[i])) << "box " << i;
+
+  drive(5, Vec3(1.0f, 0.0f, 0.0f));
+  for (std::size_t i = 0; i < row.size(); ++i) EXPECT_FALSE(world.asleep(row[i])) << "box " << i;
+}
+
+// A stack asleep keeps its contacts' impulses: woken, it starts from them (every contact warm
+// started in the first step) and does not sag.
+TEST_P(PlausibleSleep, AWokenStackStartsFromItsRestingImpulses) {
+  World world(on_plane(0.5f, 0.0f));
+  const float half = cube_half_height();
+  std::vector<BodyId> stack;
+  for (int i = 0; i < 4; ++i) {
+    stack.push_back(world.add_body(
+        cube(Vec3(0.0f, half + static_cast<float>(i) * (2.0f * half + 0.001f), 0.0f), 0.5f)));
+  }
+  run(world, 4.0f);
+  for (const BodyId box : stack) ASSERT_TRUE(world.asleep(box));
+  const float bottom = world.body(stack[0]).pose.translation.y();
+  const float top = world.body(stack[3]).pose.translation.y();
+
+  world.set_velocity(stack[3], Vec3::Zero(), Vec3::Zero());  // wakes the stack
+  for (const BodyId box : stack) ASSERT_FALSE(world.asleep(box));
+  const StepStats& first = world.step(kDt);
+  EXPECT_GT(first.impulses, 0u);
+  EXPECT_EQ(first.warm_started, first.impulses);
+  float lowest_top = top;
+  for (int frame = 0; frame < 30; ++frame) {
+    world.step(kDt);
+    lowest_top = std::min(lowest_top, world.body(stack[3]).pose.translation.y());
+  }
+  // Cold, the contacts start from nothing and the stack sinks into its slop and more.
+  EXPECT_GT(lowest_top, top - 0.0005f);
+  EXPECT_NEAR(world.body(stack[0]).pose.translation.y(), bottom, 0.0005f);
+}
+
 TEST_P(PlausibleSleep, SleepingCanBeTurnedOff) {
   WorldSettings settings = on_plane(0.5f, 0.0f);
   settings.sleep.enabled = false;
