@@ -1,13 +1,13 @@
 #include "dynamics/contact_solver.h"
 
 #include <algorithm>
-#include <cmath>
 #include <utility>
 
 #include "core/buffers.h"
 #include "dynamics/contact_levels.h"
 #include "dynamics/contact_pairs.h"
 #include "dynamics/group_by.h"
+#include "dynamics/solver_bodies.h"
 
 namespace sphys {
 namespace {
@@ -92,23 +92,9 @@ void ContactSolver::push_two(const Constraint& c, float impulse1, float impulse2
 
 void ContactSolver::load_bodies(std::span<const RigidBody> bodies,
                                 std::span<const std::uint8_t> moving) {
-  const std::size_t slots = bodies.size() + 1;  // the last one is the ground plane
-  linear_.assign(slots, Vec3::Zero());
-  angular_.assign(slots, Vec3::Zero());
-  position_.assign(slots, Vec3::Zero());
-  inverse_mass_.assign(slots, 0.0f);
-  inverse_inertia_.assign(slots, Mat3::Zero());
-  pseudo_linear_.assign(slots, Vec3::Zero());
-  pseudo_angular_.assign(slots, Vec3::Zero());
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const RigidBody& body = bodies[i];
-    position_[i] = body.pose.translation;
-    if (body.is_static || moving[i] == 0) continue;
-    linear_[i] = body.linear_velocity;
-    angular_[i] = body.angular_velocity;
-    inverse_mass_[i] = body.inverse_mass;
-    inverse_inertia_[i] = body.inverse_inertia_world();
-  }
+  load_solver_bodies(bodies, moving, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
+  fill_buffer(pseudo_linear_, linear_.size(), Vec3(Vec3::Zero()));
+  fill_buffer(pseudo_angular_, linear_.size(), Vec3(Vec3::Zero()));
 }
 
 void ContactSolver::prepare(std::span<const Contact> contacts,

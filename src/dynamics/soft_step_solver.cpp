@@ -1,12 +1,12 @@
 #include "dynamics/soft_step_solver.h"
 
 #include <algorithm>
-#include <cmath>
 #include <numbers>
 
 #include "core/buffers.h"
 #include "dynamics/contact_pairs.h"
 #include "dynamics/group_by.h"
+#include "dynamics/solver_bodies.h"
 
 namespace sphys {
 namespace {
@@ -58,25 +58,12 @@ void SoftStepSolver::push(const Constraint& c, float normal, float tangent1, flo
 
 void SoftStepSolver::load_bodies(std::span<const RigidBody> bodies,
                                  std::span<const std::uint8_t> moving) {
-  const std::size_t slots = bodies.size() + 1;  // the last one is the ground plane
-  fill_buffer(linear_, slots, Vec3(Vec3::Zero()));
-  fill_buffer(angular_, slots, Vec3(Vec3::Zero()));
-  fill_buffer(position_, slots, Vec3(Vec3::Zero()));
+  load_solver_bodies(bodies, moving, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
+  const std::size_t slots = linear_.size();
   fill_buffer(rotation_, slots, Quat(Quat::Identity()));
-  fill_buffer(inverse_mass_, slots, 0.0f);
-  fill_buffer(inverse_inertia_, slots, Mat3(Mat3::Zero()));
   fill_buffer(moved_, slots, Vec3(Vec3::Zero()));
   fill_buffer(turned_, slots, Mat3(Mat3::Identity()));
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const RigidBody& body = bodies[i];
-    position_[i] = body.pose.translation;
-    rotation_[i] = body.pose.rotation;
-    if (body.is_static || moving[i] == 0) continue;
-    linear_[i] = body.linear_velocity;
-    angular_[i] = body.angular_velocity;
-    inverse_mass_[i] = body.inverse_mass;
-    inverse_inertia_[i] = body.inverse_inertia_world();
-  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) rotation_[i] = bodies[i].pose.rotation;
 }
 
 void SoftStepSolver::prepare(std::span<const Contact> contacts,

@@ -650,30 +650,15 @@ TEST(PlausibleSettings, ImpossibleSolverSettingsAreRefused) {
   refused([](WorldSettings& s) { s.ground_friction = -0.5f; });
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, PlausibleFriction,
-                         ::testing::Values(SolverMethod::kSequentialImpulses,
-                                           SolverMethod::kSoftStep),
-                         method_name);
-INSTANTIATE_TEST_SUITE_P(Methods, PlausibleRollingResistance,
-                         ::testing::Values(SolverMethod::kSequentialImpulses,
-                                           SolverMethod::kSoftStep),
-                         method_name);
-INSTANTIATE_TEST_SUITE_P(Methods, PlausibleStack,
-                         ::testing::Values(SolverMethod::kSequentialImpulses,
-                                           SolverMethod::kSoftStep),
-                         method_name);
-INSTANTIATE_TEST_SUITE_P(Methods, PlausibleRestitution,
-                         ::testing::Values(SolverMethod::kSequentialImpulses,
-                                           SolverMethod::kSoftStep),
-                         method_name);
-INSTANTIATE_TEST_SUITE_P(Methods, PlausibleSleep,
-                         ::testing::Values(SolverMethod::kSequentialImpulses,
-                                           SolverMethod::kSoftStep),
-                         method_name);
-INSTANTIATE_TEST_SUITE_P(Methods, PlausibleImpactBoth,
-                         ::testing::Values(SolverMethod::kSequentialImpulses,
-                                           SolverMethod::kSoftStep),
-                         method_name);
+// Every suite of the fixture runs once per solver method.
+const auto kBothMethods =
+    ::testing::Values(SolverMethod::kSequentialImpulses, SolverMethod::kSoftStep);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleFriction, kBothMethods, method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleRollingResistance, kBothMethods, method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleStack, kBothMethods, method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleRestitution, kBothMethods, method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleSleep, kBothMethods, method_name);
+INSTANTIATE_TEST_SUITE_P(Methods, PlausibleImpactBoth, kBothMethods, method_name);
 
 }  // namespace
 }  // namespace sphys
