@@ -114,6 +114,9 @@ class CollisionDetector {
   BodyId add_body(std::shared_ptr<const SphereTree> tree, const Transform& pose, bool is_static);
   // The body's pairs and their contacts' memory go with it.
   void remove_body(BodyId body);
+  // Appends the bodies paired with `body` in the last broad phase (within the contact margin of
+  // it, or about to be), asleep ones included.
+  void paired_bodies(BodyId body, std::vector<std::uint32_t>& out) const;
   void set_pose(BodyId body, const Transform& pose);
   [[nodiscard]] const Transform& pose(BodyId body) const { return bodies_[body.index].pose; }
   // How far a body may move in the coming step, for speculative contacts: its centre of mass by

@@ -176,7 +176,8 @@ class World {
   std::vector<std::uint8_t> moving_;   // dynamic and awake
   std::vector<float> speeds_;
   std::vector<std::uint8_t> touching_;
-  std::vector<std::uint32_t> sleep_changes_;  // bodies woken or fallen asleep, scratch
+  std::vector<std::uint32_t> sleep_changes_;       // bodies woken or fallen asleep, scratch
+  std::vector<std::uint32_t> removed_neighbours_;  // remove_body's scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
   // Plausible mode's machinery, private to the library.
   std::unique_ptr<ContactSolver> solver_;

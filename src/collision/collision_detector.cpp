@@ -133,6 +133,14 @@ void CollisionDetector::remove_body(BodyId id) {
   free_bodies_.push_back(id.index);
 }
 
+void CollisionDetector::paired_bodies(BodyId id, std::vector<std::uint32_t>& out) const {
+  const std::uint32_t proxy = bodies_[id.index].proxy;
+  for (const PairRecord& record : records_) {
+    if (record.proxies.a == proxy) out.push_back(body_of_proxy_[record.proxies.b]);
+    if (record.proxies.b == proxy) out.push_back(body_of_proxy_[record.proxies.a]);
+  }
+}
+
 void CollisionDetector::set_pose(BodyId id, const Transform& pose) {
   Body& body = bodies_[id.index];
   body.pose = pose;

@@ -143,7 +143,12 @@ void World::wake(std::uint32_t index) {
 
 void World::remove_body(BodyId id) {
   const std::uint32_t index = checked(id);
-  wake(index);  // the bodies it slept with lose a support
+  // The bodies it slept with, and sleeping bodies it touched (which may rest on it while it is
+  // awake or static), lose a support.
+  wake(index);
+  removed_neighbours_.clear();
+  detector_.paired_bodies(id, removed_neighbours_);
+  for (const std::uint32_t neighbour : removed_neighbours_) wake(neighbour);
   detector_.remove_body(id);
   bodies_[index] = RigidBody{};
   bodies_[index].is_static = true;  // an empty slot neither moves nor counts

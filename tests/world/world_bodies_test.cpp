@@ -109,6 +109,22 @@ TEST(WorldBodies, RemovingTheSupportOfASleepingStackLetsTheTopFall) {
   }
 }
 
+// A box asleep on a static one is not in its group (static bodies join none): removing the
+// static box must wake it all the same, and it falls to the plane.
+TEST(WorldBodies, RemovingAStaticSupportWakesWhatSleepsOnIt) {
+  World world(on_plane());
+  const float rest = resting_height();
+  BodyDesc pillar = cube(Vec3(0.0f, rest, 0.0f));
+  pillar.is_static = true;
+  const BodyId support = world.add_body(pillar);
+  const BodyId top = world.add_body(cube(Vec3(0.0f, 3.0f * rest, 0.0f)));
+  ASSERT_TRUE(settle(world, 5.0f)) << "the top box never fell asleep";
+  world.remove_body(support);
+  EXPECT_FALSE(world.asleep(top));
+  ASSERT_TRUE(settle(world, 5.0f));
+  EXPECT_NEAR(world.body(top).pose.translation.y(), rest, 0.01f);
+}
+
 // A box dropped on a sleeping one wakes it in the middle of a step: the sleeping box's pair with
 // the plane has its narrow phase then, once, and every figure of the step counts each pair once.
 TEST(WorldBodies, AWakeUpInTheMiddleOfAStepDetectsEachPairOnce) {
