@@ -35,8 +35,9 @@ struct SleepSettings {
   // A body is still while its fastest point (|v| + |ω| · its bounding radius) is under this.
   // unit: m/s
   float speed = 0.05f;
-  // A body sleeps once it and every moving body it touches have been still this long (a
-  // restless body keeps only its neighbours awake). unit: s
+  // A body sleeps once it and every moving body it touches have been still this long, twice
+  // this long while a body of its island is not (a restless body keeps only its neighbours
+  // awake). unit: s
   float time = 0.5f;
 };
 

@@ -335,10 +335,9 @@ void ContactSolver::keep_impulses(const SolverSettings& settings, const Vec3& gr
 }
 
 // Islands: constraints of different islands share no moving body, so each island is solved on
-// its own, and the result is the same as one sweep over all of them in that order, whatever
-// thread solves which island. Each constraint belongs to the island of a moving body of it;
-// islands are numbered by their first constraint. Within an island, the body pairs' contacts are
-// interleaved (group_by_interleaving_runs).
+// its own, in the constraints' order, and the result is the same as one sweep over all of them in
+// that order, whatever thread solves which island. Each constraint belongs to the island of a
+// moving body of it; islands are numbered by their first constraint.
 void ContactSolver::group_islands(std::span<const std::uint32_t> island_of_body) {
   fill_buffer(island_number_, linear_.size(), kNoGroup);
   std::uint32_t islands = 0;
@@ -349,10 +348,9 @@ void ContactSolver::group_islands(std::span<const std::uint32_t> island_of_body)
   for (std::size_t k = 0; k < constraints_.size(); ++k) {
     if (island_number_[name(k)] == kNoGroup) island_number_[name(k)] = islands++;
   }
-  group_by_interleaving_runs(
+  group_by(
       constraints_.size(), islands, [&](std::size_t k) { return island_number_[name(k)]; },
-      [&](std::size_t k) { return same_bodies(constraints_[k], constraints_[k - 1]); }, rank_,
-      fine_begin_, island_begin_, island_constraints_);
+      island_begin_, island_constraints_);
 }
 
 ContactSolverStats ContactSolver::solve(

@@ -138,8 +138,6 @@ class ContactSolver {
   // Islands: island i's constraints are island_constraints_[island_begin_[i], island_begin_[i+1]).
   std::vector<std::uint32_t> island_constraints_;
   std::vector<std::uint32_t> island_begin_;
-  std::vector<std::uint32_t> rank_;  // group_by_interleaving_runs's scratch buffers
-  std::vector<std::uint32_t> fine_begin_;
   std::vector<std::uint32_t> island_bounces_;
   std::vector<std::uint32_t> island_number_;  // per island name given, its number here
   // Shock propagation's buffers, kept so that a step does not allocate them anew. The last three

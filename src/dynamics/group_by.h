@@ -2,7 +2,6 @@
 
 // Items listed group by group, for solving islands apart.
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -35,36 +34,6 @@ void group_by(std::size_t count, std::size_t groups, const GroupOf& group_of,
   }
   for (std::size_t g = groups; g > 0; --g) begin[g] = begin[g - 1];
   begin[0] = 0;
-}
-
-// Runs longer than this keep their own order after their first kRunRanks - 1 items.
-inline constexpr std::uint32_t kRunRanks = 8;
-
-// Like group_by, but within a group the items are listed by their place in their run (a run:
-// consecutive items with `continues_run(k)` true for all but its first, such as one body pair's
-// contacts): every run's first item, then every run's second, and so on, each rank in the items'
-// order. Sequential impulses solved in this order rarely meet two constraints in a row that share
-// a body, so the processor overlaps one constraint's arithmetic with the next one's instead of
-// waiting for the velocities the last one wrote. `rank` and `fine_begin` are scratch buffers.
-template <class GroupOf, class ContinuesRun>
-void group_by_interleaving_runs(std::size_t count, std::size_t groups, const GroupOf& group_of,
-                                const ContinuesRun& continues_run, std::vector<std::uint32_t>& rank,
-                                std::vector<std::uint32_t>& fine_begin,
-                                std::vector<std::uint32_t>& begin,
-                                std::vector<std::uint32_t>& items) {
-  resize_buffer(rank, count);
-  for (std::size_t k = 0; k < count; ++k) {
-    rank[k] = k > 0 && continues_run(k) ? std::min(rank[k - 1] + 1, kRunRanks - 1) : 0;
-  }
-  group_by(
-      count, groups * kRunRanks,
-      [&](std::size_t k) {
-        const std::uint32_t group = group_of(k);
-        return group == kNoGroup ? kNoGroup : group * kRunRanks + rank[k];
-      },
-      fine_begin, items);
-  resize_buffer(begin, groups + 1);
-  for (std::size_t g = 0; g <= groups; ++g) begin[g] = fine_begin[g * kRunRanks];
 }
 
 }  // namespace sphys

@@ -120,8 +120,7 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
 }
 
 // Islands numbered by their first moving body; each lists its moving bodies and its constraints
-// (each constraint in the island of a moving body of it), the body pairs' contacts interleaved
-// (group_by_interleaving_runs).
+// (each constraint in the island of a moving body of it), in order.
 void SoftStepSolver::group_islands(std::span<const std::uint32_t> island_of_body,
                                    std::span<const std::uint8_t> moving) {
   fill_buffer(island_number_, linear_.size(), kNoGroup);
@@ -137,14 +136,13 @@ void SoftStepSolver::group_islands(std::span<const std::uint32_t> island_of_body
         return inverse_mass_[i] > 0.0f ? island_number_[island_of_body[i]] : kNoGroup;
       },
       body_begin_, island_bodies_);
-  group_by_interleaving_runs(
+  group_by(
       constraints_.size(), islands,
       [&](std::size_t k) {
         const Constraint& c = constraints_[k];
         return island_number_[island_of_body[c.a_moves ? c.a : c.b]];
       },
-      [&](std::size_t k) { return same_bodies(constraints_[k], constraints_[k - 1]); }, rank_,
-      fine_begin_, constraint_begin_, island_constraints_);
+      constraint_begin_, island_constraints_);
 }
 
 void SoftStepSolver::warm_start(std::span<const std::uint32_t> island) const {

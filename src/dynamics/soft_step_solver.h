@@ -140,8 +140,6 @@ class SoftStepSolver {
   // bodies island_bodies_[body_begin_[i], body_begin_[i+1]).
   std::vector<std::uint32_t> island_constraints_;
   std::vector<std::uint32_t> constraint_begin_;
-  std::vector<std::uint32_t> rank_;  // group_by_interleaving_runs's scratch buffers
-  std::vector<std::uint32_t> fine_begin_;
   std::vector<std::uint32_t> island_bodies_;
   std::vector<std::uint32_t> body_begin_;
   std::vector<std::uint32_t> island_number_;  // per island name given, its number here

@@ -341,7 +341,7 @@ const auto kTable = std::to_array<Setting>({
         .unit = "s",
         .range = at_least(0),
         .doc = "A body sleeps once it and every moving body it touches have been still this "
-               "long.",
+               "long (twice this long while a body of its island is not).",
     }),
     scalar<Top<&W::ground_restitution>>({
         .object = "ground",

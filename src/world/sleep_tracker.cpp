@@ -7,6 +7,10 @@ namespace {
 
 // Per group root: a body of the group falls asleep now.
 constexpr std::uint8_t kFallsAsleep = 1;
+// Per island root: an awake body of the island has not been still for long enough.
+constexpr std::uint8_t kHasRestless = 2;
+// How many times sleep.time a body waits before it sleeps while its island has a restless body.
+constexpr float kPatience = 2.0f;
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
 }  // namespace
@@ -104,9 +108,16 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds,
   // Who settles: awake, still for long enough, and touching no restless body. A restless body
   // keeps its neighbours awake, so that what it pushes against yields; beyond them a heap sleeps
   // (1,000 bunnies in one heap stayed awake for 7 s while a few of them rocked).
+  // In an island with a restless body a body waits kPatience times longer: time for its
+  // penetration recovery to finish under the load of what still moves above it.
+  std::fill(flags_.begin(), flags_.end(), std::uint8_t{0});
+  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
+    if (restless(i, dynamic, settings)) flags_[root(i)] = kHasRestless;
+  }
   settles_.assign(asleep_.size(), 0);
   for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
-    settles_[i] = dynamic[i] != 0 && asleep_[i] == 0 && still_time_[i] >= settings.time ? 1 : 0;
+    const float wait = flags_[root(i)] == kHasRestless ? kPatience * settings.time : settings.time;
+    settles_[i] = dynamic[i] != 0 && asleep_[i] == 0 && still_time_[i] >= wait ? 1 : 0;
   }
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
