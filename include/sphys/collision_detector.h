@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "sphys/body_store.h"
 #include "sphys/contact.h"
 #include "sphys/parallel.h"
 #include "sphys/setting_limits.h"
@@ -19,15 +20,6 @@
 #include "sphys/tree_descent.h"
 
 namespace sphys {
-
-// A body: its slot and the slot's generation, so that the id of a removed body never names the
-// body added in its slot later. A handle, never a pointer: storage may move. The detector uses
-// the slot alone; the world checks the generation.
-struct BodyId {
-  std::uint32_t index = 0;
-  std::uint32_t generation = 0;
-  friend bool operator==(const BodyId&, const BodyId&) = default;
-};
 
 struct CollisionSettings {
   // Levels of every sphere-tree used, the root included; 0 uses them all (a depth-3 tree used as
@@ -109,22 +101,22 @@ class CollisionDetector {
   CollisionDetector(CollisionDetector&&) noexcept;
   CollisionDetector& operator=(CollisionDetector&&) noexcept;
 
-  // Throws sphys::Error for a missing or empty tree or a non-finite pose. A pose places the
-  // body frame: the tree's centres are given in it, and its origin is the centre of mass.
-  BodyId add_body(std::shared_ptr<const SphereTree> tree, const Transform& pose, bool is_static);
-  // The body's pairs and their contacts' memory go with it.
-  void remove_body(BodyId body);
-  // Appends the bodies paired with `body` in the last broad phase (within the contact margin of
+  // The bodies: their poses, whether they are static, asleep or alive, and their extents are
+  // read from the store, never copied (a static body must stay where it was added). `bodies`
+  // must outlive the detector or be replaced first.
+  void set_bodies(const BodyStore* bodies) { store_ = bodies; }
+  // The body in a slot of the store joins the broad phase with its sphere-tree, whose centres
+  // are given in the body frame. Throws sphys::Error for a missing or empty tree or a
+  // non-finite pose.
+  void add_body(std::uint32_t slot, std::shared_ptr<const SphereTree> tree);
+  // Before the store frees the slot: the body's pairs and their contacts' memory go with it.
+  void remove_body(std::uint32_t slot);
+  // Appends the bodies paired with a body in the last broad phase (within the contact margin of
   // it, or about to be), asleep ones included.
-  void paired_bodies(BodyId body, std::vector<std::uint32_t>& out) const;
-  void set_pose(BodyId body, const Transform& pose);
-  [[nodiscard]] const Transform& pose(BodyId body) const { return bodies_[body.index].pose; }
+  void paired_bodies(std::uint32_t slot, std::vector<std::uint32_t>& out) const;
   // How far a body may move in the coming step, for speculative contacts: its centre of mass by
   // `displacement` and any of its points by up to `turn_reach` more from turning. unit: m
-  void set_motion(BodyId body, const Vec3& displacement, float turn_reach);
-  // A sleeping body is checked only against awake moving bodies (pairs of sleeping or static
-  // bodies, and a sleeping body against the ground plane, make no contacts).
-  void set_asleep(BodyId body, bool asleep);
+  void set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach);
   [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
   void set_settings(const CollisionSettings& settings) { settings_ = settings; }
   // The threads the narrow phase and the contacts run on (none: the caller's thread). The
@@ -133,14 +125,15 @@ class CollisionDetector {
   // the detector or be replaced first.
   void set_parallel(const Parallel* parallel) { parallel_ = parallel; }
 
-  // The broad phase, then the narrow phase of every candidate pair with a moving body (neither
-  // static nor asleep) and of every moving body against the ground plane: contacts() becomes this
-  // step's contacts, ordered by body pair (as the broad phase lists them, then the ground plane's
-  // by body) and within a pair by the descent's order (or the reduction's). The contacts of one
-  // body pair are consecutive. With a contact margin or speculative contacts, pairs of leaves that
-  // are apart by less than their pair's gap come too (negative depth). Each contact's memory()
-  // is carried over from the contact of the same leaf pair in the same body pair's last narrow
-  // phase (a new one starts empty). Figures of this call.
+  // The broad phase, then the narrow phase of every candidate pair with a moving body (the
+  // store's awake bodies; a sleeping body is checked only against them) and of every moving body
+  // against the ground plane: contacts() becomes this step's contacts, ordered by body pair (as the
+  // broad phase lists them, then the ground plane's by body) and within a pair by the descent's
+  // order (or the reduction's). The contacts of one body pair are consecutive. With a contact
+  // margin or speculative contacts, pairs of leaves that are apart by less than their pair's gap
+  // come too (negative depth). Each contact's memory() is carried over from the contact of the same
+  // leaf pair in the same body pair's last narrow phase (a new one starts empty). Figures of this
+  // call.
   const CollisionStats& detect();
   // The narrow phase of the pairs detect() passed over because neither body moved, for those of
   // them with a body that moves now (woken since), and of the woken bodies against the ground
@@ -151,19 +144,15 @@ class CollisionDetector {
   [[nodiscard]] std::span<ContactMemory> memory() { return memory_; }
   [[nodiscard]] const CollisionStats& stats() const { return stats_; }
   // The broad phase's current bound of a body (world frame).
-  [[nodiscard]] Aabb bounds(BodyId body) const;
+  [[nodiscard]] Aabb bounds(std::uint32_t slot) const;
 
  private:
+  // What the detector keeps of a body beside the store's state.
   struct Body {
     std::shared_ptr<const SphereTree> tree;
-    Transform pose;
     ProxyId proxy = 0;
     Vec3 displacement = Vec3::Zero();
     float turn_reach = 0.0f;
-    float extent = 0.0f;  // farthest tree point from the body's origin. unit: m
-    bool is_static = false;
-    bool alive = false;
-    bool asleep = false;
     bool ground_done = false;  // its ground plane pair had its narrow phase in this step
   };
 
@@ -217,12 +206,13 @@ class CollisionDetector {
     bool plane = false;
   };
 
-  [[nodiscard]] Aabb broad_phase_box(const Body& body) const;
+  [[nodiscard]] const Transform& pose_of(std::uint32_t slot) const { return store_->poses()[slot]; }
+  [[nodiscard]] bool moves(std::uint32_t slot) const { return store_->moving()[slot] != 0; }
+  [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
   [[nodiscard]] bool budget() const;
   void carry_records_over();
-  [[nodiscard]] bool moves(std::uint32_t body) const;
   void run_jobs();
   void plan_chunks();
   void narrow_phase(NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
@@ -247,8 +237,8 @@ class CollisionDetector {
                                                float margin) const;
 
   CollisionSettings settings_;
-  std::vector<Body> bodies_;
-  std::vector<std::uint32_t> free_bodies_;
+  const BodyStore* store_ = nullptr;
+  std::vector<Body> bodies_;  // per slot of the store
   std::vector<std::uint32_t> body_of_proxy_;
   SweepAndPrune broad_phase_;
   // Records of the candidate pairs, in the order of broad_phase_.pairs(), and of the last

@@ -34,22 +34,31 @@ struct RigidBody {
   [[nodiscard]] float mass() const { return inverse_mass > 0.0f ? 1.0f / inverse_mass : 0.0f; }
   // ½ m v² + ½ ωᵀ I ω. unit: J
   [[nodiscard]] double kinetic_energy() const;
-  // True when the pose and both velocities are finite.
-  [[nodiscard]] bool finite() const;
 };
+
+// I⁻¹ in the world frame, R I_body⁻¹ Rᵀ, at orientation `rotation`. unit: 1/(kg·m²)
+[[nodiscard]] Mat3 world_inverse_inertia(const Quat& rotation, const Mat3& inverse_inertia_body);
+// ½ m v² + ½ ωᵀ I ω, with I = `inertia_body` at `rotation`; 0 for a static body (inverse mass 0).
+// unit: J
+[[nodiscard]] double kinetic_energy(const Quat& rotation, const Vec3& linear_velocity,
+                                    const Vec3& angular_velocity, float inverse_mass,
+                                    const Mat3& inertia_body);
 
 // Semi-implicit (symplectic) Euler, first half: v += g dt. Static bodies are left alone.
 void integrate_velocity(RigidBody& body, const Vec3& gravity, float dt);
 
-// Second half: x += v dt; the orientation turns by ω_mid dt (q += ½ dt (0, ω_mid) q, then
-// renormalised), with ω_mid the angular velocity at the middle of the turn. The world angular
-// momentum I ω is kept across the turn (ω' = I'⁻¹ I ω), so a torque-free body conserves it
-// instead of keeping ω fixed while its inertia turns. Static bodies are left alone.
+// Second half, for a moving body: x += v dt; the orientation turns by ω_mid dt (q += ½ dt (0,
+// ω_mid) q, then renormalised), with ω_mid the angular velocity at the middle of the turn. The
+// world angular momentum I ω is kept across the turn (ω' = I'⁻¹ I ω), so a torque-free body
+// conserves it instead of keeping ω fixed while its inertia turns.
+void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angular_velocity,
+                        const Mat3& inertia_body, const Mat3& inverse_inertia_body, float dt);
+// The same for a RigidBody; static bodies are left alone.
 void integrate_position(RigidBody& body, float dt);
 
 // Moves a body by pseudo-velocities for dt (split-impulse penetration recovery): the position by
 // linear·dt, the orientation by the turn angular·dt. The velocities are left alone, so the
-// correction adds no kinetic energy. Static bodies are left alone.
-void correct_position(RigidBody& body, const Vec3& linear, const Vec3& angular, float dt);
+// correction adds no kinetic energy.
+void correct_position(Transform& pose, const Vec3& linear, const Vec3& angular, float dt);
 
 }  // namespace sphys

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "sphys/body_store.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
@@ -87,6 +88,15 @@ struct BodyDesc {
   bool is_static = false;
 };
 
+// A body: its slot in the world's body store and the slot's generation, so that the id of a
+// removed body never names the body added in its slot later. A handle, never a pointer: storage
+// may move.
+struct BodyId {
+  std::uint32_t index = 0;
+  std::uint32_t generation = 0;
+  friend bool operator==(const BodyId&, const BodyId&) = default;
+};
+
 class ContactSolver;
 class SoftStepSolver;
 class SleepTracker;
@@ -106,7 +116,8 @@ class World {
   // with wake. Its id, and every copy of it, is stale from then on. Every call taking a BodyId
   // throws sphys::Error for a stale or unknown id.
   void remove_body(BodyId body);
-  [[nodiscard]] const RigidBody& body(BodyId body) const { return bodies_[checked(body)]; }
+  // A copy of the body's state and mass properties.
+  [[nodiscard]] RigidBody body(BodyId body) const { return store_->body(checked(body)); }
   // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes with the
   // bodies it sleeps with. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
@@ -117,13 +128,11 @@ class World {
   void set_pair_material(BodyId a, BodyId b, const PairMaterial& material);
   [[nodiscard]] bool asleep(BodyId body) const;
   // Body slots, alive or removed; id_of(i) is the id of slot i's body (or of its last one).
-  [[nodiscard]] std::uint32_t body_slots() const {
-    return static_cast<std::uint32_t>(bodies_.size());
-  }
+  [[nodiscard]] std::uint32_t body_slots() const { return store_->slots(); }
   [[nodiscard]] BodyId id_of(std::uint32_t slot) const { return {slot, generation_.at(slot)}; }
   // True for the id of a body in the world, false for a stale or unknown one.
   [[nodiscard]] bool alive(BodyId body) const {
-    return body.index < bodies_.size() && alive_[body.index] != 0 &&
+    return body.index < store_->slots() && store_->alive(body.index) &&
            generation_[body.index] == body.generation;
   }
 
@@ -143,6 +152,8 @@ class World {
 
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
   [[nodiscard]] const CollisionDetector& detector() const { return detector_; }
+  // Every body's state by slot (id_of(slot) names it), e.g. all poses as one array.
+  [[nodiscard]] const BodyStore& bodies() const { return *store_; }
 
  private:
   // The slot of a body in the world; throws sphys::Error for a stale or unknown id.
@@ -162,19 +173,16 @@ class World {
   void update_sleep(float dt, StepStats& stats);
   void measure_rest(StepStats& stats);
   void wake(std::uint32_t body);
-  [[nodiscard]] float fastest_point_speed(std::uint32_t body) const;
   // The key of a body pair in pair_materials_, the same in either order.
   [[nodiscard]] static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b);
 
   WorldSettings settings_;
+  // The one store of the bodies' state, on the heap so that the detector's pointer to it
+  // survives moving the world.
+  std::unique_ptr<BodyStore> store_;
   CollisionDetector detector_;
-  std::vector<RigidBody> bodies_;
-  std::vector<std::uint8_t> alive_;
   std::vector<std::uint32_t> generation_;  // per slot: bumped when its body is removed
-  std::vector<float> extent_;              // farthest tree point from the centre of mass. unit: m
   std::vector<PairMaterial> materials_;
-  std::vector<std::uint8_t> dynamic_;  // alive and not static, per body
-  std::vector<std::uint8_t> moving_;   // dynamic and awake
   std::vector<float> speeds_;
   std::vector<std::uint8_t> touching_;
   std::vector<std::uint32_t> sleep_changes_;       // bodies woken or fallen asleep, scratch

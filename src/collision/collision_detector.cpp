@@ -91,35 +91,25 @@ CollisionDetector::~CollisionDetector() = default;
 CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
 CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
 
-BodyId CollisionDetector::add_body(std::shared_ptr<const SphereTree> tree, const Transform& pose,
-                                   bool is_static) {
+void CollisionDetector::add_body(std::uint32_t slot, std::shared_ptr<const SphereTree> tree) {
   if (!tree || tree->empty()) throw Error("a body needs a non-empty sphere-tree");
-  if (!finite(pose)) throw Error("a body's pose must be finite");
-  std::uint32_t index = 0;
-  if (free_bodies_.empty()) {
-    index = static_cast<std::uint32_t>(bodies_.size());
-    bodies_.emplace_back();
-    ground_records_.emplace_back();
-  } else {
-    index = free_bodies_.back();
-    free_bodies_.pop_back();
+  if (!finite(pose_of(slot))) throw Error("a body's pose must be finite");
+  if (bodies_.size() <= slot) {
+    bodies_.resize(slot + 1);
+    ground_records_.resize(slot + 1);
   }
-  Body& body = bodies_[index];
+  Body& body = bodies_[slot];
+  body = Body{};
   body.tree = std::move(tree);
-  body.pose = pose;
-  body.is_static = is_static;
-  body.alive = true;
-  body.extent = body.tree->root().center.norm() + body.tree->subtree_radius(0);
-  body.proxy =
-      broad_phase_.add(broad_phase_box(body), is_static ? ProxyKind::kStatic : ProxyKind::kDynamic);
+  body.proxy = broad_phase_.add(broad_phase_box(slot),
+                                store_->is_static(slot) ? ProxyKind::kStatic : ProxyKind::kDynamic);
   if (body_of_proxy_.size() <= body.proxy) body_of_proxy_.resize(body.proxy + 1);
-  body_of_proxy_[body.proxy] = index;
-  ground_records_[index] = PairRecord{};
-  return {index};
+  body_of_proxy_[body.proxy] = slot;
+  ground_records_[slot] = PairRecord{};
 }
 
-void CollisionDetector::remove_body(BodyId id) {
-  Body& body = bodies_[id.index];
+void CollisionDetector::remove_body(std::uint32_t slot) {
+  Body& body = bodies_[slot];
   broad_phase_.remove(body.proxy);
   // The broad phase drops its pairs at the next update; until then they must not be reused.
   for (PairRecord& record : records_) {
@@ -129,35 +119,21 @@ void CollisionDetector::remove_body(BodyId id) {
     }
   }
   body = Body{};
-  ground_records_[id.index] = PairRecord{};
-  free_bodies_.push_back(id.index);
+  ground_records_[slot] = PairRecord{};
 }
 
-void CollisionDetector::paired_bodies(BodyId id, std::vector<std::uint32_t>& out) const {
-  const std::uint32_t proxy = bodies_[id.index].proxy;
+void CollisionDetector::paired_bodies(std::uint32_t slot, std::vector<std::uint32_t>& out) const {
+  const std::uint32_t proxy = bodies_[slot].proxy;
   for (const PairRecord& record : records_) {
     if (record.proxies.a == proxy) out.push_back(body_of_proxy_[record.proxies.b]);
     if (record.proxies.b == proxy) out.push_back(body_of_proxy_[record.proxies.a]);
   }
 }
 
-void CollisionDetector::set_pose(BodyId id, const Transform& pose) {
-  Body& body = bodies_[id.index];
-  body.pose = pose;
-  if (body.is_static) broad_phase_.set_box(body.proxy, broad_phase_box(body));
-}
-
-void CollisionDetector::set_motion(BodyId id, const Vec3& displacement, float turn_reach) {
-  Body& body = bodies_[id.index];
+void CollisionDetector::set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach) {
+  Body& body = bodies_[slot];
   body.displacement = displacement;
   body.turn_reach = turn_reach;
-}
-
-void CollisionDetector::set_asleep(BodyId id, bool asleep) { bodies_[id.index].asleep = asleep; }
-
-bool CollisionDetector::moves(std::uint32_t index) const {
-  const Body& body = bodies_[index];
-  return body.alive && !body.is_static && !body.asleep;
 }
 
 bool CollisionDetector::budget() const {
@@ -166,10 +142,11 @@ bool CollisionDetector::budget() const {
 
 // The body's bound, grown by half the contact margin (two grown boxes meet when the bodies are
 // within the margin) and, with speculative contacts, by how far the body can move this step.
-Aabb CollisionDetector::broad_phase_box(const Body& body) const {
+Aabb CollisionDetector::broad_phase_box(std::uint32_t slot) const {
+  const Body& body = bodies_[slot];
   float grow = 0.5f * settings_.contact_margin;
   if (settings_.speculative) grow += body.displacement.norm() + body.turn_reach;
-  Aabb box = world_bounds(*body.tree, body.pose, settings_.bounds_level);
+  Aabb box = world_bounds(*body.tree, pose_of(slot), settings_.bounds_level);
   box.min.array() -= grow;
   box.max.array() += grow;
   return box;
@@ -188,8 +165,8 @@ float CollisionDetector::plane_margin(const Body& body) const {
   return settings_.contact_margin + std::max(-body.displacement.y(), 0.0f) + body.turn_reach;
 }
 
-Aabb CollisionDetector::bounds(BodyId id) const {
-  return broad_phase_.box(bodies_[id.index].proxy);
+Aabb CollisionDetector::bounds(std::uint32_t slot) const {
+  return broad_phase_.box(bodies_[slot].proxy);
 }
 
 // The records follow the broad phase's pairs, both sorted by proxies: a pair still listed keeps
@@ -216,10 +193,8 @@ const CollisionStats& CollisionDetector::detect() {
   stats_.bodies = static_cast<std::uint32_t>(broad_phase_.size());
 
   const StepClock::time_point broad_start = StepClock::now();
-  for (const Body& body : bodies_) {
-    if (body.alive && !body.is_static && !body.asleep) {
-      broad_phase_.set_box(body.proxy, broad_phase_box(body));
-    }
+  for (const std::uint32_t slot : store_->awake()) {
+    broad_phase_.set_box(bodies_[slot].proxy, broad_phase_box(slot));
   }
   broad_phase_.update();
   carry_records_over();
@@ -250,7 +225,7 @@ const CollisionStats& CollisionDetector::detect() {
     if (!settings_.ground_plane_height) continue;
     if (moves(i)) {
       jobs_.push_back({i, true});
-    } else if (bodies_[i].alive) {
+    } else if (store_->alive(i)) {
       keep_asleep(ground_records_[i]);
     }
   }
@@ -493,11 +468,10 @@ bool CollisionDetector::reuse(PairRecord& record, const Transform& relative, flo
     const Contact& old = previous_contacts_[i];
     LeafSpheres leaves{body_a, body_b, old.leaf_a, old.leaf_b, Sphere{}, Sphere{}};
     const Sphere& leaf_b = b.tree->sphere(old.leaf_b);
-    leaves.sphere_b = {b.pose.apply(leaf_b.center), leaf_b.radius};
+    leaves.sphere_b = {pose_of(body_b).apply(leaf_b.center), leaf_b.radius};
     if (body_a != kGroundPlaneBody) {
-      const Body& a = bodies_[body_a];
-      const Sphere& leaf_a = a.tree->sphere(old.leaf_a);
-      leaves.sphere_a = {a.pose.apply(leaf_a.center), leaf_a.radius};
+      const Sphere& leaf_a = bodies_[body_a].tree->sphere(old.leaf_a);
+      leaves.sphere_a = {pose_of(body_a).apply(leaf_a.center), leaf_a.radius};
     }
     chunk.leaves.push_back(leaves);
   }
@@ -511,16 +485,18 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
   PairLeaves pair;
   pair.leaves_begin = static_cast<std::uint32_t>(chunk.leaves.size());
   if (job.plane) {
-    const Body& body = bodies_[job.index];
-    bodies_[job.index].ground_done = true;
+    Body& body = bodies_[job.index];
+    body.ground_done = true;
+    const Transform& pose = pose_of(job.index);
     PairRecord& record = ground_records_[job.index];
     pair.record = &record;
     const float margin = plane_margin(body);
-    pair.reused = reuse(record, body.pose, margin, body.extent, kGroundPlaneBody, job.index, chunk);
+    pair.reused = reuse(record, pose, margin, store_->extents()[job.index], kGroundPlaneBody,
+                        job.index, chunk);
     if (!pair.reused) {
       const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
       ground_plane_leaves(job.index, *settings_.ground_plane_height + looked, chunk);
-      record.relative = body.pose;
+      record.relative = pose;
       record.descent_margin = looked;
       ++chunk.descended_pairs;
     }
@@ -532,15 +508,17 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
     const Body& a = bodies_[ia];
     const Body& b = bodies_[ib];
     const float margin = pair_margin(a, b);
-    const Transform relative = relative_pose(a.pose, b.pose);
-    pair.reused = reuse(record, relative, margin, b.extent, ia, ib, chunk);
+    const Transform& pose_a = pose_of(ia);
+    const Transform& pose_b = pose_of(ib);
+    const Transform relative = relative_pose(pose_a, pose_b);
+    pair.reused = reuse(record, relative, margin, store_->extents()[ib], ia, ib, chunk);
     if (!pair.reused) {
       const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
       chunk.node_pairs.clear();
       const DescentSettings settings =
           descent_budget(1e3 * elapsed_ms(start), chunk.sphere_tests, looked);
       const DescentStats descent =
-          chunk.descent.descend(*a.tree, a.pose, *b.tree, b.pose, settings, chunk.node_pairs);
+          chunk.descent.descend(*a.tree, pose_a, *b.tree, pose_b, settings, chunk.node_pairs);
       chunk.sphere_tests += descent.sphere_tests;
       chunk.leaf_pairs += descent.leaf_pairs;
       chunk.cut_short_pairs += descent.cut_short_pairs;
@@ -564,8 +542,8 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
 // is kept.
 void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_down,
                                             NarrowChunk& chunk) const {
-  const Body& body = bodies_[index];
-  const SphereTree& tree = *body.tree;
+  const SphereTree& tree = *bodies_[index].tree;
+  const Transform& pose = pose_of(index);
   const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
   std::vector<std::uint32_t>& stack = chunk.plane_stack;
   stack.assign(1, 0);
@@ -573,7 +551,7 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_dow
     const std::uint32_t node = stack.back();
     stack.pop_back();
     const Sphere& sphere = tree.sphere(node);
-    const Vec3 center = body.pose.apply(sphere.center);
+    const Vec3 center = pose.apply(sphere.center);
     ++chunk.sphere_tests;
     const bool leaf = tree.is_leaf(node) || node >= leaves_begin;
     if (center.y() - (leaf ? sphere.radius : tree.subtree_radius(node)) > reach_down) continue;
@@ -601,8 +579,8 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
     const bool plane = first.body_a == kGroundPlaneBody;
     // The pairs of one body pair share one fallback normal.
     const Vec3 fallback = plane ? Vec3::UnitY()
-                                : fallback_normal(bodies_[first.body_a].pose.translation,
-                                                  bodies_[first.body_b].pose.translation);
+                                : fallback_normal(pose_of(first.body_a).translation,
+                                                  pose_of(first.body_b).translation);
     chunk.run.clear();
     for (std::uint32_t l = pair.leaves_begin; l < pair.leaves_end; ++l) {
       const LeafSpheres& leaves = chunk.leaves[l];
@@ -623,7 +601,7 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
       }
       chunk.run.push_back(contact);
     }
-    const Quat rotation_a = plane ? Quat::Identity() : bodies_[first.body_a].pose.rotation;
+    const Quat rotation_a = plane ? Quat::Identity() : pose_of(first.body_a).rotation;
     if (pair.reused) {
       const std::uint32_t old_first = pair.record->first;
       for (std::size_t i = 0; i < chunk.run.size(); ++i) {

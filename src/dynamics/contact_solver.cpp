@@ -90,9 +90,8 @@ void ContactSolver::push_two(const Constraint& c, float impulse1, float impulse2
   v.angular_b += impulse1 * c.rows[1].turn_b + impulse2 * c.rows[2].turn_b;
 }
 
-void ContactSolver::load_bodies(std::span<const RigidBody> bodies,
-                                std::span<const std::uint8_t> moving) {
-  load_solver_bodies(bodies, moving, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
+void ContactSolver::load_bodies(const BodyStore& bodies) {
+  load_solver_bodies(bodies, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
   fill_buffer(pseudo_linear_, linear_.size(), Vec3(Vec3::Zero()));
   fill_buffer(pseudo_angular_, linear_.size(), Vec3(Vec3::Zero()));
 }
@@ -353,13 +352,15 @@ void ContactSolver::group_islands(std::span<const std::uint32_t> island_of_body)
       island_begin_, island_constraints_);
 }
 
-ContactSolverStats ContactSolver::solve(
-    std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-    std::span<const std::uint32_t> island_of_body, std::span<const Contact> contacts,
-    std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
-    const SolverSettings& settings, const Vec3& gravity, float dt, const Parallel& parallel) {
+ContactSolverStats ContactSolver::solve(BodyStore& bodies,
+                                        std::span<const std::uint32_t> island_of_body,
+                                        std::span<const Contact> contacts,
+                                        std::span<ContactMemory> memory,
+                                        std::span<const PairMaterial> materials,
+                                        const SolverSettings& settings, const Vec3& gravity,
+                                        float dt, const Parallel& parallel) {
   ContactSolverStats stats;
-  load_bodies(bodies, moving);
+  load_bodies(bodies);
   prepare(contacts, memory, materials, settings, dt, stats);
   group_islands(island_of_body);
 
@@ -387,11 +388,7 @@ ContactSolverStats ContactSolver::solve(
   });
   for (const std::uint32_t bounces : island_bounces_) stats.bounces += bounces;
   keep_impulses(settings, gravity * dt, dt, memory);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].is_static || moving[i] == 0) continue;
-    bodies[i].linear_velocity = linear_[i];
-    bodies[i].angular_velocity = angular_[i];
-  }
+  store_solver_velocities(linear_, angular_, bodies);
   return stats;
 }
 

@@ -37,8 +37,7 @@ class ContactSolver {
   // contact through a moving body (a coarser grouping, joined through immovable bodies too, gives
   // the same result). `memory[k]` is contact k's warm start on entry and what it leaves for the
   // next step on return.
-  ContactSolverStats solve(std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-                           std::span<const std::uint32_t> island_of_body,
+  ContactSolverStats solve(BodyStore& bodies, std::span<const std::uint32_t> island_of_body,
                            std::span<const Contact> contacts, std::span<ContactMemory> memory,
                            std::span<const PairMaterial> materials, const SolverSettings& settings,
                            const Vec3& gravity, float dt, const Parallel& parallel);
@@ -109,7 +108,7 @@ class ContactSolver {
   // Applies `impulse` (world frame, from body a to body b) at the contact point.
   void apply(const Constraint& c, const Vec3& impulse, std::vector<Vec3>& linear,
              std::vector<Vec3>& angular) const;
-  void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
+  void load_bodies(const BodyStore& bodies);
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                std::span<const PairMaterial> materials, const SolverSettings& settings, float dt,
                ContactSolverStats& stats);

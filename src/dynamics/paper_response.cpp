@@ -3,49 +3,49 @@
 namespace sphys {
 namespace {
 
-// The ground plane as a body: static, so it takes no impulse and has infinite mass.
-RigidBody ground_body(float restitution) {
-  RigidBody ground;
-  ground.is_static = true;
-  ground.restitution = restitution;
-  return ground;
-}
-
-// 1/m + n·((I⁻¹(r × n)) × r) of one body; zero for a static body.
-float inverse_effective_mass(const RigidBody& body, const Mat3& inverse_inertia, const Vec3& r,
-                             const Vec3& n) {
-  if (body.is_static) return 0.0f;
-  return body.inverse_mass + n.dot((inverse_inertia * r.cross(n)).cross(r));
-}
-
-// One pass over the contacts in order; returns the impulses applied.
-std::uint32_t paper_pass(std::span<RigidBody> bodies, std::span<const Contact> contacts,
-                         RigidBody& ground) {
+// One pass over the contacts in order; returns the impulses applied. The ground plane is static:
+// no velocity, no inverse mass, restitution `ground_restitution`.
+std::uint32_t paper_pass(BodyStore& bodies, std::span<const Contact> contacts,
+                         float ground_restitution) {
+  const std::span<const Transform> poses = bodies.poses();
+  const std::span<Vec3> linear = bodies.linear_velocities();
+  const std::span<Vec3> angular = bodies.angular_velocities();
+  const std::span<const float> inverse_mass = bodies.inverse_masses();
+  const std::span<const Mat3> inverse_inertia = bodies.inverse_inertias_world();
+  // 1/m + n·((I⁻¹(r × n)) × r) of a moving body.
+  const auto inverse_effective_mass = [&](std::uint32_t body, const Vec3& r, const Vec3& n) {
+    return inverse_mass[body] + n.dot((inverse_inertia[body] * r.cross(n)).cross(r));
+  };
   std::uint32_t impulses = 0;
   for (const Contact& contact : contacts) {
-    RigidBody& a = contact.body_a == kGroundPlaneBody ? ground : bodies[contact.body_a];
-    RigidBody& b = bodies[contact.body_b];
+    const std::uint32_t a = contact.body_a;
+    const std::uint32_t b = contact.body_b;
+    const bool a_moves = a != kGroundPlaneBody && !bodies.is_static(a);
+    const bool b_moves = !bodies.is_static(b);
     const Vec3& n = contact.normal;
-    const float approach = n.dot(b.velocity_at(contact.point) - a.velocity_at(contact.point));
+    const Vec3 ra =
+        a != kGroundPlaneBody ? Vec3(contact.point - poses[a].translation) : contact.point;
+    const Vec3 rb = contact.point - poses[b].translation;
+    const Vec3 velocity_a = a_moves ? Vec3(linear[a] + angular[a].cross(ra)) : Vec3::Zero();
+    const Vec3 velocity_b = b_moves ? Vec3(linear[b] + angular[b].cross(rb)) : Vec3::Zero();
+    const float approach = n.dot(velocity_b - velocity_a);
     if (!(approach < 0.0f)) continue;
 
-    const Vec3 ra = contact.point - a.pose.translation;
-    const Vec3 rb = contact.point - b.pose.translation;
-    const Mat3 inverse_inertia_a = a.is_static ? Mat3::Zero() : a.inverse_inertia_world();
-    const Mat3 inverse_inertia_b = b.is_static ? Mat3::Zero() : b.inverse_inertia_world();
-    const float denominator = inverse_effective_mass(a, inverse_inertia_a, ra, n) +
-                              inverse_effective_mass(b, inverse_inertia_b, rb, n);
+    const float denominator = (a_moves ? inverse_effective_mass(a, ra, n) : 0.0f) +
+                              (b_moves ? inverse_effective_mass(b, rb, n) : 0.0f);
     if (!(denominator > 0.0f)) continue;  // two static bodies: nothing can move
-    const float epsilon = mix_restitution(a.restitution, b.restitution);
+    const float epsilon =
+        mix_restitution(a != kGroundPlaneBody ? bodies.restitutions()[a] : ground_restitution,
+                        bodies.restitutions()[b]);
     const Vec3 impulse = (-(1.0f + epsilon) * approach / denominator) * n;
 
-    if (!a.is_static) {
-      a.linear_velocity -= a.inverse_mass * impulse;
-      a.angular_velocity -= inverse_inertia_a * ra.cross(impulse);
+    if (a_moves) {
+      linear[a] -= inverse_mass[a] * impulse;
+      angular[a] -= inverse_inertia[a] * ra.cross(impulse);
     }
-    if (!b.is_static) {
-      b.linear_velocity += b.inverse_mass * impulse;
-      b.angular_velocity += inverse_inertia_b * rb.cross(impulse);
+    if (b_moves) {
+      linear[b] += inverse_mass[b] * impulse;
+      angular[b] += inverse_inertia[b] * rb.cross(impulse);
     }
     ++impulses;
   }
@@ -54,13 +54,11 @@ std::uint32_t paper_pass(std::span<RigidBody> bodies, std::span<const Contact> c
 
 }  // namespace
 
-PaperResponseStats apply_paper_response(std::span<RigidBody> bodies,
-                                        std::span<const Contact> contacts, float ground_restitution,
-                                        std::uint32_t max_passes) {
-  RigidBody ground = ground_body(ground_restitution);
+PaperResponseStats apply_paper_response(BodyStore& bodies, std::span<const Contact> contacts,
+                                        float ground_restitution, std::uint32_t max_passes) {
   PaperResponseStats stats;
   while (stats.passes < max_passes) {
-    const std::uint32_t impulses = paper_pass(bodies, contacts, ground);
+    const std::uint32_t impulses = paper_pass(bodies, contacts, ground_restitution);
     ++stats.passes;
     stats.impulses += impulses;
     if (impulses == 0) break;

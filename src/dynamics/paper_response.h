@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <span>
 
+#include "sphys/body_store.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
-#include "sphys/rigid_body.h"
 
 namespace sphys {
 
@@ -15,7 +15,8 @@ namespace sphys {
 // velocity v_c < 0), applies J = j n with
 //   j = −(1 + ε) v_c / (1/m₁ + 1/m₂ + n·((I₁⁻¹(r₁ × n)) × r₁) + n·((I₂⁻¹(r₂ × n)) × r₂))
 // at the contact point: +J to body b, −J to body a, linear and angular. Each impulse changes the
-// velocities the next contacts see (Gauss–Seidel). The pass over all contacts is repeated until
+// velocities the next contacts see (Gauss–Seidel); static bodies take none. The pass over all
+// contacts is repeated until
 // a pass applies no impulse or `max_passes` passes are done (see docs/experiment.md). A contact
 // whose body_a is kGroundPlaneBody is against the static ground plane with restitution
 // `ground_restitution`.
@@ -23,8 +24,7 @@ struct PaperResponseStats {
   std::uint32_t impulses = 0;  // impulses applied, over all passes
   std::uint32_t passes = 0;    // passes made
 };
-PaperResponseStats apply_paper_response(std::span<RigidBody> bodies,
-                                        std::span<const Contact> contacts, float ground_restitution,
-                                        std::uint32_t max_passes);
+PaperResponseStats apply_paper_response(BodyStore& bodies, std::span<const Contact> contacts,
+                                        float ground_restitution, std::uint32_t max_passes);
 
 }  // namespace sphys

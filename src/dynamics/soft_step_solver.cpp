@@ -56,14 +56,14 @@ void SoftStepSolver::push(const Constraint& c, float normal, float tangent1, flo
   }
 }
 
-void SoftStepSolver::load_bodies(std::span<const RigidBody> bodies,
-                                 std::span<const std::uint8_t> moving) {
-  load_solver_bodies(bodies, moving, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
+void SoftStepSolver::load_bodies(const BodyStore& bodies) {
+  load_solver_bodies(bodies, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
   const std::size_t slots = linear_.size();
   fill_buffer(rotation_, slots, Quat(Quat::Identity()));
   fill_buffer(moved_, slots, Vec3(Vec3::Zero()));
   fill_buffer(turned_, slots, Mat3(Mat3::Identity()));
-  for (std::size_t i = 0; i < bodies.size(); ++i) rotation_[i] = bodies[i].pose.rotation;
+  const std::span<const Transform> poses = bodies.poses();
+  for (std::size_t i = 0; i < poses.size(); ++i) rotation_[i] = poses[i].rotation;
 }
 
 void SoftStepSolver::prepare(std::span<const Contact> contacts,
@@ -121,17 +121,17 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
 
 // Islands numbered by their first moving body; each lists its moving bodies and its constraints
 // (each constraint in the island of a moving body of it), in order.
-void SoftStepSolver::group_islands(std::span<const std::uint32_t> island_of_body,
-                                   std::span<const std::uint8_t> moving) {
+void SoftStepSolver::group_islands(std::span<const std::uint32_t> island_of_body) {
+  const std::size_t bodies = linear_.size() - 1;  // the ground's slot is in no island
   fill_buffer(island_number_, linear_.size(), kNoGroup);
   std::uint32_t islands = 0;
-  for (std::size_t i = 0; i < moving.size(); ++i) {
+  for (std::size_t i = 0; i < bodies; ++i) {
     if (inverse_mass_[i] > 0.0f && island_number_[island_of_body[i]] == kNoGroup) {
       island_number_[island_of_body[i]] = islands++;
     }
   }
   group_by(
-      moving.size(), islands,
+      bodies, islands,
       [&](std::size_t i) {
         return inverse_mass_[i] > 0.0f ? island_number_[island_of_body[i]] : kNoGroup;
       },
@@ -217,15 +217,14 @@ void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> island_
 // The bodies' poses by the solved velocities (rigid_body.h's integrator), and their motion since
 // the step's start for the contacts' separations.
 void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> island_bodies,
-                                         std::span<RigidBody> bodies, float substep) {
+                                         BodyStore& bodies, float substep) {
+  const std::span<Transform> poses = bodies.poses();
   for (const std::uint32_t i : island_bodies) {
-    RigidBody& body = bodies[i];
-    body.linear_velocity = linear_[i];
-    body.angular_velocity = angular_[i];
-    integrate_position(body, substep);
-    angular_[i] = body.angular_velocity;  // the angular momentum is kept as the inertia turns
-    moved_[i] = body.pose.translation - position_[i];
-    turned_[i] = (body.pose.rotation * rotation_[i].conjugate()).toRotationMatrix();
+    // The angular velocity changes too: the angular momentum is kept as the inertia turns.
+    integrate_position(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
+                       bodies.inverse_inertias_body()[i], substep);
+    moved_[i] = poses[i].translation - position_[i];
+    turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
   }
 }
 
@@ -252,9 +251,9 @@ std::uint32_t SoftStepSolver::restitute(std::span<const std::uint32_t> island,
 
 std::uint32_t SoftStepSolver::step_island(std::span<const std::uint32_t> island_bodies,
                                           std::span<const std::uint32_t> island_constraints,
-                                          std::span<RigidBody> bodies,
-                                          const SolverSettings& settings, const Vec3& gravity,
-                                          float substep, std::uint32_t substeps) {
+                                          BodyStore& bodies, const SolverSettings& settings,
+                                          const Vec3& gravity, float substep,
+                                          std::uint32_t substeps) {
   for (std::uint32_t i = 0; i < substeps; ++i) {
     integrate_velocities(island_bodies, gravity, substep);
     if (settings.warm_starting) warm_start(island_constraints);
@@ -264,8 +263,8 @@ std::uint32_t SoftStepSolver::step_island(std::span<const std::uint32_t> island_
   }
   const std::uint32_t bounces = restitute(island_constraints, settings);
   for (const std::uint32_t i : island_bodies) {
-    bodies[i].linear_velocity = linear_[i];
-    bodies[i].angular_velocity = angular_[i];
+    bodies.linear_velocities()[i] = linear_[i];
+    bodies.angular_velocities()[i] = angular_[i];
   }
   return bounces;
 }
@@ -282,11 +281,10 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
 }
 
 ContactSolverStats SoftStepSolver::solve(
-    std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-    std::span<const std::uint32_t> island_of_body, std::span<const Contact> contacts,
-    std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
-    const SolverSettings& settings, const Vec3& gravity, float dt, std::uint32_t substeps,
-    const Parallel& parallel) {
+    BodyStore& bodies, std::span<const std::uint32_t> island_of_body,
+    std::span<const Contact> contacts, std::span<ContactMemory> memory,
+    std::span<const PairMaterial> materials, const SolverSettings& settings, const Vec3& gravity,
+    float dt, std::uint32_t substeps, const Parallel& parallel) {
   ContactSolverStats stats;
   const float substep = dt / static_cast<float>(substeps);
   const float hertz = std::min(settings.contact_hertz, kMostHertzPerSubstepRate / substep);
@@ -298,9 +296,9 @@ ContactSolverStats SoftStepSolver::solve(
   const float omega = 2.0f * std::numbers::pi_v<float> * hertz;
   spring(omega, spring_moving_, bias_rate_moving_);
   spring(kImmovableStiffness * omega, spring_immovable_, bias_rate_immovable_);
-  load_bodies(bodies, moving);
+  load_bodies(bodies);
   prepare(contacts, memory, materials, settings, substep, stats);
-  group_islands(island_of_body, moving);
+  group_islands(island_of_body);
   const std::size_t islands = body_begin_.size() - 1;
   fill_buffer(island_bounces_, islands, 0u);
   parallel.for_each(islands, [&](std::size_t i) {

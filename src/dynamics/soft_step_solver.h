@@ -27,14 +27,13 @@ namespace sphys {
 
 class SoftStepSolver {
  public:
-  // Advances the bodies with `moving[i] != 0` by dt, in `substeps` equal substeps, under `gravity`
-  // and the contacts: their velocities and poses on return are those at the end of the step. The
+  // Advances the store's awake bodies by dt, in `substeps` equal substeps, under `gravity` and
+  // the contacts: their velocities and poses on return are those at the end of the step. The
   // other bodies count as static. `materials[k]` is contact k's material; `memory[k]` is its warm
   // start on entry and what it leaves for the next step on return. `island_of_body[i]` names moving
   // body i's island (bodies of different islands share no contact through a moving body): islands
   // are solved on `parallel`'s threads, and the result does not depend on how many there are.
-  ContactSolverStats solve(std::span<RigidBody> bodies, std::span<const std::uint8_t> moving,
-                           std::span<const std::uint32_t> island_of_body,
+  ContactSolverStats solve(BodyStore& bodies, std::span<const std::uint32_t> island_of_body,
                            std::span<const Contact> contacts, std::span<ContactMemory> memory,
                            std::span<const PairMaterial> materials, const SolverSettings& settings,
                            const Vec3& gravity, float dt, std::uint32_t substeps,
@@ -89,26 +88,25 @@ class SoftStepSolver {
     std::uint32_t contact = 0;  // its index in the contacts given to solve()
   };
 
-  void load_bodies(std::span<const RigidBody> bodies, std::span<const std::uint8_t> moving);
+  void load_bodies(const BodyStore& bodies);
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                std::span<const PairMaterial> materials, const SolverSettings& settings,
                float substep, ContactSolverStats& stats);
-  void group_islands(std::span<const std::uint32_t> island_of_body,
-                     std::span<const std::uint8_t> moving);
+  void group_islands(std::span<const std::uint32_t> island_of_body);
   // The whole step of one island: its moving bodies and its constraints (indices, in order).
   // Returns the number of bounces.
   [[nodiscard]] std::uint32_t step_island(std::span<const std::uint32_t> island_bodies,
                                           std::span<const std::uint32_t> island_constraints,
-                                          std::span<RigidBody> bodies,
-                                          const SolverSettings& settings, const Vec3& gravity,
-                                          float substep, std::uint32_t substeps);
+                                          BodyStore& bodies, const SolverSettings& settings,
+                                          const Vec3& gravity, float substep,
+                                          std::uint32_t substeps);
   void integrate_velocities(std::span<const std::uint32_t> island_bodies, const Vec3& gravity,
                             float substep);
   void warm_start(std::span<const std::uint32_t> island) const;
   void solve_contacts(std::span<const std::uint32_t> island, const SolverSettings& settings,
                       float substep, bool use_bias);
-  void integrate_positions(std::span<const std::uint32_t> island_bodies,
-                           std::span<RigidBody> bodies, float substep);
+  void integrate_positions(std::span<const std::uint32_t> island_bodies, BodyStore& bodies,
+                           float substep);
   [[nodiscard]] std::uint32_t restitute(std::span<const std::uint32_t> island,
                                         const SolverSettings& settings);
   void keep_impulses(std::span<ContactMemory> memory) const;

@@ -42,17 +42,13 @@ void World::detect_contacts(StepStats& stats) {
 void World::wake_touched(StepStats& stats) {
   for (;;) {
     sleep_changes_.clear();
-    sleep_->wake_disturbed(detector_.contacts(), dynamic_, settings_.sleep, sleep_changes_);
+    sleep_->wake_disturbed(detector_.contacts(), settings_.sleep, sleep_changes_);
     if (sleep_changes_.empty()) break;
-    for (const std::uint32_t body : sleep_changes_) {
-      detector_.set_asleep({body}, false);
-      // Still until the solver moves them: no motion from before they slept.
-      detector_.set_motion({body}, Vec3::Zero(), 0.0f);
-      moving_[body] = 1;
-    }
+    // Still until the solver moves them: no motion from before they slept.
+    for (const std::uint32_t body : sleep_changes_) detector_.set_motion(body, Vec3::Zero(), 0.0f);
     add_detection(detector_.detect_woken(), stats);
   }
-  sleep_->build_islands(detector_.contacts(), dynamic_);
+  sleep_->build_islands(detector_.contacts());
 }
 
 }  // namespace sphys

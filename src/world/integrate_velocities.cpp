@@ -13,13 +13,15 @@ void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
   const StepClock::time_point start = StepClock::now();
   const bool soft = soft_step();
   const Vec3 gravity_speed = soft ? Vec3(settings_.gravity * dt) : Vec3::Zero();
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (moving_[i] == 0) continue;
-    RigidBody& body = bodies_[i];
-    if (!soft) integrate_velocity(body, settings_.gravity, dt);
+  const std::span<Vec3> linear = store_->linear_velocities();
+  const std::span<const Vec3> angular = store_->angular_velocities();
+  const std::span<const float> extents = store_->extents();
+  for (const std::uint32_t i : store_->awake()) {
+    // The first half of semi-implicit Euler.
+    if (!soft) linear[i] += settings_.gravity * dt;
     if (plausible) {
-      const Vec3 displacement = (body.linear_velocity + gravity_speed) * dt;
-      const float turn_reach = body.angular_velocity.norm() * dt * extent_[i];
+      const Vec3 displacement = (linear[i] + gravity_speed) * dt;
+      const float turn_reach = angular[i].norm() * dt * extents[i];
       // Speeds whose squares overflow single precision leave no bound on the motion to detect
       // with: the simulation has gone non-finite in all but name.
       if (!std::isfinite(displacement.norm()) || !std::isfinite(turn_reach)) {
@@ -27,7 +29,7 @@ void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
         stopped_ = true;
         return;
       }
-      detector_.set_motion({i}, displacement, turn_reach);
+      detector_.set_motion(i, displacement, turn_reach);
     }
   }
   stats.integration_ms += elapsed_ms(start);

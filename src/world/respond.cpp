@@ -17,23 +17,24 @@ namespace sphys {
 // A pair's material: the one set for it, else the mix of its bodies' (sphys/material.h).
 void World::mix_materials() {
   const std::span<const Contact> contacts = detector_.contacts();
+  const std::span<const float> friction = store_->frictions();
+  const std::span<const float> restitution = store_->restitutions();
   resize_buffer(materials_, contacts.size());
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Contact& contact = contacts[k];
-    const RigidBody& b = bodies_[contact.body_b];
-    if (contact.body_a == kGroundPlaneBody) {
-      materials_[k] = {mix_friction(settings_.ground_friction, b.friction),
-                       mix_restitution(settings_.ground_restitution, b.restitution)};
+    const std::uint32_t a = contact.body_a;
+    const std::uint32_t b = contact.body_b;
+    if (a == kGroundPlaneBody) {
+      materials_[k] = {mix_friction(settings_.ground_friction, friction[b]),
+                       mix_restitution(settings_.ground_restitution, restitution[b])};
       continue;
     }
-    const RigidBody& a = bodies_[contact.body_a];
-    const auto pair = pair_materials_.empty()
-                          ? pair_materials_.end()
-                          : pair_materials_.find(pair_key(contact.body_a, contact.body_b));
+    const auto pair =
+        pair_materials_.empty() ? pair_materials_.end() : pair_materials_.find(pair_key(a, b));
     materials_[k] = pair != pair_materials_.end()
                         ? pair->second
-                        : PairMaterial{mix_friction(a.friction, b.friction),
-                                       mix_restitution(a.restitution, b.restitution)};
+                        : PairMaterial{mix_friction(friction[a], friction[b]),
+                                       mix_restitution(restitution[a], restitution[b])};
   }
 }
 
@@ -56,11 +57,11 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
     // 10% of a bunny deep, against 4% (stacks:4x50, depth 2).
     const std::uint32_t solver_substeps = solver.soft_substeps;
     const ContactSolverStats solved =
-        soft ? soft_solver_->solve(bodies_, moving_, sleep_->islands(), contacts,
-                                   detector_.memory(), materials_, solver, settings_.gravity, dt,
-                                   solver_substeps, *parallel_)
-             : solver_->solve(bodies_, moving_, sleep_->islands(), contacts, detector_.memory(),
-                              materials_, solver, settings_.gravity, dt, *parallel_);
+        soft ? soft_solver_->solve(*store_, sleep_->islands(), contacts, detector_.memory(),
+                                   materials_, solver, settings_.gravity, dt, solver_substeps,
+                                   *parallel_)
+             : solver_->solve(*store_, sleep_->islands(), contacts, detector_.memory(), materials_,
+                              solver, settings_.gravity, dt, *parallel_);
     stats.impulses += solved.constraints;
     stats.warm_started += solved.warm_started;
     stats.bounces += solved.bounces;
@@ -68,7 +69,7 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
     stats.response_passes += soft ? 2 * solver_substeps : solver.velocity_iterations;
   } else {
     const PaperResponseStats response = apply_paper_response(
-        bodies_, contacts, settings_.ground_restitution, settings_.paper_passes);
+        *store_, contacts, settings_.ground_restitution, settings_.paper_passes);
     stats.impulses += response.impulses;
     stats.response_passes += response.passes;
   }

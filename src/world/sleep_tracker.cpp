@@ -16,9 +16,8 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 }  // namespace
 
 void SleepTracker::resize(std::size_t bodies) {
-  const std::size_t before = asleep_.size();
+  const std::size_t before = parent_.size();
   parent_.resize(bodies);
-  asleep_.resize(bodies, 0);
   still_time_.resize(bodies, 0.0f);
   next_asleep_.resize(bodies);
   flags_.resize(bodies, 0);
@@ -30,14 +29,14 @@ void SleepTracker::resize(std::size_t bodies) {
 }
 
 void SleepTracker::wake(std::uint32_t body, std::vector<std::uint32_t>& woken) {
-  if (asleep_[body] == 0) {
+  if (!store_->asleep(body)) {
     still_time_[body] = 0.0f;
     return;
   }
   std::uint32_t member = body;
   do {
     const std::uint32_t next = next_asleep_[member];
-    asleep_[member] = 0;
+    store_->set_asleep(member, false);
     still_time_[member] = 0.0f;
     next_asleep_[member] = member;
     woken.push_back(member);
@@ -59,8 +58,8 @@ void SleepTracker::join(std::uint32_t a, std::uint32_t b) {
   if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
 }
 
-void SleepTracker::build_islands(std::span<const Contact> contacts,
-                                 std::span<const std::uint8_t> dynamic) {
+void SleepTracker::build_islands(std::span<const Contact> contacts) {
+  const std::span<const std::uint8_t> dynamic = store_->dynamic();
   std::iota(parent_.begin(), parent_.end(), 0u);
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
@@ -68,8 +67,8 @@ void SleepTracker::build_islands(std::span<const Contact> contacts,
       join(contact.body_a, contact.body_b);
     }
   }
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
-    if (asleep_[i] != 0) join(i, next_asleep_[i]);
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
+    if (store_->asleep(i)) join(i, next_asleep_[i]);
   }
 }
 
@@ -79,29 +78,26 @@ std::span<const std::uint32_t> SleepTracker::islands() {
   return island_;
 }
 
-void SleepTracker::wake_disturbed(std::span<const Contact> contacts,
-                                  std::span<const std::uint8_t> dynamic,
-                                  const SleepSettings& settings,
+void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                                   std::vector<std::uint32_t>& woken) {
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
     const std::uint32_t a = contact.body_a;
     const std::uint32_t b = contact.body_b;
-    if (asleep_[a] != 0 && restless(b, dynamic, settings)) wake(a, woken);
-    if (asleep_[b] != 0 && restless(a, dynamic, settings)) wake(b, woken);
+    if (store_->asleep(a) && restless(b, settings)) wake(a, woken);
+    if (store_->asleep(b) && restless(a, settings)) wake(b, woken);
   }
 }
 
-std::uint32_t SleepTracker::update(std::span<const float> speeds,
-                                   std::span<const std::uint8_t> dynamic,
-                                   std::span<const Contact> contacts, float dt,
-                                   const SleepSettings& settings,
+std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<const Contact> contacts,
+                                   float dt, const SleepSettings& settings,
                                    std::vector<std::uint32_t>& fell_asleep) {
+  const std::span<const std::uint8_t> dynamic = store_->dynamic();
   std::uint32_t islands = 0;
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
     if (dynamic[i] == 0) continue;
     if (root(i) == i) ++islands;
-    if (asleep_[i] != 0) continue;
+    if (store_->asleep(i)) continue;
     still_time_[i] = speeds[i] < settings.speed ? still_time_[i] + dt : 0.0f;
   }
   if (!settings.enabled) return islands;
@@ -111,43 +107,45 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds,
   // In an island with a restless body a body waits kPatience times longer: time for its
   // penetration recovery to finish under the load of what still moves above it.
   std::fill(flags_.begin(), flags_.end(), std::uint8_t{0});
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
-    if (restless(i, dynamic, settings)) flags_[root(i)] = kHasRestless;
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
+    if (restless(i, settings)) flags_[root(i)] = kHasRestless;
   }
-  settles_.assign(asleep_.size(), 0);
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
+  settles_.assign(parent_.size(), 0);
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
     const float wait = flags_[root(i)] == kHasRestless ? kPatience * settings.time : settings.time;
-    settles_[i] = dynamic[i] != 0 && asleep_[i] == 0 && still_time_[i] >= wait ? 1 : 0;
+    settles_[i] = dynamic[i] != 0 && !store_->asleep(i) && still_time_[i] >= wait ? 1 : 0;
   }
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
-    if (restless(contact.body_b, dynamic, settings)) settles_[contact.body_a] = 0;
-    if (restless(contact.body_a, dynamic, settings)) settles_[contact.body_b] = 0;
+    if (restless(contact.body_b, settings)) settles_[contact.body_a] = 0;
+    if (restless(contact.body_a, settings)) settles_[contact.body_b] = 0;
   }
   // Groups: the settling bodies joined by their contacts to one another and to sleeping bodies,
   // whose groups they join. (The islands' union-find is free for it now.)
   std::iota(parent_.begin(), parent_.end(), 0u);
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
-    if (asleep_[i] != 0) join(i, next_asleep_[i]);
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
+    if (store_->asleep(i)) join(i, next_asleep_[i]);
   }
-  const auto sleeps = [&](std::uint32_t body) { return settles_[body] != 0 || asleep_[body] != 0; };
+  const auto sleeps = [&](std::uint32_t body) {
+    return settles_[body] != 0 || store_->asleep(body);
+  };
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
     if (sleeps(contact.body_a) && sleeps(contact.body_b)) join(contact.body_a, contact.body_b);
   }
   std::fill(flags_.begin(), flags_.end(), std::uint8_t{0});
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
     if (settles_[i] != 0) flags_[root(i)] |= kFallsAsleep;
   }
   // Every body of a group that gains a sleeper, the ones already asleep in it included, goes
   // into one circular list, so that waking any of them wakes them all.
   std::fill(ring_last_.begin(), ring_last_.end(), kNone);
-  for (std::uint32_t i = 0; i < asleep_.size(); ++i) {
+  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
     if (!sleeps(i)) continue;
     const std::uint32_t group = root(i);
     if ((flags_[group] & kFallsAsleep) == 0) continue;
-    if (asleep_[i] == 0) {
-      asleep_[i] = 1;
+    if (!store_->asleep(i)) {
+      store_->set_asleep(i, true);
       fell_asleep.push_back(i);
     }
     if (ring_last_[group] == kNone) {
@@ -157,7 +155,7 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds,
     }
     ring_last_[group] = i;
   }
-  for (std::uint32_t group = 0; group < asleep_.size(); ++group) {
+  for (std::uint32_t group = 0; group < parent_.size(); ++group) {
     if (ring_last_[group] != kNone) next_asleep_[ring_last_[group]] = ring_first_[group];
   }
   return islands;

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "sphys/body_store.h"
 #include "sphys/contact.h"
 #include "sphys/world.h"
 
@@ -16,41 +17,42 @@ namespace sphys {
 
 class SleepTracker {
  public:
-  // Slots for `bodies` bodies; new slots are awake.
+  // Sleep is the store's: the tracker puts its bodies to sleep and wakes them there. `bodies`
+  // must outlive the tracker.
+  explicit SleepTracker(BodyStore* bodies) : store_(bodies) {}
+  // Slots for `bodies` bodies.
   void resize(std::size_t bodies);
-  [[nodiscard]] bool asleep(std::uint32_t body) const { return asleep_[body] != 0; }
   // Wakes a sleeping body and every body it fell asleep with, appending them to `woken`.
   void wake(std::uint32_t body, std::vector<std::uint32_t>& woken);
 
-  // Islands: moving bodies (`dynamic[i] != 0`) touching by a contact share one; a sleeping body
-  // is in one with the bodies it fell asleep with. Static bodies and the ground join nothing.
-  void build_islands(std::span<const Contact> contacts, std::span<const std::uint8_t> dynamic);
+  // Islands: dynamic bodies touching by a contact share one; a sleeping body is in one with the
+  // bodies it fell asleep with. Static bodies and the ground join nothing.
+  void build_islands(std::span<const Contact> contacts);
   // Per body, the island it is in (a name shared by the island's bodies), as of the last
   // build_islands(). Valid until the next call of any other member.
   [[nodiscard]] std::span<const std::uint32_t> islands();
   // Wakes the group of every sleeping body that a contact joins to a restless body (an awake
   // moving body not still for settings.time), appending them to `woken`.
-  void wake_disturbed(std::span<const Contact> contacts, std::span<const std::uint8_t> dynamic,
-                      const SleepSettings& settings, std::vector<std::uint32_t>& woken);
+  void wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
+                      std::vector<std::uint32_t>& woken);
   // Counts how long each awake moving body has been still (`speeds[i]`: its fastest point's
   // speed, unit: m/s), then puts to sleep every body still for settings.time that touches no
   // restless body, appending them to `fell_asleep`. Returns the number of islands as of the last
   // build_islands().
-  std::uint32_t update(std::span<const float> speeds, std::span<const std::uint8_t> dynamic,
-                       std::span<const Contact> contacts, float dt, const SleepSettings& settings,
-                       std::vector<std::uint32_t>& fell_asleep);
+  std::uint32_t update(std::span<const float> speeds, std::span<const Contact> contacts, float dt,
+                       const SleepSettings& settings, std::vector<std::uint32_t>& fell_asleep);
 
  private:
   [[nodiscard]] std::uint32_t root(std::uint32_t body);
   void join(std::uint32_t a, std::uint32_t b);
-  [[nodiscard]] bool restless(std::uint32_t body, std::span<const std::uint8_t> dynamic,
-                              const SleepSettings& settings) const {
-    return dynamic[body] != 0 && asleep_[body] == 0 && still_time_[body] < settings.time;
+  // An awake dynamic body not still for settings.time yet.
+  [[nodiscard]] bool restless(std::uint32_t body, const SleepSettings& settings) const {
+    return store_->moving()[body] != 0 && still_time_[body] < settings.time;
   }
 
-  std::vector<std::uint32_t> parent_;  // union-find of the islands
-  std::vector<std::uint32_t> island_;  // islands(), scratch
-  std::vector<std::uint8_t> asleep_;
+  BodyStore* store_;
+  std::vector<std::uint32_t> parent_;       // union-find of the islands
+  std::vector<std::uint32_t> island_;       // islands(), scratch
   std::vector<float> still_time_;           // unit: s
   std::vector<std::uint32_t> next_asleep_;  // circular list of the bodies that fell asleep together
   std::vector<std::uint8_t> flags_;         // per island root, scratch

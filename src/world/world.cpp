@@ -78,13 +78,15 @@ void check_body(const BodyDesc& desc) {
 
 World::World(const WorldSettings& settings)
     : settings_(settings),
+      store_(std::make_unique<BodyStore>()),
       detector_(collision_settings(settings)),
       solver_(std::make_unique<ContactSolver>()),
       soft_solver_(std::make_unique<SoftStepSolver>()),
-      sleep_(std::make_unique<SleepTracker>()) {
+      sleep_(std::make_unique<SleepTracker>(store_.get())) {
   check_world_settings(settings);
   parallel_ = std::make_unique<Parallel>(settings.threads);
   detector_.set_parallel(parallel_.get());
+  detector_.set_bodies(store_.get());
 }
 
 World::~World() = default;
@@ -106,19 +108,9 @@ std::uint32_t World::checked(BodyId id) const {
 
 BodyId World::add_body(const BodyDesc& desc) {
   check_body(desc);
-  Transform pose = desc.pose;
-  pose.rotation.normalize();
-  const BodyId slot = detector_.add_body(desc.tree, pose, desc.is_static);
-  if (bodies_.size() <= slot.index) {
-    bodies_.resize(slot.index + 1);
-    alive_.resize(slot.index + 1, 0);
-    generation_.resize(slot.index + 1, 0);
-    extent_.resize(slot.index + 1, 0.0f);
-    sleep_->resize(slot.index + 1);
-  }
-  RigidBody& body = bodies_[slot.index];
-  body = RigidBody{};
-  body.pose = pose;
+  RigidBody body;
+  body.pose = desc.pose;
+  body.pose.rotation.normalize();
   body.restitution = desc.restitution;
   body.friction = desc.friction;
   body.is_static = desc.is_static;
@@ -130,15 +122,18 @@ BodyId World::add_body(const BodyDesc& desc) {
     body.inertia_body = 0.5f * (desc.inertia + desc.inertia.transpose());
     body.inverse_inertia_body = body.inertia_body.inverse();
   }
-  alive_[slot.index] = 1;
-  extent_[slot.index] = tree_extent(*desc.tree);
-  return {slot.index, generation_[slot.index]};
+  const std::uint32_t slot = store_->add(body, tree_extent(*desc.tree));
+  detector_.add_body(slot, desc.tree);
+  if (generation_.size() <= slot) {
+    generation_.resize(slot + 1, 0);
+    sleep_->resize(slot + 1);
+  }
+  return {slot, generation_[slot]};
 }
 
 void World::wake(std::uint32_t index) {
   sleep_changes_.clear();
   sleep_->wake(index, sleep_changes_);
-  for (const std::uint32_t body : sleep_changes_) detector_.set_asleep({body}, false);
 }
 
 void World::remove_body(BodyId id) {
@@ -147,12 +142,10 @@ void World::remove_body(BodyId id) {
   // awake or static), lose a support.
   wake(index);
   removed_neighbours_.clear();
-  detector_.paired_bodies(id, removed_neighbours_);
+  detector_.paired_bodies(index, removed_neighbours_);
   for (const std::uint32_t neighbour : removed_neighbours_) wake(neighbour);
-  detector_.remove_body(id);
-  bodies_[index] = RigidBody{};
-  bodies_[index].is_static = true;  // an empty slot neither moves nor counts
-  alive_[index] = 0;
+  detector_.remove_body(index);
+  store_->remove(index);
   ++generation_[index];
   std::erase_if(pair_materials_, [&](const auto& entry) {
     return static_cast<std::uint32_t>(entry.first >> 32) == index ||
@@ -174,11 +167,10 @@ void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
   if (!linear.allFinite() || !angular.allFinite()) {
     throw Error("a body's velocities must be finite");
   }
-  RigidBody& body = bodies_[index];
-  if (body.is_static) return;
-  body.linear_velocity = linear;
-  body.angular_velocity = angular;
+  if (store_->is_static(index)) return;
   wake(index);
+  store_->linear_velocities()[index] = linear;
+  store_->angular_velocities()[index] = angular;
 }
 
 void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
@@ -186,12 +178,12 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
   if (!impulse.allFinite() || !point.allFinite()) {
     throw Error("an impulse and its point must be finite");
   }
-  RigidBody& body = bodies_[index];
-  if (body.is_static) return;
-  body.linear_velocity += body.inverse_mass * impulse;
-  body.angular_velocity +=
-      body.inverse_inertia_world() * (point - body.pose.translation).cross(impulse);
+  if (store_->is_static(index)) return;
   wake(index);
+  BodyStore& store = *store_;
+  store.linear_velocities()[index] += store.inverse_masses()[index] * impulse;
+  store.angular_velocities()[index] += store.inverse_inertias_world()[index] *
+                                       (point - store.poses()[index].translation).cross(impulse);
 }
 
 void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
@@ -206,12 +198,7 @@ bool World::soft_step() const {
          settings_.solver.method == SolverMethod::kSoftStep;
 }
 
-bool World::asleep(BodyId id) const { return sleep_->asleep(checked(id)); }
-
-float World::fastest_point_speed(std::uint32_t index) const {
-  const RigidBody& body = bodies_[index];
-  return body.linear_velocity.norm() + body.angular_velocity.norm() * extent_[index];
-}
+bool World::asleep(BodyId id) const { return store_->asleep(checked(id)); }
 
 std::uint32_t World::substeps_for(float dt) const {
   const std::uint32_t fewest = settings_.substeps;
@@ -220,12 +207,11 @@ std::uint32_t World::substeps_for(float dt) const {
   // The speed at the end of the step under gravity alone, an upper bound for a falling body.
   const float gravity_speed = settings_.gravity.norm() * dt;
   float needed = 0.0f;  // substeps, fractional
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (alive_[i] == 0 || bodies_[i].is_static || sleep_->asleep(i) || !(extent_[i] > 0.0f)) {
-      continue;
-    }
-    const float travel = (fastest_point_speed(i) + gravity_speed) * dt;
-    needed = std::max(needed, travel / (settings_.substep_travel * extent_[i]));
+  const std::span<const float> extents = store_->extents();
+  for (const std::uint32_t i : store_->awake()) {
+    if (!(extents[i] > 0.0f)) continue;
+    const float travel = (store_->fastest_point_speed(i) + gravity_speed) * dt;
+    needed = std::max(needed, travel / (settings_.substep_travel * extents[i]));
   }
   // A non-finite speed is left to the step to find and report.
   if (!(needed <= static_cast<float>(most))) return needed > 0.0f ? most : fewest;
@@ -243,11 +229,9 @@ const StepStats& World::step(float dt) {
   stats.substeps = substeps;
   const float substep_dt = dt / static_cast<float>(substeps);
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    if (alive_[i] == 0 || bodies_[i].is_static) continue;
-    ++stats.moving_bodies;
-    if (sleep_->asleep(i)) ++stats.bodies_asleep;
-  }
+  const std::span<const std::uint8_t> dynamic = store_->dynamic();
+  stats.moving_bodies = static_cast<std::uint32_t>(std::count(dynamic.begin(), dynamic.end(), 1));
+  stats.bodies_asleep = stats.moving_bodies - static_cast<std::uint32_t>(store_->awake().size());
   if (settings_.plausibility_figures) measure_rest(stats);
   stats.step_ms = elapsed_ms(step_start);
   stats_ = stats;
@@ -258,12 +242,6 @@ const StepStats& World::step(float dt) {
 // summed, extremes kept.
 void World::substep(float dt, StepStats& stats) {
   const bool plausible = settings_.response == ResponseMode::kPlausible;
-  moving_.assign(bodies_.size(), 0);
-  dynamic_.assign(bodies_.size(), 0);
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    dynamic_[i] = alive_[i] != 0 && !bodies_[i].is_static ? 1 : 0;
-    moving_[i] = dynamic_[i] != 0 && !sleep_->asleep(i) ? 1 : 0;
-  }
   integrate_velocities(dt, plausible, stats);  // world/integrate_velocities.cpp
   if (stopped_) return;
   detect_contacts(stats);                     // world/detect_contacts.cpp

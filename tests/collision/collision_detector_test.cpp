@@ -81,6 +81,33 @@ std::set<Key> keys_of(const std::vector<Contact>& contacts) {
   return keys;
 }
 
+// A detector over a body store of its own, as a world sets one up.
+struct Detection {
+  BodyStore store;
+  CollisionDetector detector;
+
+  explicit Detection(const CollisionSettings& settings = {}) : detector(settings) {
+    detector.set_bodies(&store);
+  }
+  Detection(const Detection&) = delete;
+  Detection& operator=(const Detection&) = delete;
+
+  std::uint32_t add(std::shared_ptr<const SphereTree> tree, const Transform& pose, bool is_static) {
+    RigidBody body;
+    body.pose = pose;
+    body.is_static = is_static;
+    body.inverse_mass = 1.0f;
+    const float extent = tree ? tree->root().center.norm() + tree->subtree_radius(0) : 0.0f;
+    const std::uint32_t slot = store.add(body, extent);
+    detector.add_body(slot, std::move(tree));
+    return slot;
+  }
+  void remove(std::uint32_t slot) {
+    detector.remove_body(slot);
+    store.remove(slot);
+  }
+};
+
 // detect(), with the contacts copied out.
 const CollisionStats& detect_into(CollisionDetector& detector, std::vector<Contact>& contacts) {
   const CollisionStats& stats = detector.detect();
@@ -105,14 +132,14 @@ TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
     CollisionSettings settings;
     settings.tree_depth = depth;
     settings.ground_plane_height = 0.1f;
-    CollisionDetector detector(settings);
-    std::vector<BodyId> ids;
+    Detection detection(settings);
+    CollisionDetector& detector = detection.detector;
+    std::vector<std::uint32_t> ids;
     for (int i = 0; i < 24; ++i) {
       scene.trees.push_back(i % 2 ? torus : box);
       scene.poses.push_back(random_pose(rng, 2.0f));
       scene.is_static.push_back(i % 7 == 0);
-      ids.push_back(
-          detector.add_body(scene.trees.back(), scene.poses.back(), scene.is_static.back()));
+      ids.push_back(detection.add(scene.trees.back(), scene.poses.back(), scene.is_static.back()));
     }
     std::vector<Contact> contacts;
     for (int step = 0; step < 20; ++step) {
@@ -128,7 +155,7 @@ TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
           pose.rotation =
               (pose.rotation * Quat::Identity().slerp(0.05f, nudge.rotation)).normalized();
         }
-        detector.set_pose(ids[i], pose);
+        detection.store.poses()[ids[i]] = pose;
       }
       const CollisionStats& stats = detect_into(detector, contacts);
       const std::set<Key> expected = brute_force(scene, depth, settings.ground_plane_height);
@@ -152,14 +179,14 @@ TEST(CollisionDetector, ReusedPairsMissNoLeafPairWithinTheGap) {
   settings.ground_plane_height = 0.1f;
   settings.contact_margin = 0.02f;
   settings.reuse_distance = 0.004f;
-  CollisionDetector detector(settings);
-  std::vector<BodyId> ids;
+  Detection detection(settings);
+  CollisionDetector& detector = detection.detector;
+  std::vector<std::uint32_t> ids;
   for (int i = 0; i < 16; ++i) {
     scene.trees.push_back(i % 2 ? torus : box);
     scene.poses.push_back(random_pose(rng, 1.2f));
     scene.is_static.push_back(i % 7 == 0);
-    ids.push_back(
-        detector.add_body(scene.trees.back(), scene.poses.back(), scene.is_static.back()));
+    ids.push_back(detection.add(scene.trees.back(), scene.poses.back(), scene.is_static.back()));
   }
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::vector<Contact> contacts;
@@ -174,7 +201,7 @@ TEST(CollisionDetector, ReusedPairsMissNoLeafPairWithinTheGap) {
       pose.translation += 0.0015f * Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0f);
       pose.rotation =
           (pose.rotation * Quat(Eigen::AngleAxisf(0.001f * u(rng), Vec3::UnitY()))).normalized();
-      detector.set_pose(ids[i], pose);
+      detection.store.poses()[ids[i]] = pose;
     }
     const CollisionStats& stats = detect_into(detector, contacts);
     reused += stats.reused_pairs;
@@ -212,12 +239,13 @@ TEST(CollisionDetector, ContactsFollowThePaperEquations) {
       SphereTree::from_nodes(std::vector<SphereTreeNode>{{{Vec3::Zero(), 1.0f}, -1}}, 8));
   const auto large = std::make_shared<const SphereTree>(
       SphereTree::from_nodes(std::vector<SphereTreeNode>{{{Vec3::Zero(), 3.0f}, -1}}, 8));
-  CollisionDetector detector;
+  Detection detection;
+  CollisionDetector& detector = detection.detector;
   Transform pa;
   Transform pb;
   pb.translation = Vec3(3.0f, 0, 0);
-  detector.add_body(small, pa, false);
-  detector.add_body(large, pb, false);
+  detection.add(small, pa, false);
+  detection.add(large, pb, false);
   std::vector<Contact> contacts;
   detect_into(detector, contacts);
   ASSERT_EQ(contacts.size(), 1u);
@@ -231,13 +259,10 @@ TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
   const auto torus = octree_of(tools::make_torus(0.5, 0.15, 24, 12), 4);
   CollisionSettings settings;
   settings.max_sphere_tests = 50;
-  CollisionDetector detector(settings);
+  Detection detection(settings);
+  CollisionDetector& detector = detection.detector;
   std::mt19937_64 rng(7);
-  std::vector<Transform> poses;
-  for (int i = 0; i < 8; ++i) {
-    poses.push_back(random_pose(rng, 0.4f));
-    detector.add_body(torus, poses.back(), false);
-  }
+  for (int i = 0; i < 8; ++i) detection.add(torus, random_pose(rng, 0.4f), false);
   std::vector<Contact> contacts;
   const CollisionStats stats = detect_into(detector, contacts);
   EXPECT_GT(stats.pairs_cut_short, 0u);
@@ -253,24 +278,23 @@ TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
 
 TEST(CollisionDetector, RemovedBodiesLeaveNoContacts) {
   const auto box = octree_of(tools::make_box({1, 1, 1}), 2);
-  CollisionDetector detector;
-  const BodyId a = detector.add_body(box, Transform{}, false);
-  const BodyId b = detector.add_body(box, Transform{}, false);
+  Detection detection;
+  CollisionDetector& detector = detection.detector;
+  detection.add(box, Transform{}, false);
+  const std::uint32_t b = detection.add(box, Transform{}, false);
   std::vector<Contact> contacts;
   detect_into(detector, contacts);
   EXPECT_GT(contacts.size(), 0u);
-  detector.remove_body(b);
+  detection.remove(b);
   detect_into(detector, contacts);
   EXPECT_TRUE(contacts.empty());
-  const BodyId c = detector.add_body(box, Transform{}, true);
+  EXPECT_EQ(detection.add(box, Transform{}, true), b);  // the freed slot, static now
   detect_into(detector, contacts);
   EXPECT_GT(contacts.size(), 0u);
-  (void)a;
-  (void)c;
-  EXPECT_THROW((void)detector.add_body(nullptr, Transform{}, false), Error);
+  EXPECT_THROW((void)detection.add(nullptr, Transform{}, false), Error);
   Transform bad;
   bad.translation.x() = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW((void)detector.add_body(box, bad, false), Error);
+  EXPECT_THROW((void)detection.add(box, bad, false), Error);
 }
 
 }  // namespace

@@ -171,23 +171,5 @@ TEST(RigidBody, VelocityAtAddsTheSpinAboutTheCentreOfMass) {
   EXPECT_EQ(body.velocity_at(Vec3(1.0f, 2.0f, 1.0f)), Vec3(-1.5f, 0.0f, 0.0f));
 }
 
-TEST(RigidBody, FiniteFindsNanAndInfinityAnywhereInTheState) {
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  const float inf = std::numeric_limits<float>::infinity();
-  EXPECT_TRUE(asymmetric_box().finite());
-  RigidBody body = asymmetric_box();
-  body.pose.translation.y() = inf;
-  EXPECT_FALSE(body.finite());
-  body = asymmetric_box();
-  body.pose.rotation.w() = nan;
-  EXPECT_FALSE(body.finite());
-  body = asymmetric_box();
-  body.linear_velocity.z() = -inf;
-  EXPECT_FALSE(body.finite());
-  body = asymmetric_box();
-  body.angular_velocity.x() = nan;
-  EXPECT_FALSE(body.finite());
-}
-
 }  // namespace
 }  // namespace sphys

@@ -51,10 +51,7 @@ BodyDesc cube(const Vec3& position, float friction) {
   return desc;
 }
 
-std::shared_ptr<const SphereTree> one_sphere_tree(float radius) {
-  const SphereTreeNode root{{Vec3::Zero(), radius}, -1};
-  return std::make_shared<const SphereTree>(SphereTree::from_nodes(std::span(&root, 1), 8));
-}
+using test::one_sphere_tree;
 
 BodyDesc ball(float radius, const Vec3& position, float restitution) {
   BodyDesc desc;

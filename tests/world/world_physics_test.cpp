@@ -14,6 +14,7 @@
 #include "sphys/tools/mass_properties.h"
 #include "sphys/tools/primitives.h"
 #include "sphys/world.h"
+#include "support/cube_tree.h"
 #include "support/float_limits.h"
 
 namespace sphys {
@@ -22,10 +23,7 @@ namespace {
 using test::kFloatEpsilon;
 constexpr double kPi = std::numbers::pi;
 
-std::shared_ptr<const SphereTree> one_sphere_tree(float radius) {
-  const SphereTreeNode root{{Vec3::Zero(), radius}, -1};
-  return std::make_shared<const SphereTree>(SphereTree::from_nodes(std::span(&root, 1), 8));
-}
+using test::one_sphere_tree;
 
 // A homogeneous solid ball as one sphere: m = ρ 4/3 π r³, I = 2/5 m r² about every axis.
 BodyDesc solid_ball(float radius, float density, const Vec3& position) {

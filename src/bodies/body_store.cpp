@@ -1,0 +1,109 @@
+#include "sphys/body_store.h"
+
+#include <cmath>
+
+namespace sphys {
+
+std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
+  std::uint32_t slot = 0;
+  if (free_.empty()) {
+    slot = slots();
+    pose_.emplace_back();
+    linear_velocity_.emplace_back();
+    angular_velocity_.emplace_back();
+    inverse_mass_.emplace_back();
+    inertia_body_.emplace_back();
+    inverse_inertia_body_.emplace_back();
+    inverse_inertia_world_.emplace_back();
+    extent_.emplace_back();
+    restitution_.emplace_back();
+    friction_.emplace_back();
+    alive_.emplace_back();
+    dynamic_.emplace_back();
+    moving_.emplace_back();
+  } else {
+    slot = free_.back();
+    free_.pop_back();
+  }
+  const bool moves = !body.is_static;
+  pose_[slot] = body.pose;
+  linear_velocity_[slot] = moves ? body.linear_velocity : Vec3(Vec3::Zero());
+  angular_velocity_[slot] = moves ? body.angular_velocity : Vec3(Vec3::Zero());
+  inverse_mass_[slot] = moves ? body.inverse_mass : 0.0f;
+  inertia_body_[slot] = moves ? body.inertia_body : Mat3(Mat3::Zero());
+  inverse_inertia_body_[slot] = moves ? body.inverse_inertia_body : Mat3(Mat3::Zero());
+  extent_[slot] = extent;
+  restitution_[slot] = body.restitution;
+  friction_[slot] = body.friction;
+  alive_[slot] = 1;
+  dynamic_[slot] = moves ? 1 : 0;
+  moving_[slot] = moves ? 1 : 0;
+  update_world_inertia(slot);
+  awake_stale_ = true;
+  return slot;
+}
+
+void BodyStore::remove(std::uint32_t slot) {
+  linear_velocity_[slot].setZero();
+  angular_velocity_[slot].setZero();
+  inverse_mass_[slot] = 0.0f;
+  alive_[slot] = 0;
+  dynamic_[slot] = 0;
+  moving_[slot] = 0;
+  free_.push_back(slot);
+  awake_stale_ = true;
+}
+
+RigidBody BodyStore::body(std::uint32_t slot) const {
+  RigidBody body;
+  body.pose = pose_[slot];
+  body.linear_velocity = linear_velocity_[slot];
+  body.angular_velocity = angular_velocity_[slot];
+  body.inverse_mass = inverse_mass_[slot];
+  body.inertia_body = inertia_body_[slot];
+  body.inverse_inertia_body = inverse_inertia_body_[slot];
+  body.restitution = restitution_[slot];
+  body.friction = friction_[slot];
+  body.is_static = dynamic_[slot] == 0;
+  return body;
+}
+
+void BodyStore::set_asleep(std::uint32_t slot, bool asleep) {
+  if (dynamic_[slot] == 0 || (moving_[slot] == 0) == asleep) return;
+  moving_[slot] = asleep ? 0 : 1;
+  if (asleep) {
+    linear_velocity_[slot].setZero();
+    angular_velocity_[slot].setZero();
+  }
+  awake_stale_ = true;
+}
+
+std::span<const std::uint32_t> BodyStore::awake() const {
+  if (awake_stale_) {
+    awake_.clear();
+    for (std::uint32_t i = 0; i < slots(); ++i) {
+      if (moving_[i] != 0) awake_.push_back(i);
+    }
+    awake_stale_ = false;
+  }
+  return awake_;
+}
+
+void BodyStore::update_world_inertia(std::uint32_t slot) {
+  inverse_inertia_world_[slot] =
+      world_inverse_inertia(pose_[slot].rotation, inverse_inertia_body_[slot]);
+}
+
+bool BodyStore::finite(std::uint32_t slot) const {
+  const Transform& pose = pose_[slot];
+  return pose.translation.allFinite() && pose.rotation.coeffs().allFinite() &&
+         linear_velocity_[slot].allFinite() && angular_velocity_[slot].allFinite() &&
+         std::abs(pose.rotation.squaredNorm() - 1.0f) < kUnitQuaternionTolerance;
+}
+
+double BodyStore::kinetic_energy(std::uint32_t slot) const {
+  return sphys::kinetic_energy(pose_[slot].rotation, linear_velocity_[slot],
+                               angular_velocity_[slot], inverse_mass_[slot], inertia_body_[slot]);
+}
+
+}  // namespace sphys

@@ -1,0 +1,131 @@
+#include "sphys/body_store.h"
+
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace sphys {
+namespace {
+
+// A box of mass 2 kg with three different moments of inertia (kg·m²).
+RigidBody moving_box(const Vec3& position) {
+  RigidBody body;
+  body.pose.translation = position;
+  body.linear_velocity = Vec3(1.0f, 2.0f, 3.0f);
+  body.angular_velocity = Vec3(0.5f, 0.0f, -0.5f);
+  body.inverse_mass = 0.5f;
+  body.inertia_body = Vec3(1.0f, 2.0f, 4.0f).asDiagonal();
+  body.inverse_inertia_body = body.inertia_body.inverse();
+  body.restitution = 0.25f;
+  body.friction = 0.75f;
+  return body;
+}
+
+std::vector<std::uint32_t> awake_of(const BodyStore& store) {
+  const std::span<const std::uint32_t> awake = store.awake();
+  return {awake.begin(), awake.end()};
+}
+
+TEST(BodyStore, KeepsEachBodyInItsSlotAndReusesTheLastFreed) {
+  BodyStore store;
+  EXPECT_EQ(store.add(moving_box(Vec3(0.0f, 1.0f, 0.0f)), 0.5f), 0u);
+  EXPECT_EQ(store.add(moving_box(Vec3(0.0f, 2.0f, 0.0f)), 0.5f), 1u);
+  EXPECT_EQ(store.add(moving_box(Vec3(0.0f, 3.0f, 0.0f)), 0.5f), 2u);
+  const RigidBody copy = store.body(1);
+  EXPECT_EQ(copy.pose.translation, Vec3(0.0f, 2.0f, 0.0f));
+  EXPECT_EQ(copy.linear_velocity, Vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(copy.inverse_mass, 0.5f);
+  EXPECT_EQ(copy.inertia_body, moving_box(Vec3::Zero()).inertia_body);
+  EXPECT_EQ(copy.restitution, 0.25f);
+  EXPECT_EQ(copy.friction, 0.75f);
+  EXPECT_FALSE(copy.is_static);
+
+  store.remove(1);
+  store.remove(0);
+  EXPECT_FALSE(store.alive(1));
+  EXPECT_EQ(store.dynamic()[1], 0);
+  EXPECT_EQ(store.moving()[1], 0);
+  EXPECT_EQ(awake_of(store), std::vector<std::uint32_t>{2});
+  EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 0u);  // the last freed first
+  EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 1u);
+  EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 3u);
+  EXPECT_EQ(store.slots(), 4u);
+}
+
+TEST(BodyStore, AStaticBodyKeepsNoVelocityOrInverseMass) {
+  BodyStore store;
+  RigidBody ground = moving_box(Vec3::Zero());
+  ground.is_static = true;
+  const std::uint32_t slot = store.add(ground, 1.0f);
+  EXPECT_TRUE(store.is_static(slot));
+  EXPECT_FALSE(store.asleep(slot));
+  EXPECT_EQ(store.linear_velocities()[slot], Vec3::Zero());
+  EXPECT_EQ(store.angular_velocities()[slot], Vec3::Zero());
+  EXPECT_EQ(store.inverse_masses()[slot], 0.0f);
+  EXPECT_EQ(store.inverse_inertias_world()[slot], Mat3::Zero());
+  EXPECT_EQ(store.kinetic_energy(slot), 0.0);
+  EXPECT_TRUE(awake_of(store).empty());
+  store.set_asleep(slot, true);  // nothing to put to sleep
+  EXPECT_FALSE(store.asleep(slot));
+  EXPECT_TRUE(store.body(slot).is_static);
+}
+
+TEST(BodyStore, ListsTheAwakeBodiesInSlotOrderAndStopsThoseThatSleep) {
+  BodyStore store;
+  for (int i = 0; i < 5; ++i) store.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
+  store.set_asleep(3, true);
+  store.set_asleep(1, true);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2, 4}));
+  EXPECT_TRUE(store.asleep(3));
+  EXPECT_EQ(store.dynamic()[3], 1);
+  EXPECT_EQ(store.moving()[3], 0);
+  EXPECT_EQ(store.linear_velocities()[3], Vec3::Zero());
+  EXPECT_EQ(store.angular_velocities()[3], Vec3::Zero());
+  store.set_asleep(3, false);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2, 3, 4}));
+  EXPECT_EQ(store.linear_velocities()[3], Vec3::Zero());  // woken at rest
+  EXPECT_EQ(store.linear_velocities()[2], Vec3(1.0f, 2.0f, 3.0f));
+}
+
+TEST(BodyStore, WorldInertiaAndEnergyFollowThePose) {
+  BodyStore store;
+  const std::uint32_t slot = store.add(moving_box(Vec3::Zero()), 0.5f);
+  // A quarter turn about z swaps the x and y axes: the world inertia is diag(2, 1, 4) kg·m².
+  store.poses()[slot].rotation =
+      Quat(Eigen::AngleAxisf(0.5f * std::numbers::pi_v<float>, Vec3::UnitZ()));
+  store.update_world_inertia(slot);
+  const Mat3 expected = Vec3(0.5f, 1.0f, 0.25f).asDiagonal();
+  EXPECT_LT((store.inverse_inertias_world()[slot] - expected).cwiseAbs().maxCoeff(), 1e-6f);
+  // ½ m v² + ½ ωᵀ I ω = ½·2·14 + ½ (2·0.25 + 4·0.25) = 14.75 J.
+  EXPECT_NEAR(store.kinetic_energy(slot), 14.75, 1e-5);
+  // |v| + |ω| · extent = √14 + √0.5 · 0.5 m/s.
+  EXPECT_NEAR(store.fastest_point_speed(slot), std::sqrt(14.0f) + std::sqrt(0.5f) * 0.5f, 1e-6f);
+}
+
+TEST(BodyStore, FiniteFindsNanAndInfinityAnywhereInTheState) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  BodyStore store;
+  const std::uint32_t slot = store.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_TRUE(store.finite(slot));
+  const auto broken = [&](const auto& breaks) {
+    BodyStore one;
+    const std::uint32_t i = one.add(moving_box(Vec3::Zero()), 0.5f);
+    breaks(one, i);
+    return !one.finite(i);
+  };
+  EXPECT_TRUE(broken([&](BodyStore& s, std::uint32_t i) { s.poses()[i].translation.y() = inf; }));
+  EXPECT_TRUE(broken([&](BodyStore& s, std::uint32_t i) { s.poses()[i].rotation.w() = nan; }));
+  EXPECT_TRUE(broken([&](BodyStore& s, std::uint32_t i) { s.linear_velocities()[i].z() = -inf; }));
+  EXPECT_TRUE(broken([&](BodyStore& s, std::uint32_t i) { s.angular_velocities()[i].x() = nan; }));
+  // A rotation that is no longer a unit quaternion has failed too.
+  EXPECT_TRUE(broken([](BodyStore& s, std::uint32_t i) {
+    s.poses()[i].rotation.coeffs() = Eigen::Vector4f(0.0f, 0.0f, 0.0f, 0.0f);
+  }));
+}
+
+}  // namespace
+}  // namespace sphys
