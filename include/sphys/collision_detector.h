@@ -81,6 +81,9 @@ struct CollisionStats {
   std::uint32_t coincident_centres = 0;  // contacts whose normal came from the fallback
   std::uint32_t descended_pairs = 0;     // pairs (ground plane included) whose trees descended
   std::uint32_t reused_pairs = 0;        // pairs that kept their contacts (reuse_distance)
+  // Pairs of two dynamic bodies that had contacts in their last narrow phase and have none now
+  // (or that the broad phase dropped): the islands they joined may have split.
+  std::uint32_t parted_pairs = 0;
   // With CollisionSettings::measure_penetration, over the leaf pairs that overlap.
   float deepest_penetration = 0.0f;  // unit: m
   double penetration_sum = 0.0;      // unit: m
@@ -189,6 +192,7 @@ class CollisionDetector {
   // One pair the narrow phase found leaf spheres for: its record and its leaves in the chunk.
   struct PairLeaves {
     PairRecord* record = nullptr;
+    bool plane = false;  // the record is a body's against the ground plane
     std::uint32_t leaves_begin = 0;
     std::uint32_t leaves_end = 0;
     bool reused = false;               // the leaves are the record's kept contacts at the new poses
@@ -208,6 +212,8 @@ class CollisionDetector {
 
   [[nodiscard]] const Transform& pose_of(std::uint32_t slot) const { return store_->poses()[slot]; }
   [[nodiscard]] bool moves(std::uint32_t slot) const { return store_->moving()[slot] != 0; }
+  // Whether a record joined two dynamic bodies by contacts in its last narrow phase.
+  [[nodiscard]] bool links_dynamic_bodies(const PairRecord& record) const;
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;

@@ -176,16 +176,27 @@ void CollisionDetector::carry_records_over() {
   const std::span<const ProxyPair> pairs = broad_phase_.pairs();
   resize_buffer(records_, pairs.size());
   std::size_t old = 0;
+  const auto drop = [&](const PairRecord& record) {
+    if (links_dynamic_bodies(record)) ++stats_.parted_pairs;
+  };
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const std::uint64_t key = proxy_key(pairs[p]);
-    while (old < old_records_.size() && proxy_key(old_records_[old].proxies) < key) ++old;
+    while (old < old_records_.size() && proxy_key(old_records_[old].proxies) < key) {
+      drop(old_records_[old++]);
+    }
     if (old < old_records_.size() && proxy_key(old_records_[old].proxies) == key) {
-      records_[p] = old_records_[old];
+      records_[p] = old_records_[old++];
     } else {
       records_[p] = PairRecord{};
       records_[p].proxies = pairs[p];
     }
   }
+  for (; old < old_records_.size(); ++old) drop(old_records_[old]);
+}
+
+bool CollisionDetector::links_dynamic_bodies(const PairRecord& record) const {
+  return record.count > 0 && store_->dynamic()[body_of_proxy_[record.proxies.a]] != 0 &&
+         store_->dynamic()[body_of_proxy_[record.proxies.b]] != 0;
 }
 
 const CollisionStats& CollisionDetector::detect() {
@@ -379,6 +390,9 @@ void CollisionDetector::run_jobs() {
       const std::size_t end =
           k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
       const std::size_t first = base + pair.contacts_begin;
+      if (!pair.plane && end == pair.contacts_begin && links_dynamic_bodies(*pair.record)) {
+        ++stats_.parted_pairs;
+      }
       carry_memory(*pair.record, first, base + end - first);
       pair.record->first = static_cast<std::uint32_t>(first);
       pair.record->count = static_cast<std::uint32_t>(base + end - first);
@@ -483,6 +497,7 @@ bool CollisionDetector::reuse(PairRecord& record, const Transform& relative, flo
 void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
                                     StepClock::time_point start) {
   PairLeaves pair;
+  pair.plane = job.plane;
   pair.leaves_begin = static_cast<std::uint32_t>(chunk.leaves.size());
   if (job.plane) {
     Body& body = bodies_[job.index];

@@ -32,13 +32,14 @@ void World::detect_contacts(StepStats& stats) {
   const CollisionStats& detection = detector_.detect();
   stats.bodies = detection.bodies;
   add_detection(detection, stats);
+  if (detection.parted_pairs > 0) sleep_->parted();
 }
 
 // The detector passed over the pairs of sleeping bodies: without their contacts a blow on a
 // sleeping pile would pass through its top body unopposed. So the sleeping groups a restless
 // body touches wake, and their pairs get their narrow phase now, once; their contacts may show
 // them touching other sleeping groups, which wake in turn, until nothing more wakes. Then the
-// islands of this substep.
+// islands that this substep's contacts join merge (they split once a step, World::step).
 void World::wake_touched(StepStats& stats) {
   for (;;) {
     sleep_changes_.clear();
@@ -46,9 +47,11 @@ void World::wake_touched(StepStats& stats) {
     if (sleep_changes_.empty()) break;
     // Still until the solver moves them: no motion from before they slept.
     for (const std::uint32_t body : sleep_changes_) detector_.set_motion(body, Vec3::Zero(), 0.0f);
-    add_detection(detector_.detect_woken(), stats);
+    const CollisionStats& woken = detector_.detect_woken();
+    add_detection(woken, stats);
+    if (woken.parted_pairs > 0) sleep_->parted();
   }
-  sleep_->build_islands(detector_.contacts());
+  sleep_->link_islands(detector_.contacts());
 }
 
 }  // namespace sphys

@@ -16,8 +16,9 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 }  // namespace
 
 void SleepTracker::resize(std::size_t bodies) {
-  const std::size_t before = parent_.size();
-  parent_.resize(bodies);
+  const std::size_t before = island_parent_.size();
+  island_parent_.resize(bodies);
+  group_parent_.resize(bodies);
   still_time_.resize(bodies, 0.0f);
   next_asleep_.resize(bodies);
   flags_.resize(bodies, 0);
@@ -25,6 +26,7 @@ void SleepTracker::resize(std::size_t bodies) {
   ring_last_.resize(bodies);
   for (std::size_t i = before; i < bodies; ++i) {
     next_asleep_[i] = static_cast<std::uint32_t>(i);
+    island_parent_[i] = static_cast<std::uint32_t>(i);  // an island of its own
   }
 }
 
@@ -44,37 +46,43 @@ void SleepTracker::wake(std::uint32_t body, std::vector<std::uint32_t>& woken) {
   } while (member != body);
 }
 
-std::uint32_t SleepTracker::root(std::uint32_t body) {
-  while (parent_[body] != body) {
-    parent_[body] = parent_[parent_[body]];  // path halving
-    body = parent_[body];
+std::uint32_t SleepTracker::root(std::vector<std::uint32_t>& parent, std::uint32_t body) {
+  while (parent[body] != body) {
+    parent[body] = parent[parent[body]];  // path halving
+    body = parent[body];
   }
   return body;
 }
 
-void SleepTracker::join(std::uint32_t a, std::uint32_t b) {
-  const std::uint32_t ra = root(a);
-  const std::uint32_t rb = root(b);
-  if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+void SleepTracker::join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b) {
+  const std::uint32_t ra = root(parent, a);
+  const std::uint32_t rb = root(parent, b);
+  if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
 }
 
-void SleepTracker::build_islands(std::span<const Contact> contacts) {
+void SleepTracker::link_islands(std::span<const Contact> contacts) {
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
-  std::iota(parent_.begin(), parent_.end(), 0u);
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
     if (dynamic[contact.body_a] != 0 && dynamic[contact.body_b] != 0) {
-      join(contact.body_a, contact.body_b);
+      join(island_parent_, contact.body_a, contact.body_b);
     }
   }
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
-    if (store_->asleep(i)) join(i, next_asleep_[i]);
+}
+
+void SleepTracker::split_islands(std::span<const Contact> contacts) {
+  if (!split_) return;
+  split_ = false;
+  std::iota(island_parent_.begin(), island_parent_.end(), 0u);
+  link_islands(contacts);
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
+    if (store_->asleep(i)) join(island_parent_, i, next_asleep_[i]);
   }
 }
 
 std::span<const std::uint32_t> SleepTracker::islands() {
-  island_.resize(parent_.size());
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) island_[i] = root(i);
+  island_.resize(island_parent_.size());
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) island_[i] = island(i);
   return island_;
 }
 
@@ -94,9 +102,9 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
                                    std::vector<std::uint32_t>& fell_asleep) {
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
   std::uint32_t islands = 0;
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (dynamic[i] == 0) continue;
-    if (root(i) == i) ++islands;
+    if (island(i) == i) ++islands;
     if (store_->asleep(i)) continue;
     still_time_[i] = speeds[i] < settings.speed ? still_time_[i] + dt : 0.0f;
   }
@@ -107,12 +115,13 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
   // In an island with a restless body a body waits kPatience times longer: time for its
   // penetration recovery to finish under the load of what still moves above it.
   std::fill(flags_.begin(), flags_.end(), std::uint8_t{0});
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
-    if (restless(i, settings)) flags_[root(i)] = kHasRestless;
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
+    if (restless(i, settings)) flags_[island(i)] = kHasRestless;
   }
-  settles_.assign(parent_.size(), 0);
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
-    const float wait = flags_[root(i)] == kHasRestless ? kPatience * settings.time : settings.time;
+  settles_.assign(island_parent_.size(), 0);
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
+    const float wait =
+        flags_[island(i)] == kHasRestless ? kPatience * settings.time : settings.time;
     settles_[i] = dynamic[i] != 0 && !store_->asleep(i) && still_time_[i] >= wait ? 1 : 0;
   }
   for (const Contact& contact : contacts) {
@@ -121,28 +130,30 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
     if (restless(contact.body_a, settings)) settles_[contact.body_b] = 0;
   }
   // Groups: the settling bodies joined by their contacts to one another and to sleeping bodies,
-  // whose groups they join. (The islands' union-find is free for it now.)
-  std::iota(parent_.begin(), parent_.end(), 0u);
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
-    if (store_->asleep(i)) join(i, next_asleep_[i]);
+  // whose groups they join.
+  std::iota(group_parent_.begin(), group_parent_.end(), 0u);
+  for (std::uint32_t i = 0; i < group_parent_.size(); ++i) {
+    if (store_->asleep(i)) join(group_parent_, i, next_asleep_[i]);
   }
   const auto sleeps = [&](std::uint32_t body) {
     return settles_[body] != 0 || store_->asleep(body);
   };
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
-    if (sleeps(contact.body_a) && sleeps(contact.body_b)) join(contact.body_a, contact.body_b);
+    if (sleeps(contact.body_a) && sleeps(contact.body_b)) {
+      join(group_parent_, contact.body_a, contact.body_b);
+    }
   }
   std::fill(flags_.begin(), flags_.end(), std::uint8_t{0});
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
-    if (settles_[i] != 0) flags_[root(i)] |= kFallsAsleep;
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
+    if (settles_[i] != 0) flags_[root(group_parent_, i)] |= kFallsAsleep;
   }
   // Every body of a group that gains a sleeper, the ones already asleep in it included, goes
   // into one circular list, so that waking any of them wakes them all.
   std::fill(ring_last_.begin(), ring_last_.end(), kNone);
-  for (std::uint32_t i = 0; i < parent_.size(); ++i) {
+  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (!sleeps(i)) continue;
-    const std::uint32_t group = root(i);
+    const std::uint32_t group = root(group_parent_, i);
     if ((flags_[group] & kFallsAsleep) == 0) continue;
     if (!store_->asleep(i)) {
       store_->set_asleep(i, true);
@@ -155,7 +166,7 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
     }
     ring_last_[group] = i;
   }
-  for (std::uint32_t group = 0; group < parent_.size(); ++group) {
+  for (std::uint32_t group = 0; group < island_parent_.size(); ++group) {
     if (ring_last_[group] != kNone) next_asleep_[ring_last_[group]] = ring_first_[group];
   }
   return islands;

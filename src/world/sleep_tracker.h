@@ -26,10 +26,19 @@ class SleepTracker {
   void wake(std::uint32_t body, std::vector<std::uint32_t>& woken);
 
   // Islands: dynamic bodies touching by a contact share one; a sleeping body is in one with the
-  // bodies it fell asleep with. Static bodies and the ground join nothing.
-  void build_islands(std::span<const Contact> contacts);
-  // Per body, the island it is in (a name shared by the island's bodies), as of the last
-  // build_islands(). Valid until the next call of any other member.
+  // bodies it fell asleep with. Static bodies and the ground join nothing. They persist from
+  // step to step: link_islands() merges the islands that contacts join, and an island whose
+  // bodies may have parted stays whole until split_islands() builds them afresh, so an island
+  // may join more bodies than touch (a coarser grouping, which the solver and sleep allow).
+  void link_islands(std::span<const Contact> contacts);
+  // Two dynamic bodies that touched have parted, or a body left: split at the next
+  // split_islands().
+  void parted() { split_ = true; }
+  // Builds the islands afresh from `contacts` and the sleeping groups, if parted() was called
+  // since the last time.
+  void split_islands(std::span<const Contact> contacts);
+  // Per body, the island it is in (a name shared by the island's bodies). Valid until the next
+  // call of any other member.
   [[nodiscard]] std::span<const std::uint32_t> islands();
   // Wakes the group of every sleeping body that a contact joins to a restless body (an awake
   // moving body not still for settings.time), appending them to `woken`.
@@ -37,21 +46,24 @@ class SleepTracker {
                       std::vector<std::uint32_t>& woken);
   // Counts how long each awake moving body has been still (`speeds[i]`: its fastest point's
   // speed, unit: m/s), then puts to sleep every body still for settings.time that touches no
-  // restless body, appending them to `fell_asleep`. Returns the number of islands as of the last
-  // build_islands().
+  // restless body, appending them to `fell_asleep`. Returns the number of islands.
   std::uint32_t update(std::span<const float> speeds, std::span<const Contact> contacts, float dt,
                        const SleepSettings& settings, std::vector<std::uint32_t>& fell_asleep);
 
  private:
-  [[nodiscard]] std::uint32_t root(std::uint32_t body);
-  void join(std::uint32_t a, std::uint32_t b);
+  // Union-find over body slots: path halving, the smaller slot the root of a set.
+  [[nodiscard]] static std::uint32_t root(std::vector<std::uint32_t>& parent, std::uint32_t body);
+  static void join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b);
+  [[nodiscard]] std::uint32_t island(std::uint32_t body) { return root(island_parent_, body); }
   // An awake dynamic body not still for settings.time yet.
   [[nodiscard]] bool restless(std::uint32_t body, const SleepSettings& settings) const {
     return store_->moving()[body] != 0 && still_time_[body] < settings.time;
   }
 
   BodyStore* store_;
-  std::vector<std::uint32_t> parent_;       // union-find of the islands
+  std::vector<std::uint32_t> island_parent_;  // the islands
+  std::vector<std::uint32_t> group_parent_;   // update()'s sleeping groups, scratch
+  bool split_ = false;
   std::vector<std::uint32_t> island_;       // islands(), scratch
   std::vector<float> still_time_;           // unit: s
   std::vector<std::uint32_t> next_asleep_;  // circular list of the bodies that fell asleep together

@@ -146,6 +146,7 @@ void World::remove_body(BodyId id) {
   for (const std::uint32_t neighbour : removed_neighbours_) wake(neighbour);
   detector_.remove_body(index);
   store_->remove(index);
+  sleep_->parted();
   ++generation_[index];
   std::erase_if(pair_materials_, [&](const auto& entry) {
     return static_cast<std::uint32_t>(entry.first >> 32) == index ||
@@ -228,6 +229,8 @@ const StepStats& World::step(float dt) {
   const std::uint32_t substeps = substeps_for(dt);
   stats.substeps = substeps;
   const float substep_dt = dt / static_cast<float>(substeps);
+  // Islands whose bodies parted in the last step are built afresh, once a step.
+  if (settings_.response == ResponseMode::kPlausible) sleep_->split_islands(detector_.contacts());
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
   stats.moving_bodies = static_cast<std::uint32_t>(std::count(dynamic.begin(), dynamic.end(), 1));

@@ -276,6 +276,40 @@ TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
   EXPECT_EQ(exact.leaf_pairs, contacts.size());
 }
 
+// Two dynamic bodies that touched and no longer do are counted as parted, whether the narrow
+// phase or the broad phase finds them apart; a dynamic body leaving a static one is not.
+TEST(CollisionDetector, CountsDynamicPairsThatPart) {
+  const auto box = octree_of(tools::make_box({1, 1, 1}), 2);
+  Detection detection;
+  CollisionDetector& detector = detection.detector;
+  const std::uint32_t a = detection.add(box, Transform{}, false);
+  Transform beside;
+  beside.translation = Vec3(0.9f, 0.0f, 0.0f);
+  const std::uint32_t b = detection.add(box, beside, false);
+  Transform below;
+  below.translation = Vec3(0.0f, -0.9f, 0.0f);
+  detection.add(box, below, true);
+  EXPECT_EQ(detector.detect().parted_pairs, 0u);
+  ASSERT_GT(detector.contacts().size(), 0u);
+  // Bounds still overlapping (the boxes' spheres stick out), leaf spheres apart: the narrow
+  // phase parts them.
+  detection.store.poses()[b].translation.x() = 1.5f;
+  const CollisionStats parted = detector.detect();
+  EXPECT_EQ(parted.parted_pairs, 1u);
+  // Every pair of the three still a candidate, and descended: a and b are apart by their leaves.
+  EXPECT_EQ(parted.candidate_pairs, 3u);
+  EXPECT_EQ(parted.descended_pairs, 3u);
+  EXPECT_EQ(detector.detect().parted_pairs, 0u);  // counted once
+  detection.store.poses()[b].translation.x() = 0.9f;
+  EXPECT_EQ(detector.detect().parted_pairs, 0u);
+  // Far apart: the broad phase drops the pair.
+  detection.store.poses()[b].translation.x() = 5.0f;
+  EXPECT_EQ(detector.detect().parted_pairs, 1u);
+  // Body a leaves the static box below it: no island joined them.
+  detection.store.poses()[a].translation.y() = 5.0f;
+  EXPECT_EQ(detector.detect().parted_pairs, 0u);
+}
+
 TEST(CollisionDetector, RemovedBodiesLeaveNoContacts) {
   const auto box = octree_of(tools::make_box({1, 1, 1}), 2);
   Detection detection;
