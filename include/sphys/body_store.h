@@ -2,9 +2,10 @@
 
 // The bodies of a world in one store, one slot per body, in structure-of-arrays form: every stage
 // of a step (bounds and narrow phase, solver, integration, sleep) reads and writes the same arrays
-// through spans, so no stage keeps a copy of a body to be brought up to date. The awake bodies are
-// also listed densely (awake()), so that the stages that work on moving bodies only never pass
-// over the sleeping and static ones.
+// through spans, so no stage keeps a copy of a body to be brought up to date (the solvers load
+// the awake bodies' velocities into working arrays for one solve and write them back). The awake
+// bodies are also listed densely (awake()), so that the stages that work on moving bodies only
+// never pass over the sleeping and static ones.
 
 #include <cstdint>
 #include <span>
@@ -42,7 +43,8 @@ class BodyStore {
   // Per slot, 1 for a dynamic body that is awake, else 0.
   [[nodiscard]] std::span<const std::uint8_t> moving() const { return moving_; }
   // The slots of the awake dynamic bodies, in increasing order. Listed again at the first call
-  // after a change, so not to be called first from two threads at once.
+  // after a change, so not to be called first from two threads at once (World lists it before
+  // each of its calls returns).
   [[nodiscard]] std::span<const std::uint32_t> awake() const;
 
   // The arrays, indexed by slot. Poses place the body frame, whose origin is the centre of mass.

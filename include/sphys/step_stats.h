@@ -37,7 +37,9 @@ struct StepStats {
   std::uint32_t bounces = 0;       // contacts given restitution (plausible mode)
   std::uint32_t pairs_cut_short = 0;
   std::uint32_t coincident_centres = 0;
-  std::uint32_t islands = 0;  // groups of touching moving bodies (plausible mode)
+  // Groups of touching dynamic bodies (plausible mode), persistent: a group whose bodies parted
+  // counts as one until the next step splits it.
+  std::uint32_t islands = 0;
   // Pairs (a body and the ground plane included) whose trees descended, and pairs that kept their
   // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
   std::uint32_t descended_pairs = 0;

@@ -173,6 +173,9 @@ class World {
   void update_sleep(float dt, StepStats& stats);
   void measure_rest(StepStats& stats);
   void wake(std::uint32_t body);
+  // Lists the store's awake bodies after a change, so that readers of bodies() never do (the
+  // list is made at the first call after a change, and two threads must not make it at once).
+  void list_awake() const;
   // The key of a body pair in pair_materials_, the same in either order.
   [[nodiscard]] static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b);
 

@@ -12,19 +12,19 @@
 #include "dynamics/contact_levels.h"
 #include "dynamics/contact_pairs.h"
 #include "dynamics/solver_stats.h"
+#include "sphys/body_store.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"
-#include "sphys/rigid_body.h"
 #include "sphys/solver_settings.h"
 
 namespace sphys {
 
 class ContactSolver {
  public:
-  // Changes the velocities of the bodies with `moving[i] != 0` so that the contacts neither
+  // Changes the velocities of the store's awake bodies so that the contacts neither
   // approach nor pull, friction stays in its cone, and contacts that approached faster than the
   // threshold bounce; the other bodies count as static. `materials[k]` is contact k's material.
   // A contact with negative depth (a gap) lets its bodies close the gap within dt and no more

@@ -20,8 +20,8 @@ std::uint32_t paper_pass(BodyStore& bodies, std::span<const Contact> contacts,
   for (const Contact& contact : contacts) {
     const std::uint32_t a = contact.body_a;
     const std::uint32_t b = contact.body_b;
-    const bool a_moves = a != kGroundPlaneBody && !bodies.is_static(a);
-    const bool b_moves = !bodies.is_static(b);
+    const bool a_moves = a != kGroundPlaneBody && bodies.dynamic()[a] != 0;
+    const bool b_moves = bodies.dynamic()[b] != 0;
     const Vec3& n = contact.normal;
     const Vec3 ra =
         a != kGroundPlaneBody ? Vec3(contact.point - poses[a].translation) : contact.point;

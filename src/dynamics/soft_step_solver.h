@@ -15,12 +15,12 @@
 
 #include "dynamics/contact_pairs.h"
 #include "dynamics/solver_stats.h"
+#include "sphys/body_store.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"
-#include "sphys/rigid_body.h"
 #include "sphys/solver_settings.h"
 
 namespace sphys {

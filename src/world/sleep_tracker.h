@@ -67,9 +67,9 @@ class SleepTracker {
   std::vector<std::uint32_t> island_;       // islands(), scratch
   std::vector<float> still_time_;           // unit: s
   std::vector<std::uint32_t> next_asleep_;  // circular list of the bodies that fell asleep together
-  std::vector<std::uint8_t> flags_;         // per island root, scratch
+  std::vector<std::uint8_t> flags_;         // per island or sleep group root, scratch
   std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch
-  std::vector<std::uint32_t> ring_first_;   // per island root, scratch
+  std::vector<std::uint32_t> ring_first_;   // per sleep group root, scratch
   std::vector<std::uint32_t> ring_last_;
 };
 

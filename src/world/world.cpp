@@ -123,18 +123,27 @@ BodyId World::add_body(const BodyDesc& desc) {
     body.inverse_inertia_body = body.inertia_body.inverse();
   }
   const std::uint32_t slot = store_->add(body, tree_extent(*desc.tree));
-  detector_.add_body(slot, desc.tree);
-  if (generation_.size() <= slot) {
-    generation_.resize(slot + 1, 0);
-    sleep_->resize(slot + 1);
+  try {
+    if (generation_.size() <= slot) {
+      generation_.resize(slot + 1, 0);
+      sleep_->resize(slot + 1);
+    }
+    detector_.add_body(slot, desc.tree);
+  } catch (...) {
+    store_->remove(slot);  // no half-added body: the slot is free again
+    throw;
   }
+  list_awake();
   return {slot, generation_[slot]};
 }
 
 void World::wake(std::uint32_t index) {
   sleep_changes_.clear();
   sleep_->wake(index, sleep_changes_);
+  list_awake();
 }
+
+void World::list_awake() const { (void)store_->awake(); }
 
 void World::remove_body(BodyId id) {
   const std::uint32_t index = checked(id);
@@ -147,6 +156,7 @@ void World::remove_body(BodyId id) {
   detector_.remove_body(index);
   store_->remove(index);
   sleep_->parted();
+  list_awake();
   ++generation_[index];
   std::erase_if(pair_materials_, [&](const auto& entry) {
     return static_cast<std::uint32_t>(entry.first >> 32) == index ||

@@ -42,15 +42,22 @@ TEST(BodyStore, KeepsEachBodyInItsSlotAndReusesTheLastFreed) {
   EXPECT_EQ(copy.friction, 0.75f);
   EXPECT_FALSE(copy.is_static);
 
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 1, 2}));
   store.remove(1);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2}));
   store.remove(0);
   EXPECT_FALSE(store.alive(1));
   EXPECT_EQ(store.dynamic()[1], 0);
   EXPECT_EQ(store.moving()[1], 0);
   EXPECT_EQ(awake_of(store), std::vector<std::uint32_t>{2});
   EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 0u);  // the last freed first
-  EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 1u);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2}));
+  RigidBody fixed = moving_box(Vec3::Zero());
+  fixed.is_static = true;
+  EXPECT_EQ(store.add(fixed, 0.5f), 1u);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2}));  // a static body never moves
   EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 3u);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2, 3}));
   EXPECT_EQ(store.slots(), 4u);
 }
 

@@ -127,6 +127,25 @@ TEST(WorldBodies, RemovingAStaticSupportWakesWhatSleepsOnIt) {
 
 // A box dropped on a sleeping one wakes it in the middle of a step: the sleeping box's pair with
 // the plane has its narrow phase then, once, and every figure of the step counts each pair once.
+// Islands persist from step to step, and split once the bodies that joined them part: two boxes
+// side by side are one island; one pushed away, they become two.
+TEST(WorldBodies, AnIslandSplitsOnceItsBodiesPart) {
+  WorldSettings settings = on_plane();
+  settings.sleep.enabled = false;
+  World world(settings);
+  const float y = resting_height();
+  world.add_body(cube(Vec3(0.0f, y, 0.0f)));
+  const BodyId pushed = world.add_body(cube(Vec3(kBoxSide, y, 0.0f)));
+  for (int i = 0; i < 10; ++i) world.step(kDt);
+  EXPECT_EQ(world.stats().islands, 1u);                              // touching: one island
+  world.set_velocity(pushed, Vec3(3.0f, 0.0f, 0.0f), Vec3::Zero());  // m/s, away
+  std::uint32_t islands = 0;
+  for (int i = 0; i < 60; ++i) islands = world.step(kDt).islands;
+  // Sliding 0.9 m against friction (3² / (2 μ g), μ = 0.5): well apart.
+  EXPECT_GT(world.body(pushed).pose.translation.x(), 1.5f * kBoxSide);
+  EXPECT_EQ(islands, 2u);
+}
+
 TEST(WorldBodies, AWakeUpInTheMiddleOfAStepDetectsEachPairOnce) {
   WorldSettings settings = on_plane();
   settings.solver.contacts = ContactSet::kAll;  // one contact per leaf pair: countable
