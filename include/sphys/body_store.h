@@ -38,6 +38,8 @@ class BodyStore {
   // Puts a dynamic body to sleep (its velocities become zero) or wakes it.
   void set_asleep(std::uint32_t slot, bool asleep);
 
+  // How many bodies are alive and not static (asleep or not).
+  [[nodiscard]] std::uint32_t dynamic_bodies() const { return dynamic_bodies_; }
   // Per slot, 1 for a body that is alive and not static (asleep or not), else 0.
   [[nodiscard]] std::span<const std::uint8_t> dynamic() const { return dynamic_; }
   // Per slot, 1 for a dynamic body that is awake, else 0.
@@ -97,7 +99,8 @@ class BodyStore {
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint8_t> dynamic_;
   std::vector<std::uint8_t> moving_;
-  std::vector<std::uint32_t> free_;           // freed slots, the last freed last
+  std::vector<std::uint32_t> free_;  // freed slots, the last freed last
+  std::uint32_t dynamic_bodies_ = 0;
   mutable std::vector<std::uint32_t> awake_;  // awake(), valid while !awake_stale_
   mutable bool awake_stale_ = false;
 };

@@ -38,6 +38,7 @@ std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
   alive_[slot] = 1;
   dynamic_[slot] = moves ? 1 : 0;
   moving_[slot] = moves ? 1 : 0;
+  if (moves) ++dynamic_bodies_;
   update_world_inertia(slot);
   awake_stale_ = true;
   return slot;
@@ -48,6 +49,7 @@ void BodyStore::remove(std::uint32_t slot) {
   angular_velocity_[slot].setZero();
   inverse_mass_[slot] = 0.0f;
   alive_[slot] = 0;
+  if (dynamic_[slot] != 0) --dynamic_bodies_;
   dynamic_[slot] = 0;
   moving_[slot] = 0;
   free_.push_back(slot);

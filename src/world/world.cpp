@@ -140,7 +140,6 @@ BodyId World::add_body(const BodyDesc& desc) {
 void World::wake(std::uint32_t index) {
   sleep_changes_.clear();
   sleep_->wake(index, sleep_changes_);
-  list_awake();
 }
 
 void World::list_awake() const { (void)store_->awake(); }
@@ -182,6 +181,7 @@ void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
   wake(index);
   store_->linear_velocities()[index] = linear;
   store_->angular_velocities()[index] = angular;
+  list_awake();
 }
 
 void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
@@ -195,6 +195,7 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
   store.linear_velocities()[index] += store.inverse_masses()[index] * impulse;
   store.angular_velocities()[index] += store.inverse_inertias_world()[index] *
                                        (point - store.poses()[index].translation).cross(impulse);
+  list_awake();
 }
 
 void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
@@ -242,8 +243,7 @@ const StepStats& World::step(float dt) {
   // Islands whose bodies parted in the last step are built afresh, once a step.
   if (settings_.response == ResponseMode::kPlausible) sleep_->split_islands(detector_.contacts());
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
-  const std::span<const std::uint8_t> dynamic = store_->dynamic();
-  stats.moving_bodies = static_cast<std::uint32_t>(std::count(dynamic.begin(), dynamic.end(), 1));
+  stats.moving_bodies = store_->dynamic_bodies();
   stats.bodies_asleep = stats.moving_bodies - static_cast<std::uint32_t>(store_->awake().size());
   if (settings_.plausibility_figures) measure_rest(stats);
   stats.step_ms = elapsed_ms(step_start);

@@ -59,6 +59,7 @@ TEST(BodyStore, KeepsEachBodyInItsSlotAndReusesTheLastFreed) {
   EXPECT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), 3u);
   EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2, 3}));
   EXPECT_EQ(store.slots(), 4u);
+  EXPECT_EQ(store.dynamic_bodies(), 3u);  // slot 1 holds the static one
 }
 
 TEST(BodyStore, AStaticBodyKeepsNoVelocityOrInverseMass) {
