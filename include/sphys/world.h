@@ -164,9 +164,11 @@ class World {
   // The soft step: the solver integrates the moving bodies in its own substeps.
   [[nodiscard]] bool soft_step() const;
   void integrate_velocities(float dt, bool plausible, StepStats& stats);
+  // One awake body's gravity and reach; false when its motion is no longer finite.
+  [[nodiscard]] bool integrate_velocity(std::uint32_t body, float dt, bool plausible);
   void detect_contacts(StepStats& stats);
   void add_detection(const CollisionStats& detection, StepStats& stats) const;
-  void wake_touched(StepStats& stats);
+  void wake_touched(float dt, StepStats& stats);
   void mix_materials();
   void respond(float dt, bool plausible, StepStats& stats);
   void integrate_positions(float dt, bool plausible, StepStats& stats);

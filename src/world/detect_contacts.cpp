@@ -40,13 +40,18 @@ void World::detect_contacts(StepStats& stats) {
 // body touches wake, and their pairs get their narrow phase now, once; their contacts may show
 // them touching other sleeping groups, which wake in turn, until nothing more wakes. Then the
 // islands that this substep's contacts join merge (they split once a step, World::step).
-void World::wake_touched(StepStats& stats) {
+void World::wake_touched(float dt, StepStats& stats) {
   for (;;) {
     sleep_changes_.clear();
     sleep_->wake_disturbed(detector_.contacts(), settings_.sleep, sleep_changes_);
     if (sleep_changes_.empty()) break;
-    // Still until the solver moves them: no motion from before they slept.
-    for (const std::uint32_t body : sleep_changes_) detector_.set_motion(body, Vec3::Zero(), 0.0f);
+    // This substep's gravity, as the bodies awake in stage 1 had: without it the warm start,
+    // the impulses that held them against gravity when they fell asleep, threw them up at
+    // g dt, and a woken heap was restless again for a whole sleep time.
+    // A sleeping body is at rest, so its motion is finite.
+    for (const std::uint32_t body : sleep_changes_) {
+      static_cast<void>(integrate_velocity(body, dt, true));
+    }
     const CollisionStats& woken = detector_.detect_woken();
     add_detection(woken, stats);
     if (woken.parted_pairs > 0) sleep_->parted();

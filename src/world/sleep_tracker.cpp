@@ -11,6 +11,12 @@ constexpr std::uint8_t kFallsAsleep = 1;
 constexpr std::uint8_t kHasRestless = 2;
 // How many times sleep.time a body waits before it sleeps while its island has a restless body.
 constexpr float kPatience = 2.0f;
+// A woken body keeps its still time (being asleep is being still) up to this share of
+// sleep.time: restless a while yet, it keeps its neighbours awake and sleeps again only after
+// its island has had time to settle what the disturbance pressed in. Kept up to the whole sleep
+// time (not restless once woken), a heap woke only where it moved but slept again pressed in:
+// 1,000 bunnies ended with one 1.4 mm into the plane, against 0.8 mm this way.
+constexpr float kWokenStillShare = 0.5f;
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
 }  // namespace
@@ -30,17 +36,15 @@ void SleepTracker::resize(std::size_t bodies) {
   }
 }
 
-void SleepTracker::wake(std::uint32_t body, std::vector<std::uint32_t>& woken) {
-  if (!store_->asleep(body)) {
-    still_time_[body] = 0.0f;
-    return;
-  }
+void SleepTracker::wake(std::uint32_t body, const SleepSettings& settings,
+                        std::vector<std::uint32_t>& woken) {
+  if (!store_->asleep(body)) return;
   std::uint32_t member = body;
   do {
     const std::uint32_t next = next_asleep_[member];
     store_->set_asleep(member, false);
-    still_time_[member] = 0.0f;
     next_asleep_[member] = member;
+    still_time_[member] = std::min(still_time_[member], kWokenStillShare * settings.time);
     woken.push_back(member);
     member = next;
   } while (member != body);
@@ -92,8 +96,8 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
     if (contact.body_a == kGroundPlaneBody) continue;
     const std::uint32_t a = contact.body_a;
     const std::uint32_t b = contact.body_b;
-    if (store_->asleep(a) && restless(b, settings)) wake(a, woken);
-    if (store_->asleep(b) && restless(a, settings)) wake(b, woken);
+    if (store_->asleep(a) && restless(b, settings)) wake(a, settings, woken);
+    if (store_->asleep(b) && restless(a, settings)) wake(b, settings, woken);
   }
 }
 

@@ -22,8 +22,14 @@ class SleepTracker {
   explicit SleepTracker(BodyStore* bodies) : store_(bodies) {}
   // Slots for `bodies` bodies.
   void resize(std::size_t bodies);
-  // Wakes a sleeping body and every body it fell asleep with, appending them to `woken`.
-  void wake(std::uint32_t body, std::vector<std::uint32_t>& woken);
+  // Wakes a sleeping body and every body it fell asleep with, appending them to `woken`. Being
+  // asleep is being still: they keep their still time, up to half of settings.time, so that they
+  // sleep again after half the sleep time still rather than a whole one (or twice that while their
+  // island holds a restless body, update()).
+  void wake(std::uint32_t body, const SleepSettings& settings, std::vector<std::uint32_t>& woken);
+  // The body was set moving from outside (a velocity or an impulse): restless until it has been
+  // still for the sleep time again.
+  void unsettle(std::uint32_t body) { still_time_[body] = 0.0f; }
 
   // Islands: dynamic bodies touching by a contact share one; a sleeping body is in one with the
   // bodies it fell asleep with. Static bodies and the ground join nothing. They persist from

@@ -139,7 +139,8 @@ BodyId World::add_body(const BodyDesc& desc) {
 
 void World::wake(std::uint32_t index) {
   sleep_changes_.clear();
-  sleep_->wake(index, sleep_changes_);
+  sleep_->wake(index, settings_.sleep, sleep_changes_);
+  sleep_->unsettle(index);
 }
 
 void World::list_awake() const { (void)store_->awake(); }
@@ -258,7 +259,7 @@ void World::substep(float dt, StepStats& stats) {
   integrate_velocities(dt, plausible, stats);  // world/integrate_velocities.cpp
   if (stopped_) return;
   detect_contacts(stats);                     // world/detect_contacts.cpp
-  if (plausible) wake_touched(stats);         // world/detect_contacts.cpp
+  if (plausible) wake_touched(dt, stats);     // world/detect_contacts.cpp
   respond(dt, plausible, stats);              // world/respond.cpp
   integrate_positions(dt, plausible, stats);  // world/integrate_positions.cpp
   if (stopped_) return;

@@ -555,22 +555,48 @@ TEST_P(PlausibleSleep, ARestingBodySleepsAndAnImpulseOrAnImpactWakesIt) {
 // slides to and fro beside the row, driven, and never rests. Boxes two places away and more
 // sleep; box 1, which touches it, stays awake. Then box 0 is driven into box 1, which wakes the
 // sleeping boxes with it.
-TEST_P(PlausibleSleep, ARestlessBodyKeepsOnlyItsNeighboursAwake) {
-  World world(on_plane(0.5f, 0.0f));
+// Six boxes in a row along x on the floor: 1 cm between box 0 and box 1, 5 mm between the
+// others, all within the 2 cm margin.
+std::vector<BodyId> add_row(World& world) {
   const float half = cube_half_height();
   std::vector<BodyId> row;
   for (int i = 0; i < 6; ++i) {
-    // 1 cm between box 0 and box 1, 5 mm between the others: all within the 2 cm margin.
     const float x = static_cast<float>(i) * (2.0f * half + 0.005f) + (i > 0 ? 0.005f : 0.0f);
     row.push_back(world.add_body(cube(Vec3(x, half, 0.0f), 0.5f)));
   }
+  return row;
+}
+
+// A column of `count` boxes on the floor, 1 mm apart.
+std::vector<BodyId> add_stack(World& world, int count) {
+  const float half = cube_half_height();
+  std::vector<BodyId> stack;
+  for (int i = 0; i < count; ++i) {
+    stack.push_back(world.add_body(
+        cube(Vec3(0.0f, half + static_cast<float>(i) * (2.0f * half + 0.001f), 0.0f), 0.5f)));
+  }
+  return stack;
+}
+
+// One step with `box` driven along z at 0.1 m/s (above the sleep speed), turning every 30 frames:
+// face to face with its neighbour along x, it pushes nothing.
+void jiggle(World& world, BodyId box, int frame) {
+  const float side = (frame / 30) % 2 == 0 ? 1.0f : -1.0f;
+  world.set_velocity(box, Vec3(0.0f, 0.0f, 0.1f * side), Vec3::Zero());
+  world.step(kDt);
+}
+
+TEST_P(PlausibleSleep, ARestlessBodyKeepsOnlyItsNeighboursAwake) {
+  World world(on_plane(0.5f, 0.0f));
+  const std::vector<BodyId> row = add_row(world);
   const auto drive = [&](int frames, const Vec3& velocity) {
     for (int frame = 0; frame < frames; ++frame) {
-      // Along z, face to face with box 1: no force on it, and 0.1 m/s is above the sleep speed.
-      const float side = (frame / 30) % 2 == 0 ? 1.0f : -1.0f;
-      world.set_velocity(row[0], velocity.isZero() ? Vec3(0.0f, 0.0f, 0.1f * side) : velocity,
-                         Vec3::Zero());
-      world.step(kDt);
+      if (velocity.isZero()) {
+        jiggle(world, row[0], frame);
+      } else {
+        world.set_velocity(row[0], velocity, Vec3::Zero());
+        world.step(kDt);
+      }
     }
   };
   drive(180, Vec3::Zero());
@@ -582,16 +608,68 @@ TEST_P(PlausibleSleep, ARestlessBodyKeepsOnlyItsNeighboursAwake) {
   for (std::size_t i = 0; i < row.size(); ++i) EXPECT_FALSE(world.asleep(row[i])) << "box " << i;
 }
 
+// The same row, box 0 restless beside it and boxes 2 to 5 asleep. Box 1 is nudged along the row's
+// faces, restless now, and wakes the sleeping boxes mid-substep. They were still while asleep and
+// keep half the sleep time of it, so box 5, which nothing moves, sleeps again once it has been
+// still for twice the sleep time (box 0 keeps the row's island restless) less the half it kept:
+// 0.75 s, not 1 s. Woken mid-substep, it gets that substep's gravity, so that the impulse that
+// held it up when it fell asleep does not lift it.
+TEST_P(PlausibleSleep, WokenBodiesThatStayStillSleepAgainSooner) {
+  World world(on_plane(0.5f, 0.0f));
+  const std::vector<BodyId> row = add_row(world);
+  int frame = 0;
+  const auto step = [&] { jiggle(world, row[0], frame++); };
+  while (frame < 180) step();
+  for (std::size_t i = 2; i < row.size(); ++i) ASSERT_TRUE(world.asleep(row[i])) << "box " << i;
+  const Vec3 resting = world.body(row[5]).pose.translation;
+
+  world.set_velocity(row[1], Vec3(0.0f, 0.0f, 0.1f), Vec3::Zero());
+  const int nudged = frame;
+  step();
+  ASSERT_FALSE(world.asleep(row[5]));
+  float fastest = 0.0f;
+  while (!world.asleep(row[5]) && frame < nudged + 120) {
+    fastest = std::max(fastest, world.body(row[5]).linear_velocity.norm());
+    step();
+  }
+  const float seconds = static_cast<float>(frame - nudged) * kDt;
+  const float time = SleepSettings{}.time;
+  EXPECT_GE(seconds, 1.5f * time - 2.0f * kDt);
+  EXPECT_LE(seconds, 1.5f * time + 2.0f * kDt);
+  EXPECT_LT(fastest, SleepSettings{}.speed);
+  // The soft step's contact springs give a little as the box wakes (0.16 mm).
+  const float moved = solver_method == SolverMethod::kSoftStep ? 5e-4f : 1e-4f;
+  EXPECT_LT((world.body(row[5]).pose.translation - resting).norm(), moved);
+}
+
+// A stack of six boxes, the bottom one kept awake by a restless box beside it, the five above it
+// asleep. The bottom box is nudged, restless now, and wakes the five mid-substep. They get that
+// substep's gravity like every awake body: without it, the warm-started impulses that held them
+// up threw the top of the stack upwards (0.08 m/s). Sequential impulses only: the soft step adds
+// gravity in its own substeps, and its woken stack rises 0.13 m/s for a reason of its own.
+TEST(PlausibleSleepSequentialImpulses, ASleepingStackWokenMidSubstepIsNotThrownUp) {
+  World world(on_plane(0.5f, 0.0f));
+  const float half = cube_half_height();
+  const std::vector<BodyId> stack = add_stack(world, 6);
+  const BodyId beside = world.add_body(cube(Vec3(2.0f * half + 0.01f, half, 0.0f), 0.5f));
+  int frame = 0;
+  const auto step = [&] { jiggle(world, beside, frame++); };
+  while (frame < 240) step();
+  for (std::size_t i = 1; i < stack.size(); ++i) ASSERT_TRUE(world.asleep(stack[i])) << i;
+  world.set_velocity(stack[0], Vec3::Zero(), Vec3::Zero());
+  float rising = 0.0f;
+  for (int i = 0; i < 10; ++i) {
+    step();
+    for (const BodyId box : stack) rising = std::max(rising, world.body(box).linear_velocity.y());
+  }
+  EXPECT_LT(rising, 0.01f);
+}
+
 // A stack asleep keeps its contacts' impulses: woken, it starts from them (every contact warm
 // started in the first step) and does not sag (beyond what the soft step's springs give).
 TEST_P(PlausibleSleep, AWokenStackStartsFromItsRestingImpulses) {
   World world(on_plane(0.5f, 0.0f));
-  const float half = cube_half_height();
-  std::vector<BodyId> stack;
-  for (int i = 0; i < 4; ++i) {
-    stack.push_back(world.add_body(
-        cube(Vec3(0.0f, half + static_cast<float>(i) * (2.0f * half + 0.001f), 0.0f), 0.5f)));
-  }
+  const std::vector<BodyId> stack = add_stack(world, 4);
   run(world, 4.0f);
   for (const BodyId box : stack) ASSERT_TRUE(world.asleep(box));
   const float bottom = world.body(stack[0]).pose.translation.y();
