@@ -4,6 +4,8 @@
 #include <numbers>
 
 #include "core/buffers.h"
+#include "dynamics/constraint_colouring.h"
+#include "dynamics/contact_lanes.h"
 #include "dynamics/contact_pairs.h"
 #include "dynamics/group_by.h"
 #include "dynamics/solver_bodies.h"
@@ -34,26 +36,8 @@ float mass_of(float inverse_mass) { return inverse_mass > 0.0f ? 1.0f / inverse_
 
 }  // namespace
 
-float SoftStepSolver::row_speed(const Constraint& c, std::size_t row, const Vec3& direction) const {
-  const Constraint::Row& r = c.rows[row];
-  return direction.dot(linear_[c.b] - linear_[c.a]) + r.rb_cross.dot(angular_[c.b]) -
-         r.ra_cross.dot(angular_[c.a]);
-}
-
-// Immovable bodies (the ground, static and sleeping ones) are shared by islands solved at once
-// on other threads: their velocities, zero, are read and never written.
-void SoftStepSolver::push(const Constraint& c, float normal, float tangent1, float tangent2) const {
-  const Vec3 impulse = normal * c.normal + tangent1 * c.tangent1 + tangent2 * c.tangent2;
-  if (c.a_moves) {
-    linear_[c.a] -= inverse_mass_[c.a] * impulse;
-    angular_[c.a] -=
-        normal * c.rows[0].turn_a + tangent1 * c.rows[1].turn_a + tangent2 * c.rows[2].turn_a;
-  }
-  if (c.b_moves) {
-    linear_[c.b] += inverse_mass_[c.b] * impulse;
-    angular_[c.b] +=
-        normal * c.rows[0].turn_b + tangent1 * c.rows[1].turn_b + tangent2 * c.rows[2].turn_b;
-  }
+void SoftStepSolver::use_portable_lanes(bool portable) {
+  kernels_ = portable ? &portable_lane_kernels() : &native_lane_kernels();
 }
 
 void SoftStepSolver::load_bodies(const BodyStore& bodies) {
@@ -67,10 +51,8 @@ void SoftStepSolver::load_bodies(const BodyStore& bodies) {
 }
 
 void SoftStepSolver::prepare(std::span<const Contact> contacts,
-                             std::span<const ContactMemory> memory,
-                             std::span<const PairMaterial> materials,
-                             const SolverSettings& settings, float substep,
-                             ContactSolverStats& stats) {
+                             std::span<const ContactMemory> memory, const SolverSettings& settings,
+                             float substep, ContactSolverStats& stats) {
   const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
   // Impulses were kept per substep of the last step's length; a substep of another length needs
   // them in proportion.
@@ -97,11 +79,9 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
         c.rows[0].mass / std::max(mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]));
     const float share = ratio / spring;
     c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
-    c.bias_rate = against_immovable ? bias_rate_immovable_ : bias_rate_moving_;
     c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
-    c.approach = row_speed(c, 0, c.normal);
-    c.friction = materials[k].friction;
-    c.restitution = materials[k].restitution;
+    c.approach = c.normal.dot(linear_[c.b] - linear_[c.a]) + c.rows[0].rb_cross.dot(angular_[c.b]) -
+                 c.rows[0].ra_cross.dot(angular_[c.a]);
     c.contact = static_cast<std::uint32_t>(k);
     const ContactMemory& kept = memory[k];
     if (settings.warm_starting && kept.solved_impulse >= 0.0f) {
@@ -113,178 +93,211 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
     constraints_.push_back(c);
   }
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
-  rolling_pairs_.clear();
-  if (settings.rolling_resistance > 0.0f) {
-    gather_rolling_pairs(constraints_, inverse_inertia_, rolling_pairs_);
-  }
 }
 
-// Islands numbered by their first moving body; each lists its moving bodies and its constraints
-// (each constraint in the island of a moving body of it), in order.
-void SoftStepSolver::group_islands(std::span<const std::uint32_t> island_of_body) {
-  const std::size_t bodies = linear_.size() - 1;  // the ground's slot is in no island
-  fill_buffer(island_number_, linear_.size(), kNoGroup);
-  std::uint32_t islands = 0;
-  for (std::size_t i = 0; i < bodies; ++i) {
-    if (inverse_mass_[i] > 0.0f && island_number_[island_of_body[i]] == kNoGroup) {
-      island_number_[island_of_body[i]] = islands++;
+namespace {
+
+void put(const Vec3& v, int lane, auto& lanes) {
+  for (int k = 0; k < 3; ++k) lanes[k][lane] = v[k];
+}
+void put(const Mat3& m, int lane, auto& lanes) {
+  for (int k = 0; k < 9; ++k) lanes[k][lane] = m.data()[k];
+}
+
+}  // namespace
+
+// Lane `lane` of `block` from a manifold's constraints; the block was zeroed, so the points past
+// the manifold's last stay empty.
+template <int W>
+void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& material,
+                               ManifoldBlock<W>& block, int lane) const {
+  const Constraint& first = constraints_[manifold.first];
+  block.body_a[lane] = first.a;
+  block.body_b[lane] = first.b;
+  block.a_moves[lane] = first.a_moves ? 1u : 0u;
+  block.b_moves[lane] = first.b_moves ? 1u : 0u;
+  block.inverse_mass_a[lane] = inverse_mass_[first.a];
+  block.inverse_mass_b[lane] = inverse_mass_[first.b];
+  put(inverse_inertia_[first.a], lane, block.inverse_inertia_a);
+  put(inverse_inertia_[first.b], lane, block.inverse_inertia_b);
+  block.friction[lane] = material.friction;
+  block.restitution[lane] = material.restitution;
+  block.bias_rate[lane] = first.a_moves && first.b_moves ? bias_rate_moving_ : bias_rate_immovable_;
+  // Rolling resistance stops the bodies' relative turning: its mass is the inverse of the sum of
+  // their inverse inertias. A pair with no inverse inertia at all (point masses) cannot turn.
+  const Mat3 sum = inverse_inertia_[first.a] + inverse_inertia_[first.b];
+  put(sum.determinant() > 0.0f ? Mat3(sum.inverse()) : Mat3(Mat3::Zero()), lane,
+      block.rolling_mass);
+  for (std::uint32_t i = 0; i < manifold.count; ++i) {
+    const Constraint& c = constraints_[manifold.first + i];
+    auto& p = block.points[i];
+    put(c.normal, lane, p.normal);
+    put(c.tangent1, lane, p.tangent1);
+    put(c.tangent2, lane, p.tangent2);
+    put(c.ra, lane, p.ra);
+    put(c.rb, lane, p.rb);
+    for (std::size_t r = 0; r < 3; ++r) {
+      put(c.rows[r].ra_cross, lane, p.ra_cross[r]);
+      put(c.rows[r].rb_cross, lane, p.rb_cross[r]);
+      put(c.rows[r].turn_a, lane, p.turn_a[r]);
+      put(c.rows[r].turn_b, lane, p.turn_b[r]);
+      p.mass[r][lane] = c.rows[r].mass;
     }
+    p.mass_scale[lane] = c.soft.mass_scale;
+    p.impulse_scale[lane] = c.soft.impulse_scale;
+    p.base_separation[lane] = c.base_separation;
+    p.approach[lane] = c.approach;
+    p.impulse[0][lane] = c.normal_impulse;
+    p.impulse[1][lane] = c.tangent1_impulse;
+    p.impulse[2][lane] = c.tangent2_impulse;
+    block.contact[i][lane] = c.contact;
   }
+  block.point_count = std::max(block.point_count, manifold.count);
+}
+
+void SoftStepSolver::pack(std::span<const PairMaterial> materials) {
+  // A body pair's contacts come one after another (the detector and the reducer emit them by
+  // pair), cut into manifolds of at most kManifoldPoints.
+  manifolds_.clear();
+  manifold_bodies_.clear();
+  for (std::size_t first = 0; first < constraints_.size();) {
+    const Constraint& c = constraints_[first];
+    std::size_t end = first + 1;
+    while (end < constraints_.size() && end - first < kManifoldPoints &&
+           same_bodies(constraints_[end], c)) {
+      ++end;
+    }
+    manifolds_.push_back(
+        {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(end - first)});
+    manifold_bodies_.push_back({c.a, c.b, c.a_moves, c.b_moves});
+    first = end;
+  }
+  colouring_.colour(manifold_bodies_, linear_.size(), colours_);
   group_by(
-      bodies, islands,
-      [&](std::size_t i) {
-        return inverse_mass_[i] > 0.0f ? island_number_[island_of_body[i]] : kNoGroup;
-      },
-      body_begin_, island_bodies_);
-  group_by(
-      constraints_.size(), islands,
-      [&](std::size_t k) {
-        const Constraint& c = constraints_[k];
-        return island_number_[island_of_body[c.a_moves ? c.a : c.b]];
-      },
-      constraint_begin_, island_constraints_);
-}
-
-void SoftStepSolver::warm_start(std::span<const std::uint32_t> island) const {
-  for (const std::uint32_t k : island) {
-    const Constraint& c = constraints_[k];
-    push(c, c.normal_impulse, c.tangent1_impulse, c.tangent2_impulse);
-    if (!c.rolls) continue;
-    const RollingPair& pair = rolling_pairs_[c.pair];
-    if (pair.a_moves) angular_[pair.a] -= inverse_inertia_[pair.a] * pair.impulse;
-    if (pair.b_moves) angular_[pair.b] += inverse_inertia_[pair.b] * pair.impulse;
+      manifolds_.size(), kColours + 1, [&](std::size_t k) { return colours_[k]; }, colour_begin_,
+      by_colour_);
+  // Each colour's manifolds, kLaneWidth to a block; the overflow's one to a block.
+  fill_buffer(block_begin_, kColours + 1, 0u);
+  std::size_t blocks = 0;
+  for (std::uint32_t colour = 0; colour < kColours; ++colour) {
+    block_begin_[colour] = static_cast<std::uint32_t>(blocks);
+    const std::size_t count = colour_begin_[colour + 1] - colour_begin_[colour];
+    blocks += (count + kLaneWidth - 1) / kLaneWidth;
+  }
+  block_begin_[kColours] = static_cast<std::uint32_t>(blocks);
+  const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
+  const auto empty = [&](auto& block) {
+    block = {};
+    std::fill(std::begin(block.body_a), std::end(block.body_a), ground);
+    std::fill(std::begin(block.body_b), std::end(block.body_b), ground);
+  };
+  resize_buffer(blocks_, blocks);
+  for (std::uint32_t colour = 0; colour < kColours; ++colour) {
+    for (std::uint32_t k = colour_begin_[colour]; k < colour_begin_[colour + 1]; ++k) {
+      const std::uint32_t in_colour = k - colour_begin_[colour];
+      ManifoldBlock<kLaneWidth>& block = blocks_[block_begin_[colour] + in_colour / kLaneWidth];
+      const int lane = static_cast<int>(in_colour % kLaneWidth);
+      if (lane == 0) empty(block);
+      const Manifold& manifold = manifolds_[by_colour_[k]];
+      pack_lane(manifold, materials[constraints_[manifold.first].contact], block, lane);
+    }
+  }
+  const std::uint32_t overflow_begin = colour_begin_[kOverflowColour];
+  resize_buffer(overflow_, colour_begin_[kOverflowColour + 1] - overflow_begin);
+  for (std::size_t k = 0; k < overflow_.size(); ++k) {
+    empty(overflow_[k]);
+    const Manifold& manifold = manifolds_[by_colour_[overflow_begin + k]];
+    pack_lane(manifold, materials[constraints_[manifold.first].contact], overflow_[k], 0);
   }
 }
 
-// One pass over an island's contacts. With the bias (the solve) a penetrating contact is pushed
-// apart by a spring-damper; without it (the relax) the contacts only stop approaching, so that
-// the push leaves no speed behind. A gap may close within the substep and no more, either way.
-void SoftStepSolver::solve_contacts(std::span<const std::uint32_t> island,
-                                    const SolverSettings& settings, float substep, bool use_bias) {
-  const float inverse_substep = 1.0f / substep;
-  for (const std::uint32_t k : island) {
-    Constraint& c = constraints_[k];
-    // The separation now, from the bodies' motion since the step's start (anchors carried along).
-    const Vec3 moved = moved_[c.b] - moved_[c.a] + turned_[c.b] * c.rb - turned_[c.a] * c.ra;
-    const float separation = c.base_separation + c.normal.dot(moved);
-    float bias = 0.0f;
-    float mass_scale = 1.0f;
-    float impulse_scale = 0.0f;
-    if (separation > 0.0f) {
-      bias = separation * inverse_substep;
-    } else if (use_bias) {
-      // Penetration within the slop is left alone, so that resting contacts keep touching.
-      const float error = std::min(separation + settings.linear_slop, 0.0f);
-      bias = std::max(c.soft.mass_scale * c.bias_rate * error, -settings.max_correction_speed);
-      mass_scale = c.soft.mass_scale;
-      impulse_scale = c.soft.impulse_scale;
-    }
-    const float speed = row_speed(c, 0, c.normal);
-    // The fastest approach met in the step's solve passes: a body that falls onto a contact
-    // within the step meets it at the speed gravity gave it by then, not the step's start speed.
-    if (use_bias) c.approach = std::min(c.approach, speed);
-    const float normal_total =
-        std::max(c.normal_impulse - c.rows[0].mass * (mass_scale * speed + bias) -
-                     impulse_scale * c.normal_impulse,
-                 0.0f);
-    const float normal_change = normal_total - c.normal_impulse;
-    set_normal_impulse(c, normal_total, rolling_pairs_);
-    c.max_normal_impulse = std::max(c.max_normal_impulse, normal_total);
+LaneBodies SoftStepSolver::lane_bodies() {
+  return {linear_.data()->data(), angular_.data()->data(), moved_.data()->data(),
+          turned_.data()->data()};
+}
 
-    push(c, normal_change, 0.0f, 0.0f);
-
-    // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
-    float t1 = c.tangent1_impulse - c.rows[1].mass * row_speed(c, 1, c.tangent1);
-    float t2 = c.tangent2_impulse - c.rows[2].mass * row_speed(c, 2, c.tangent2);
-    keep_in_friction_disc(t1, t2, c.friction * c.normal_impulse);
-    push(c, 0.0f, t1 - c.tangent1_impulse, t2 - c.tangent2_impulse);
-    c.tangent1_impulse = t1;
-    c.tangent2_impulse = t2;
-
-    if (c.rolls) {
-      resist_rolling(rolling_pairs_[c.pair], settings.rolling_resistance, angular_,
-                     inverse_inertia_);
-    }
+void SoftStepSolver::run_pass(Pass pass, const LaneSettings& settings, const Parallel& parallel) {
+  const LaneBodies bodies = lane_bodies();
+  for (std::uint32_t colour = 0; colour < kColours; ++colour) {
+    const std::size_t first = block_begin_[colour];
+    const std::size_t count = block_begin_[colour + 1] - first;
+    parallel.for_each(count, [&](std::size_t i) {
+      const std::span<ManifoldBlock<kLaneWidth>> block(blocks_.data() + first + i, 1);
+      if (pass == Pass::kWarmStart) {
+        kernels_->warm_start(block, bodies);
+      } else {
+        kernels_->solve(block, bodies, settings, pass == Pass::kSolve);
+      }
+    });
+  }
+  const LaneKernels<1>& single = single_lane_kernels();
+  if (pass == Pass::kWarmStart) {
+    single.warm_start(overflow_, bodies);
+  } else {
+    single.solve(overflow_, bodies, settings, pass == Pass::kSolve);
   }
 }
 
-void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> island_bodies,
-                                          const Vec3& gravity, float substep) {
+// Awake bodies in runs of this many per thread's item. unit: bodies
+constexpr std::size_t kBodiesPerItem = 256;
+
+void SoftStepSolver::integrate_velocities(const BodyStore& bodies, const Vec3& gravity,
+                                          float substep, const Parallel& parallel) {
   const Vec3 gained = gravity * substep;
-  for (const std::uint32_t i : island_bodies) linear_[i] += gained;
+  const std::span<const std::uint32_t> awake = bodies.awake();
+  parallel.for_each((awake.size() + kBodiesPerItem - 1) / kBodiesPerItem, [&](std::size_t item) {
+    const std::size_t end = std::min(awake.size(), (item + 1) * kBodiesPerItem);
+    for (std::size_t k = item * kBodiesPerItem; k < end; ++k) linear_[awake[k]] += gained;
+  });
 }
 
 // The bodies' poses by the solved velocities (rigid_body.h's integrator), and their motion since
 // the step's start for the contacts' separations.
-void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> island_bodies,
-                                         BodyStore& bodies, float substep) {
+void SoftStepSolver::integrate_positions(BodyStore& bodies, float substep,
+                                         const Parallel& parallel) {
   const std::span<Transform> poses = bodies.poses();
-  for (const std::uint32_t i : island_bodies) {
-    // The angular velocity changes too: the angular momentum is kept as the inertia turns.
-    integrate_position(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
-                       bodies.inverse_inertias_body()[i], substep);
-    moved_[i] = poses[i].translation - position_[i];
-    turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
-  }
-}
-
-// Restitution once the substeps are done (as Box2D does it): a contact that approached faster
-// than the threshold and pushed during the step leaves at ε times that speed.
-std::uint32_t SoftStepSolver::restitute(std::span<const std::uint32_t> island,
-                                        const SolverSettings& settings) {
-  std::uint32_t bounces = 0;
-  for (const std::uint32_t k : island) {
-    Constraint& c = constraints_[k];
-    if (c.restitution <= 0.0f || c.max_normal_impulse <= 0.0f ||
-        !(c.approach < -settings.restitution_threshold)) {
-      continue;
+  const std::span<const std::uint32_t> awake = bodies.awake();
+  parallel.for_each((awake.size() + kBodiesPerItem - 1) / kBodiesPerItem, [&](std::size_t item) {
+    const std::size_t end = std::min(awake.size(), (item + 1) * kBodiesPerItem);
+    for (std::size_t k = item * kBodiesPerItem; k < end; ++k) {
+      const std::uint32_t i = awake[k];
+      // The angular velocity changes too: the angular momentum is kept as the inertia turns.
+      integrate_position(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
+                         bodies.inverse_inertias_body()[i], substep);
+      moved_[i] = poses[i].translation - position_[i];
+      turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
     }
-    const float target = -c.restitution * c.approach;
-    const float normal_total =
-        std::max(c.normal_impulse - c.rows[0].mass * (row_speed(c, 0, c.normal) - target), 0.0f);
-    push(c, normal_total - c.normal_impulse, 0.0f, 0.0f);
-    c.normal_impulse = normal_total;
-    ++bounces;
-  }
-  return bounces;
-}
-
-std::uint32_t SoftStepSolver::step_island(std::span<const std::uint32_t> island_bodies,
-                                          std::span<const std::uint32_t> island_constraints,
-                                          BodyStore& bodies, const SolverSettings& settings,
-                                          const Vec3& gravity, float substep,
-                                          std::uint32_t substeps) {
-  for (std::uint32_t i = 0; i < substeps; ++i) {
-    integrate_velocities(island_bodies, gravity, substep);
-    if (settings.warm_starting) warm_start(island_constraints);
-    solve_contacts(island_constraints, settings, substep, true);
-    integrate_positions(island_bodies, bodies, substep);
-    solve_contacts(island_constraints, settings, substep, false);
-  }
-  const std::uint32_t bounces = restitute(island_constraints, settings);
-  for (const std::uint32_t i : island_bodies) {
-    bodies.linear_velocities()[i] = linear_[i];
-    bodies.angular_velocities()[i] = angular_[i];
-  }
-  return bounces;
+  });
 }
 
 void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
   // Contacts with no moving body were not solved: they start the next step afresh.
   for (ContactMemory& kept : memory) kept = ContactMemory{};
-  for (const Constraint& c : constraints_) {
-    ContactMemory& kept = memory[c.contact];
-    kept.normal_impulse = c.normal_impulse;
-    kept.solved_impulse = c.normal_impulse;
-    kept.friction_impulse = c.tangent1_impulse * c.tangent1 + c.tangent2_impulse * c.tangent2;
+  const auto keep = [&](const auto& block, int lane) {
+    for (std::uint32_t i = 0; i < kManifoldPoints; ++i) {
+      const auto& p = block.points[i];
+      // An empty point has no mass along its normal.
+      if (!(p.mass[0][lane] > 0.0f)) continue;
+      ContactMemory& kept = memory[block.contact[i][lane]];
+      kept.normal_impulse = p.impulse[0][lane];
+      kept.solved_impulse = p.impulse[0][lane];
+      const Vec3 tangent1(p.tangent1[0][lane], p.tangent1[1][lane], p.tangent1[2][lane]);
+      const Vec3 tangent2(p.tangent2[0][lane], p.tangent2[1][lane], p.tangent2[2][lane]);
+      kept.friction_impulse = p.impulse[1][lane] * tangent1 + p.impulse[2][lane] * tangent2;
+    }
+  };
+  for (const ManifoldBlock<kLaneWidth>& block : blocks_) {
+    for (int lane = 0; lane < kLaneWidth; ++lane) keep(block, lane);
   }
+  for (const ManifoldBlock<1>& block : overflow_) keep(block, 0);
 }
 
-ContactSolverStats SoftStepSolver::solve(
-    BodyStore& bodies, std::span<const std::uint32_t> island_of_body,
-    std::span<const Contact> contacts, std::span<ContactMemory> memory,
-    std::span<const PairMaterial> materials, const SolverSettings& settings, const Vec3& gravity,
-    float dt, std::uint32_t substeps, const Parallel& parallel) {
+ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> contacts,
+                                         std::span<ContactMemory> memory,
+                                         std::span<const PairMaterial> materials,
+                                         const SolverSettings& settings, const Vec3& gravity,
+                                         float dt, std::uint32_t substeps,
+                                         const Parallel& parallel) {
   ContactSolverStats stats;
   const float substep = dt / static_cast<float>(substeps);
   const float hertz = std::min(settings.contact_hertz, kMostHertzPerSubstepRate / substep);
@@ -297,20 +310,24 @@ ContactSolverStats SoftStepSolver::solve(
   spring(omega, spring_moving_, bias_rate_moving_);
   spring(kImmovableStiffness * omega, spring_immovable_, bias_rate_immovable_);
   load_bodies(bodies);
-  prepare(contacts, memory, materials, settings, substep, stats);
-  group_islands(island_of_body);
-  const std::size_t islands = body_begin_.size() - 1;
-  fill_buffer(island_bounces_, islands, 0u);
-  parallel.for_each(islands, [&](std::size_t i) {
-    const std::span<const std::uint32_t> island_bodies(island_bodies_.data() + body_begin_[i],
-                                                       body_begin_[i + 1] - body_begin_[i]);
-    const std::span<const std::uint32_t> island_constraints(
-        island_constraints_.data() + constraint_begin_[i],
-        constraint_begin_[i + 1] - constraint_begin_[i]);
-    island_bounces_[i] = step_island(island_bodies, island_constraints, bodies, settings, gravity,
-                                     substep, substeps);
-  });
-  for (const std::uint32_t bounces : island_bounces_) stats.bounces += bounces;
+  prepare(contacts, memory, settings, substep, stats);
+  pack(materials);
+  const LaneSettings lane_settings{.inverse_substep = 1.0f / substep,
+                                   .linear_slop = settings.linear_slop,
+                                   .max_correction_speed = settings.max_correction_speed,
+                                   .rolling_resistance = settings.rolling_resistance,
+                                   .restitution_threshold = settings.restitution_threshold};
+  for (std::uint32_t i = 0; i < substeps; ++i) {
+    integrate_velocities(bodies, gravity, substep, parallel);
+    if (settings.warm_starting) run_pass(Pass::kWarmStart, lane_settings, parallel);
+    run_pass(Pass::kSolve, lane_settings, parallel);
+    integrate_positions(bodies, substep, parallel);
+    run_pass(Pass::kRelax, lane_settings, parallel);
+  }
+  const LaneBodies lanes = lane_bodies();
+  stats.bounces = kernels_->restitute(blocks_, lanes, lane_settings) +
+                  single_lane_kernels().restitute(overflow_, lanes, lane_settings);
+  store_solver_velocities(linear_, angular_, bodies);
   keep_impulses(memory);
   kept_substep_ = substep;
   return stats;

@@ -57,9 +57,8 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
     // 10% of a bunny deep, against 4% (stacks:4x50, depth 2).
     const std::uint32_t solver_substeps = solver.soft_substeps;
     const ContactSolverStats solved =
-        soft ? soft_solver_->solve(*store_, sleep_->islands(), contacts, detector_.memory(),
-                                   materials_, solver, settings_.gravity, dt, solver_substeps,
-                                   *parallel_)
+        soft ? soft_solver_->solve(*store_, contacts, detector_.memory(), materials_, solver,
+                                   settings_.gravity, dt, solver_substeps, *parallel_)
              : solver_->solve(*store_, sleep_->islands(), contacts, detector_.memory(), materials_,
                               solver, settings_.gravity, dt, *parallel_);
     stats.impulses += solved.constraints;

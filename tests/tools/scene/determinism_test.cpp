@@ -117,6 +117,29 @@ TEST(Determinism, BunnyStacksOnThePlaneAreBitIdenticalOnOneAndTwoThreads) {
   }
 }
 
+// The soft step: its contacts coloured into blocks of SIMD lanes, the blocks of a colour and the
+// bodies' integration threaded. One, two and four threads end in the same bits, and those bits are
+// the committed ones (as Box2D's determinism test does): a change of the arithmetic shows here,
+// and must come with a new hash and a reason. The lanes' width does not enter: a colour's lanes
+// share no body, and each does the same arithmetic (contact_lanes_test.cpp).
+TEST(Determinism, SoftStepPilesAreBitIdenticalOnOneTwoAndFourThreadsAndAsCommitted) {
+  Scene scene = bunny_stacks_scene(8, 6, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  scene.solver.method = SolverMethod::kSoftStep;
+  const int frames = test::sanitized_run() ? 25 : 300;
+  const test::TempDir tree_cache;
+  const ThreadedRun one = run_scene(scene, 1, frames, tree_cache.path());
+  for (const std::uint32_t threads : {2u, 4u}) {
+    const ThreadedRun many = run_scene(scene, threads, frames, tree_cache.path());
+    EXPECT_EQ(many.steps, one.steps) << threads << " threads: a step's contacts or counts differ";
+    EXPECT_EQ(many.final_state, one.final_state) << threads << " threads: the final state differs";
+  }
+  if (!test::sanitized_run()) {
+    // The optimised build's state after 300 frames (the sanitizer's build runs fewer).
+    EXPECT_EQ(one.final_state, 0xac08642a3b788c35u) << std::hex << one.final_state;
+  }
+}
+
 // The paper's octree ground, a static body in the broad phase, and the paper's response.
 TEST(Determinism, PaperModeOnTheOctreeGroundIsBitIdenticalOnOneAndTwoThreads) {
   Scene scene = bunny_stacks_scene(4, 5, 3);

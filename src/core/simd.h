@@ -1,0 +1,156 @@
+#pragma once
+
+// Floats in lanes: the few operations the contact solver does W at a time. Three kinds, each with
+// the same operations, so that one template serves them all (dynamics/contact_lanes.h):
+// - PortableLanes<W>: plain floats, for any processor, and W = 1 for the colour-less remainder;
+// - Sse2Lanes: 4 lanes of SSE2, x86-64's baseline, always there on x86-64;
+// - Avx2Lanes: 8 lanes of AVX2, only where the translation unit is compiled with -mavx2.
+// Every operation is one correctly rounded IEEE operation per lane, and min, max and select
+// follow SSE's rules (min(a, b) is a < b ? a : b), so the three give the same bits lane for lane.
+// None of them fuses a multiply and an add: the library is compiled with -ffp-contract=off.
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+namespace sphys {
+
+template <int W>
+struct PortableLanes {
+  static constexpr int kWidth = W;
+  struct Mask {
+    std::array<bool, W> on{};
+  };
+  std::array<float, W> v{};
+
+  static PortableLanes load(const float* p) {
+    PortableLanes r;
+    for (int i = 0; i < W; ++i) r.v[i] = p[i];
+    return r;
+  }
+  static PortableLanes splat(float x) {
+    PortableLanes r;
+    r.v.fill(x);
+    return r;
+  }
+  void store(float* p) const {
+    for (int i = 0; i < W; ++i) p[i] = v[i];
+  }
+  template <class Op>
+  friend PortableLanes each(const PortableLanes& a, const PortableLanes& b, Op op) {
+    PortableLanes r;
+    for (int i = 0; i < W; ++i) r.v[i] = op(a.v[i], b.v[i]);
+    return r;
+  }
+  friend PortableLanes operator+(PortableLanes a, PortableLanes b) {
+    return each(a, b, [](float x, float y) { return x + y; });
+  }
+  friend PortableLanes operator-(PortableLanes a, PortableLanes b) {
+    return each(a, b, [](float x, float y) { return x - y; });
+  }
+  friend PortableLanes operator*(PortableLanes a, PortableLanes b) {
+    return each(a, b, [](float x, float y) { return x * y; });
+  }
+  friend PortableLanes operator/(PortableLanes a, PortableLanes b) {
+    return each(a, b, [](float x, float y) { return x / y; });
+  }
+  friend PortableLanes min(PortableLanes a, PortableLanes b) {
+    return each(a, b, [](float x, float y) { return x < y ? x : y; });
+  }
+  friend PortableLanes max(PortableLanes a, PortableLanes b) {
+    return each(a, b, [](float x, float y) { return x > y ? x : y; });
+  }
+  friend PortableLanes sqrt(PortableLanes a) {
+    PortableLanes r;
+    for (int i = 0; i < W; ++i) r.v[i] = std::sqrt(a.v[i]);
+    return r;
+  }
+  template <class Compare>
+  friend Mask compare(const PortableLanes& a, const PortableLanes& b, Compare compare) {
+    Mask m;
+    for (int i = 0; i < W; ++i) m.on[i] = compare(a.v[i], b.v[i]);
+    return m;
+  }
+  friend Mask operator<(PortableLanes a, PortableLanes b) {
+    return compare(a, b, [](float x, float y) { return x < y; });
+  }
+  friend Mask operator>(PortableLanes a, PortableLanes b) {
+    return compare(a, b, [](float x, float y) { return x > y; });
+  }
+  friend Mask operator&(Mask a, Mask b) {
+    Mask m;
+    for (int i = 0; i < W; ++i) m.on[i] = a.on[i] && b.on[i];
+    return m;
+  }
+  // a where the mask is on, else b.
+  friend PortableLanes select(Mask m, PortableLanes a, PortableLanes b) {
+    PortableLanes r;
+    for (int i = 0; i < W; ++i) r.v[i] = m.on[i] ? a.v[i] : b.v[i];
+    return r;
+  }
+};
+
+#if defined(__SSE2__)
+struct Sse2Lanes {
+  static constexpr int kWidth = 4;
+  struct Mask {
+    __m128 on;
+  };
+  __m128 v;
+
+  static Sse2Lanes load(const float* p) { return {_mm_load_ps(p)}; }
+  static Sse2Lanes splat(float x) { return {_mm_set1_ps(x)}; }
+  void store(float* p) const { _mm_store_ps(p, v); }
+  friend Sse2Lanes operator+(Sse2Lanes a, Sse2Lanes b) { return {_mm_add_ps(a.v, b.v)}; }
+  friend Sse2Lanes operator-(Sse2Lanes a, Sse2Lanes b) { return {_mm_sub_ps(a.v, b.v)}; }
+  friend Sse2Lanes operator*(Sse2Lanes a, Sse2Lanes b) { return {_mm_mul_ps(a.v, b.v)}; }
+  friend Sse2Lanes operator/(Sse2Lanes a, Sse2Lanes b) { return {_mm_div_ps(a.v, b.v)}; }
+  friend Sse2Lanes min(Sse2Lanes a, Sse2Lanes b) { return {_mm_min_ps(a.v, b.v)}; }
+  friend Sse2Lanes max(Sse2Lanes a, Sse2Lanes b) { return {_mm_max_ps(a.v, b.v)}; }
+  friend Sse2Lanes sqrt(Sse2Lanes a) { return {_mm_sqrt_ps(a.v)}; }
+  friend Mask operator<(Sse2Lanes a, Sse2Lanes b) { return {_mm_cmplt_ps(a.v, b.v)}; }
+  friend Mask operator>(Sse2Lanes a, Sse2Lanes b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+  friend Mask operator&(Mask a, Mask b) { return {_mm_and_ps(a.on, b.on)}; }
+  friend Sse2Lanes select(Mask m, Sse2Lanes a, Sse2Lanes b) {
+    return {_mm_or_ps(_mm_and_ps(m.on, a.v), _mm_andnot_ps(m.on, b.v))};
+  }
+};
+#endif
+
+#if defined(__AVX2__)
+struct Avx2Lanes {
+  static constexpr int kWidth = 8;
+  struct Mask {
+    __m256 on;
+  };
+  __m256 v;
+
+  static Avx2Lanes load(const float* p) { return {_mm256_load_ps(p)}; }
+  static Avx2Lanes splat(float x) { return {_mm256_set1_ps(x)}; }
+  void store(float* p) const { _mm256_store_ps(p, v); }
+  friend Avx2Lanes operator+(Avx2Lanes a, Avx2Lanes b) { return {_mm256_add_ps(a.v, b.v)}; }
+  friend Avx2Lanes operator-(Avx2Lanes a, Avx2Lanes b) { return {_mm256_sub_ps(a.v, b.v)}; }
+  friend Avx2Lanes operator*(Avx2Lanes a, Avx2Lanes b) { return {_mm256_mul_ps(a.v, b.v)}; }
+  friend Avx2Lanes operator/(Avx2Lanes a, Avx2Lanes b) { return {_mm256_div_ps(a.v, b.v)}; }
+  friend Avx2Lanes min(Avx2Lanes a, Avx2Lanes b) { return {_mm256_min_ps(a.v, b.v)}; }
+  friend Avx2Lanes max(Avx2Lanes a, Avx2Lanes b) { return {_mm256_max_ps(a.v, b.v)}; }
+  friend Avx2Lanes sqrt(Avx2Lanes a) { return {_mm256_sqrt_ps(a.v)}; }
+  // Ordered, non-signalling: false with a NaN, as SSE's cmplt and cmpgt.
+  friend Mask operator<(Avx2Lanes a, Avx2Lanes b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
+  friend Mask operator>(Avx2Lanes a, Avx2Lanes b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
+  friend Mask operator&(Mask a, Mask b) { return {_mm256_and_ps(a.on, b.on)}; }
+  friend Avx2Lanes select(Mask m, Avx2Lanes a, Avx2Lanes b) {
+    return {_mm256_blendv_ps(b.v, a.v, m.on)};
+  }
+};
+#endif
+
+}  // namespace sphys

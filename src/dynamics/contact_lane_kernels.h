@@ -1,0 +1,302 @@
+#pragma once
+
+// The soft step's passes over blocks of manifolds, written once over a lane type F
+// (core/simd.h): every lane does the same arithmetic whatever F is, so the intrinsics and the
+// plain floats give the same bits. Included by contact_lanes.cpp (and the tests), never by a file
+// that includes Eigen, as contact_lanes.cpp may be compiled for AVX2.
+
+#include <cstdint>
+#include <span>
+
+#include "dynamics/contact_lanes.h"
+
+namespace sphys::lanes {
+
+template <class F>
+struct V3 {
+  F x, y, z;
+};
+
+template <class F>
+V3<F> operator+(const V3<F>& a, const V3<F>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class F>
+V3<F> operator-(const V3<F>& a, const V3<F>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class F>
+V3<F> operator*(const F& s, const V3<F>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class F>
+F dot(const V3<F>& a, const V3<F>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+template <class F>
+V3<F> load3(const float (&p)[3][F::kWidth]) {
+  return {F::load(p[0]), F::load(p[1]), F::load(p[2])};
+}
+template <class F>
+void store3(const V3<F>& a, float (&p)[3][F::kWidth]) {
+  a.x.store(p[0]);
+  a.y.store(p[1]);
+  a.z.store(p[2]);
+}
+// A column-major 3 × 3 matrix (9 lanes) times a vector.
+template <class F>
+V3<F> times(const float (&m)[9][F::kWidth], const V3<F>& v) {
+  return {F::load(m[0]) * v.x + F::load(m[3]) * v.y + F::load(m[6]) * v.z,
+          F::load(m[1]) * v.x + F::load(m[4]) * v.y + F::load(m[7]) * v.z,
+          F::load(m[2]) * v.x + F::load(m[5]) * v.y + F::load(m[8]) * v.z};
+}
+template <class F>
+V3<F> times(const F (&m)[9], const V3<F>& v) {
+  return {m[0] * v.x + m[3] * v.y + m[6] * v.z, m[1] * v.x + m[4] * v.y + m[7] * v.z,
+          m[2] * v.x + m[5] * v.y + m[8] * v.z};
+}
+
+// One body of each lane, gathered from the solver's arrays by slot and scattered back.
+template <class F>
+struct LaneBody {
+  static constexpr int W = F::kWidth;
+  V3<F> linear;
+  V3<F> angular;
+
+  static LaneBody gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
+    alignas(32) float v[6][W];
+    for (int lane = 0; lane < W; ++lane) {
+      const float* l = bodies.linear + 3 * static_cast<std::size_t>(slot[lane]);
+      const float* a = bodies.angular + 3 * static_cast<std::size_t>(slot[lane]);
+      for (int k = 0; k < 3; ++k) {
+        v[k][lane] = l[k];
+        v[3 + k][lane] = a[k];
+      }
+    }
+    return {{F::load(v[0]), F::load(v[1]), F::load(v[2])},
+            {F::load(v[3]), F::load(v[4]), F::load(v[5])}};
+  }
+  // Written back only where the lane's body moves: immovable bodies are shared by lanes and by
+  // blocks on other threads, and keep their zero velocities.
+  void scatter(const LaneBodies& bodies, const std::uint32_t (&slot)[W],
+               const std::uint32_t (&moves)[W]) const {
+    alignas(32) float v[6][W];
+    linear.x.store(v[0]);
+    linear.y.store(v[1]);
+    linear.z.store(v[2]);
+    angular.x.store(v[3]);
+    angular.y.store(v[4]);
+    angular.z.store(v[5]);
+    for (int lane = 0; lane < W; ++lane) {
+      if (moves[lane] == 0) continue;
+      float* l = bodies.linear + 3 * static_cast<std::size_t>(slot[lane]);
+      float* a = bodies.angular + 3 * static_cast<std::size_t>(slot[lane]);
+      for (int k = 0; k < 3; ++k) {
+        l[k] = v[k][lane];
+        a[k] = v[3 + k][lane];
+      }
+    }
+  }
+};
+
+// Each lane's body motion since the step's start: translation and rotation matrix.
+template <class F>
+struct LaneMotion {
+  static constexpr int W = F::kWidth;
+  V3<F> moved;
+  F turned[9];
+
+  static LaneMotion gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
+    alignas(32) float v[12][W];
+    for (int lane = 0; lane < W; ++lane) {
+      const float* m = bodies.moved + 3 * static_cast<std::size_t>(slot[lane]);
+      const float* t = bodies.turned + 9 * static_cast<std::size_t>(slot[lane]);
+      for (int k = 0; k < 3; ++k) v[k][lane] = m[k];
+      for (int k = 0; k < 9; ++k) v[3 + k][lane] = t[k];
+    }
+    LaneMotion motion{{F::load(v[0]), F::load(v[1]), F::load(v[2])}, {}};
+    for (int k = 0; k < 9; ++k) motion.turned[k] = F::load(v[3 + k]);
+    return motion;
+  }
+};
+
+// An impulse along each row's direction at a point: body a takes minus, body b plus.
+template <class F, int W>
+void push(const typename ManifoldBlock<W>::Point& p, std::size_t row, const V3<F>& direction,
+          const F& impulse, const F& inverse_mass_a, const F& inverse_mass_b, LaneBody<F>& a,
+          LaneBody<F>& b) {
+  a.linear = a.linear - (inverse_mass_a * impulse) * direction;
+  b.linear = b.linear + (inverse_mass_b * impulse) * direction;
+  a.angular = a.angular - impulse * load3<F>(p.turn_a[row]);
+  b.angular = b.angular + impulse * load3<F>(p.turn_b[row]);
+}
+
+// The relative speed of the bodies at a point along a row's direction. unit: m/s
+template <class F, int W>
+F row_speed(const typename ManifoldBlock<W>::Point& p, std::size_t row, const V3<F>& direction,
+            const LaneBody<F>& a, const LaneBody<F>& b) {
+  return dot(direction, b.linear - a.linear) + dot(load3<F>(p.rb_cross[row]), b.angular) -
+         dot(load3<F>(p.ra_cross[row]), a.angular);
+}
+
+template <class F>
+void warm_start(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies) {
+  constexpr int W = F::kWidth;
+  for (ManifoldBlock<W>& m : blocks) {
+    LaneBody<F> a = LaneBody<F>::gather(bodies, m.body_a);
+    LaneBody<F> b = LaneBody<F>::gather(bodies, m.body_b);
+    const F inverse_mass_a = F::load(m.inverse_mass_a);
+    const F inverse_mass_b = F::load(m.inverse_mass_b);
+    for (std::uint32_t i = 0; i < m.point_count; ++i) {
+      const auto& p = m.points[i];
+      push<F, W>(p, 0, load3<F>(p.normal), F::load(p.impulse[0]), inverse_mass_a, inverse_mass_b, a,
+                 b);
+      push<F, W>(p, 1, load3<F>(p.tangent1), F::load(p.impulse[1]), inverse_mass_a, inverse_mass_b,
+                 a, b);
+      push<F, W>(p, 2, load3<F>(p.tangent2), F::load(p.impulse[2]), inverse_mass_a, inverse_mass_b,
+                 a, b);
+    }
+    const V3<F> rolling = load3<F>(m.rolling_impulse);
+    a.angular = a.angular - times<F>(m.inverse_inertia_a, rolling);
+    b.angular = b.angular + times<F>(m.inverse_inertia_b, rolling);
+    a.scatter(bodies, m.body_a, m.a_moves);
+    b.scatter(bodies, m.body_b, m.b_moves);
+  }
+}
+
+// One pass. With the bias (the solve) a penetrating contact is pushed apart by its spring-damper;
+// without it (the relax) contacts only stop approaching, so that the push leaves no speed behind.
+// A gap may close within the substep and no more, either way.
+template <class F>
+void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
+           const LaneSettings& settings, bool use_bias) {
+  constexpr int W = F::kWidth;
+  const F zero = F::splat(0.0f);
+  const F one = F::splat(1.0f);
+  const F inverse_substep = F::splat(settings.inverse_substep);
+  const F slop = F::splat(settings.linear_slop);
+  const F most_correction = F::splat(-settings.max_correction_speed);
+  for (ManifoldBlock<W>& m : blocks) {
+    LaneBody<F> a = LaneBody<F>::gather(bodies, m.body_a);
+    LaneBody<F> b = LaneBody<F>::gather(bodies, m.body_b);
+    const LaneMotion<F> motion_a = LaneMotion<F>::gather(bodies, m.body_a);
+    const LaneMotion<F> motion_b = LaneMotion<F>::gather(bodies, m.body_b);
+    const F inverse_mass_a = F::load(m.inverse_mass_a);
+    const F inverse_mass_b = F::load(m.inverse_mass_b);
+    const F friction = F::load(m.friction);
+    const F bias_rate = F::load(m.bias_rate);
+    F pushed = zero;  // the manifold's normal impulses summed, for its rolling resistance
+    for (std::uint32_t i = 0; i < m.point_count; ++i) {
+      auto& p = m.points[i];
+      const V3<F> normal = load3<F>(p.normal);
+      // The separation now, from the bodies' motion since the step's start (anchors carried).
+      const V3<F> moved = motion_b.moved - motion_a.moved +
+                          times<F>(motion_b.turned, load3<F>(p.rb)) -
+                          times<F>(motion_a.turned, load3<F>(p.ra));
+      const F separation = F::load(p.base_separation) + dot(normal, moved);
+      const auto apart = separation > zero;
+      F bias = select(apart, separation * inverse_substep, zero);
+      F mass_scale = one;
+      F impulse_scale = zero;
+      if (use_bias) {
+        // Penetration within the slop is left alone, so that resting contacts keep touching.
+        const F soft_mass = F::load(p.mass_scale);
+        const F error = min(separation + slop, zero);
+        bias = select(apart, bias, max(soft_mass * bias_rate * error, most_correction));
+        mass_scale = select(apart, one, soft_mass);
+        impulse_scale = select(apart, zero, F::load(p.impulse_scale));
+      }
+      const F speed = row_speed<F, W>(p, 0, normal, a, b);
+      // The fastest approach met in the solve passes: a body falling onto a contact within the
+      // step meets it at the speed gravity gave it by then, not the step's start speed.
+      if (use_bias) min(F::load(p.approach), speed).store(p.approach);
+      const F old_normal = F::load(p.impulse[0]);
+      const F normal_impulse = max(old_normal - F::load(p.mass[0]) * (mass_scale * speed + bias) -
+                                       impulse_scale * old_normal,
+                                   zero);
+      normal_impulse.store(p.impulse[0]);
+      max(F::load(p.max_normal_impulse), normal_impulse).store(p.max_normal_impulse);
+      push<F, W>(p, 0, normal, normal_impulse - old_normal, inverse_mass_a, inverse_mass_b, a, b);
+      pushed = pushed + normal_impulse;
+
+      // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
+      const V3<F> tangent1 = load3<F>(p.tangent1);
+      const V3<F> tangent2 = load3<F>(p.tangent2);
+      const F old1 = F::load(p.impulse[1]);
+      const F old2 = F::load(p.impulse[2]);
+      F t1 = old1 - F::load(p.mass[1]) * row_speed<F, W>(p, 1, tangent1, a, b);
+      F t2 = old2 - F::load(p.mass[2]) * row_speed<F, W>(p, 2, tangent2, a, b);
+      const F limit = friction * normal_impulse;
+      const F length_squared = t1 * t1 + t2 * t2;
+      const auto outside = length_squared > limit * limit;
+      const F scale = limit / sqrt(length_squared);
+      t1 = select(outside, t1 * scale, t1);
+      t2 = select(outside, t2 * scale, t2);
+      t1.store(p.impulse[1]);
+      t2.store(p.impulse[2]);
+      push<F, W>(p, 1, tangent1, t1 - old1, inverse_mass_a, inverse_mass_b, a, b);
+      push<F, W>(p, 2, tangent2, t2 - old2, inverse_mass_a, inverse_mass_b, a, b);
+    }
+    if (settings.rolling_resistance > 0.0f) {
+      // Rolling resistance: an angular impulse against the pair's relative turning (rolling and
+      // spinning), at most the arm times the manifold's normal impulse.
+      const V3<F> old = load3<F>(m.rolling_impulse);
+      V3<F> rolling = old - times<F>(m.rolling_mass, b.angular - a.angular);
+      const F limit = F::splat(settings.rolling_resistance) * max(pushed, zero);
+      const F length_squared = dot(rolling, rolling);
+      const auto outside = length_squared > limit * limit;
+      const F scale = select(outside, limit / sqrt(length_squared), one);
+      rolling = scale * rolling;
+      store3(rolling, m.rolling_impulse);
+      const V3<F> change = rolling - old;
+      a.angular = a.angular - times<F>(m.inverse_inertia_a, change);
+      b.angular = b.angular + times<F>(m.inverse_inertia_b, change);
+    }
+    a.scatter(bodies, m.body_a, m.a_moves);
+    b.scatter(bodies, m.body_b, m.b_moves);
+  }
+}
+
+// Restitution once the substeps are done (as Box2D does it): a point that approached faster than
+// the threshold and pushed during the step leaves at ε times that speed.
+template <class F>
+std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
+                        const LaneSettings& settings) {
+  constexpr int W = F::kWidth;
+  const F zero = F::splat(0.0f);
+  const F one = F::splat(1.0f);
+  const F threshold = F::splat(-settings.restitution_threshold);
+  F bounces = zero;
+  for (ManifoldBlock<W>& m : blocks) {
+    LaneBody<F> a = LaneBody<F>::gather(bodies, m.body_a);
+    LaneBody<F> b = LaneBody<F>::gather(bodies, m.body_b);
+    const F inverse_mass_a = F::load(m.inverse_mass_a);
+    const F inverse_mass_b = F::load(m.inverse_mass_b);
+    const F restitution = F::load(m.restitution);
+    for (std::uint32_t i = 0; i < m.point_count; ++i) {
+      auto& p = m.points[i];
+      const F approach = F::load(p.approach);
+      const auto bounce =
+          (restitution > zero) & (F::load(p.max_normal_impulse) > zero) & (approach < threshold);
+      const V3<F> normal = load3<F>(p.normal);
+      const F old = F::load(p.impulse[0]);
+      const F target = zero - restitution * approach;
+      const F total =
+          max(old - F::load(p.mass[0]) * (row_speed<F, W>(p, 0, normal, a, b) - target), zero);
+      const F impulse = select(bounce, total, old);
+      impulse.store(p.impulse[0]);
+      push<F, W>(p, 0, normal, impulse - old, inverse_mass_a, inverse_mass_b, a, b);
+      bounces = bounces + select(bounce, one, zero);
+    }
+    a.scatter(bodies, m.body_a, m.a_moves);
+    b.scatter(bodies, m.body_b, m.b_moves);
+  }
+  alignas(32) float counted[W];
+  bounces.store(counted);
+  std::uint32_t total = 0;
+  for (const float c : counted) total += static_cast<std::uint32_t>(c);
+  return total;
+}
+
+}  // namespace sphys::lanes

@@ -1,0 +1,111 @@
+#pragma once
+
+// The soft step's contacts in lanes: manifolds (up to four contact points of one body pair, and
+// the pair's rolling resistance) packed W to a block, structure of arrays, so that one pass
+// solves W manifolds at a time. The manifolds of a block belong to one colour of the constraint
+// graph (constraint_colouring.h): no moving body appears twice in it, so its lanes never touch the
+// same velocities and the order of blocks inside a colour changes nothing. Plain floats only (no
+// Eigen): contact_lanes.cpp may be compiled for AVX2 apart from the rest of the library.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace sphys {
+
+// Contact points per manifold: a body pair's contacts beyond this go to another manifold of the
+// same pair (another colour).
+inline constexpr int kManifoldPoints = 4;
+
+// Lanes of the build's solver: 8 with SPHYS_AVX2 (AVX2), else 4 (SSE2, or plain floats where
+// there is no SSE2).
+#if defined(SPHYS_LANE_WIDTH)
+inline constexpr int kLaneWidth = SPHYS_LANE_WIDTH;
+#else
+inline constexpr int kLaneWidth = 4;
+#endif
+
+// W manifolds, lane by lane. Every array is a multiple of 4 W bytes, so that each starts on a
+// W-float boundary of the 32-byte-aligned block. A lane with no manifold, or a point past a
+// manifold's last, is all zeros (and names the ground's slot): solving it changes nothing.
+template <int W>
+struct alignas(32) ManifoldBlock {
+  struct Point {
+    float normal[3][W];  // from body a to body b
+    float tangent1[3][W];
+    float tangent2[3][W];
+    float ra[3][W];  // contact point from each centre of mass at the step's start. unit: m
+    float rb[3][W];
+    // Per direction (normal, tangent1, tangent2) and axis: the angular part of the Jacobian
+    // (r × d) and each body's inverse world inertia times it.
+    float ra_cross[3][3][W];
+    float rb_cross[3][3][W];
+    float turn_a[3][3][W];
+    float turn_b[3][3][W];
+    float mass[3][W];  // 1 / inverse effective mass along each direction. unit: kg
+    // The soft spring's share of the rigid impulse and of the accumulated one (a penetrating
+    // contact's solve passes).
+    float mass_scale[W];
+    float impulse_scale[W];
+    // Separation at the step's start less the anchors' offset along the normal. unit: m
+    float base_separation[W];
+    float approach[W];            // the fastest approach met by the solve passes. unit: m/s
+    float max_normal_impulse[W];  // over the step: did the contact push at all. unit: N s
+    float impulse[3][W];          // accumulated, along normal, tangent1, tangent2. unit: N s
+  };
+  Point points[kManifoldPoints];
+  float inverse_mass_a[W];  // unit: 1/kg, zero for an immovable body
+  float inverse_mass_b[W];
+  float inverse_inertia_a[9][W];  // world frame, column-major. unit: 1/(kg m²)
+  float inverse_inertia_b[9][W];
+  float friction[W];
+  float restitution[W];
+  float bias_rate[W];  // push-out speed per metre of penetration. unit: 1/s
+  // Rolling resistance: the inverse of the two inverse inertias' sum (column-major; unit: kg m²)
+  // and the accumulated angular impulse on body b (unit: N m s).
+  float rolling_mass[9][W];
+  float rolling_impulse[3][W];
+  std::uint32_t body_a[W];  // slots in the solver's body arrays
+  std::uint32_t body_b[W];
+  std::uint32_t a_moves[W];  // 1 when the body takes impulses (written back), else 0
+  std::uint32_t b_moves[W];
+  std::uint32_t contact[kManifoldPoints][W];  // the point's contact, for its kept impulses
+  std::uint32_t point_count;                  // the most points of any lane
+};
+
+// The bodies' velocities and their motion since the step's start, by slot: 3 floats a slot for
+// the vectors, 9 (column-major) for the rotation matrices.
+struct LaneBodies {
+  float* linear;
+  float* angular;
+  const float* moved;   // unit: m
+  const float* turned;  // the rotation since the step's start
+};
+
+struct LaneSettings {
+  float inverse_substep = 0.0f;        // unit: 1/s
+  float linear_slop = 0.0f;            // unit: m
+  float max_correction_speed = 0.0f;   // unit: m/s
+  float rolling_resistance = 0.0f;     // the arm; 0 is off. unit: m
+  float restitution_threshold = 0.0f;  // unit: m/s
+};
+
+// What a pass does to blocks of one width. `bias`: the solve pass (soft push out of penetration)
+// rather than the relax. restitute returns the number of points that bounced.
+template <int W>
+struct LaneKernels {
+  void (*warm_start)(std::span<ManifoldBlock<W>> blocks, const LaneBodies& bodies);
+  void (*solve)(std::span<ManifoldBlock<W>> blocks, const LaneBodies& bodies,
+                const LaneSettings& settings, bool bias);
+  std::uint32_t (*restitute)(std::span<ManifoldBlock<W>> blocks, const LaneBodies& bodies,
+                             const LaneSettings& settings);
+};
+
+// The build's lanes (SSE2 or AVX2 intrinsics; plain floats elsewhere).
+const LaneKernels<kLaneWidth>& native_lane_kernels();
+// Plain floats, kLaneWidth at a time: bit for bit what the native ones compute.
+const LaneKernels<kLaneWidth>& portable_lane_kernels();
+// One manifold at a time, plain floats: the manifolds no colour could take.
+const LaneKernels<1>& single_lane_kernels();
+
+}  // namespace sphys

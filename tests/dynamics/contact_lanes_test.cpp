@@ -1,0 +1,284 @@
+// The soft step's passes give the same bits whichever lanes run them: the build's SIMD lanes, plain
+// floats of the same width, and one manifold at a time. Blocks of random manifolds (penetrating
+// and apart, inside and outside their friction discs, bouncing and not) between bodies that no two
+// lanes of a block share, as the constraint graph's colours guarantee.
+
+#include "dynamics/contact_lanes.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <random>
+#include <span>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/simd.h"
+#include "dynamics/contact_lane_kernels.h"
+
+namespace sphys {
+namespace {
+
+constexpr int kW = kLaneWidth;
+constexpr int kBlocks = 64;
+// Two bodies per lane, each in one lane only, and one more slot for an immovable body.
+constexpr std::size_t kLaneBodies = 2 * kW * kBlocks + 1;
+
+struct BodyArrays {
+  std::vector<float> linear = std::vector<float>(3 * kLaneBodies);
+  std::vector<float> angular = std::vector<float>(3 * kLaneBodies);
+  std::vector<float> moved = std::vector<float>(3 * kLaneBodies);
+  std::vector<float> turned = std::vector<float>(9 * kLaneBodies);
+  LaneBodies view() { return {linear.data(), angular.data(), moved.data(), turned.data()}; }
+};
+
+struct Scenario {
+  std::vector<ManifoldBlock<kW>> blocks = std::vector<ManifoldBlock<kW>>(kBlocks);
+  BodyArrays bodies;
+};
+
+Scenario random_scenario(std::uint32_t seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::uniform_real_distribution<float> positive(0.1f, 2.0f);
+  Scenario s;
+  const auto immovable = static_cast<std::uint32_t>(kLaneBodies - 1);
+  for (std::size_t i = 0; i + 1 < kLaneBodies; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      s.bodies.linear[3 * i + k] = unit(random);
+      s.bodies.angular[3 * i + k] = unit(random);
+      s.bodies.moved[3 * i + k] = 0.01f * unit(random);
+    }
+    // A small rotation: the identity plus a little.
+    for (int k = 0; k < 9; ++k)
+      s.bodies.turned[9 * i + k] = (k % 4 == 0 ? 1.0f : 0.0f) + 0.01f * unit(random);
+  }
+  for (int k = 0; k < 9; ++k) s.bodies.turned[9 * immovable + k] = k % 4 == 0 ? 1.0f : 0.0f;
+  std::uint32_t next_body = 0;
+  for (ManifoldBlock<kW>& m : s.blocks) {
+    m = {};
+    m.point_count = kManifoldPoints;
+    for (int lane = 0; lane < kW; ++lane) {
+      // Every fourth lane against an immovable body, as the ground.
+      const bool a_moves = lane % 4 != 3;
+      m.body_a[lane] = a_moves ? next_body : immovable;
+      m.body_b[lane] = next_body + 1;
+      next_body += 2;
+      m.a_moves[lane] = a_moves ? 1u : 0u;
+      m.b_moves[lane] = 1u;
+      m.inverse_mass_a[lane] = a_moves ? positive(random) : 0.0f;
+      m.inverse_mass_b[lane] = positive(random);
+      for (int k = 0; k < 9; ++k) {
+        const float diagonal = k % 4 == 0 ? 1.0f : 0.0f;
+        m.inverse_inertia_a[k][lane] = a_moves ? diagonal * positive(random) : 0.0f;
+        m.inverse_inertia_b[k][lane] = diagonal * positive(random);
+        m.rolling_mass[k][lane] = diagonal * positive(random);
+      }
+      for (auto& r : m.rolling_impulse) r[lane] = 0.1f * unit(random);
+      m.friction[lane] = 0.5f * positive(random);
+      m.restitution[lane] = lane % 2 == 0 ? 0.5f : 0.0f;
+      m.bias_rate[lane] = 10.0f * positive(random);
+      // Lanes with fewer points than the block's most: the rest stay zero.
+      const int points = 1 + lane % kManifoldPoints;
+      for (int i = 0; i < points; ++i) {
+        auto& p = m.points[i];
+        for (int k = 0; k < 3; ++k) {
+          p.normal[k][lane] = unit(random);
+          p.tangent1[k][lane] = unit(random);
+          p.tangent2[k][lane] = unit(random);
+          p.ra[k][lane] = 0.5f * unit(random);
+          p.rb[k][lane] = 0.5f * unit(random);
+          p.impulse[k][lane] = 0.2f * positive(random);
+          for (int r = 0; r < 3; ++r) {
+            p.ra_cross[r][k][lane] = unit(random);
+            p.rb_cross[r][k][lane] = unit(random);
+            p.turn_a[r][k][lane] = a_moves ? unit(random) : 0.0f;
+            p.turn_b[r][k][lane] = unit(random);
+          }
+        }
+        for (auto& mass : p.mass) mass[lane] = positive(random);
+        p.mass_scale[lane] = 0.5f * positive(random);
+        p.impulse_scale[lane] = 0.1f * positive(random);
+        // Apart by up to 5 cm or into each other by up to 5 cm.
+        p.base_separation[lane] = 0.05f * unit(random);
+        p.approach[lane] = 3.0f * unit(random);
+      }
+    }
+  }
+  return s;
+}
+
+// A substep of 1/240 s, and the default solver's slop, correction speed, rolling arm and
+// restitution threshold.
+constexpr LaneSettings kSettings{.inverse_substep = 240.0f,
+                                 .linear_slop = 0.0004f,
+                                 .max_correction_speed = 3.0f,
+                                 .rolling_resistance = 0.01f,
+                                 .restitution_threshold = 1.0f};
+
+// The passes of one step: warm start, solve, relax, restitution; returns the bounces.
+template <class F>
+std::uint32_t run_passes(std::span<ManifoldBlock<F::kWidth>> blocks, BodyArrays& bodies) {
+  const LaneBodies view = bodies.view();
+  lanes::warm_start<F>(blocks, view);
+  lanes::solve<F>(blocks, view, kSettings, true);
+  lanes::solve<F>(blocks, view, kSettings, false);
+  return lanes::restitute<F>(blocks, view, kSettings);
+}
+
+// One lane of a block as a block of its own.
+ManifoldBlock<1> lane_of(const ManifoldBlock<kW>& m, int lane) {
+  ManifoldBlock<1> one{};
+  const auto copy = [&](const auto& from, auto& to) {
+    using From = std::remove_cvref_t<decltype(from)>;
+    constexpr std::size_t kRows = sizeof(From) / sizeof(from[0]);
+    for (std::size_t r = 0; r < kRows; ++r) to[r][0] = from[r][lane];
+  };
+  for (int i = 0; i < kManifoldPoints; ++i) {
+    const auto& p = m.points[i];
+    auto& q = one.points[i];
+    copy(p.normal, q.normal);
+    copy(p.tangent1, q.tangent1);
+    copy(p.tangent2, q.tangent2);
+    copy(p.ra, q.ra);
+    copy(p.rb, q.rb);
+    for (int r = 0; r < 3; ++r) {
+      copy(p.ra_cross[r], q.ra_cross[r]);
+      copy(p.rb_cross[r], q.rb_cross[r]);
+      copy(p.turn_a[r], q.turn_a[r]);
+      copy(p.turn_b[r], q.turn_b[r]);
+    }
+    copy(p.mass, q.mass);
+    copy(p.impulse, q.impulse);
+    q.mass_scale[0] = p.mass_scale[lane];
+    q.impulse_scale[0] = p.impulse_scale[lane];
+    q.base_separation[0] = p.base_separation[lane];
+    q.approach[0] = p.approach[lane];
+    q.max_normal_impulse[0] = p.max_normal_impulse[lane];
+  }
+  copy(m.inverse_inertia_a, one.inverse_inertia_a);
+  copy(m.inverse_inertia_b, one.inverse_inertia_b);
+  copy(m.rolling_mass, one.rolling_mass);
+  copy(m.rolling_impulse, one.rolling_impulse);
+  one.inverse_mass_a[0] = m.inverse_mass_a[lane];
+  one.inverse_mass_b[0] = m.inverse_mass_b[lane];
+  one.friction[0] = m.friction[lane];
+  one.restitution[0] = m.restitution[lane];
+  one.bias_rate[0] = m.bias_rate[lane];
+  one.body_a[0] = m.body_a[lane];
+  one.body_b[0] = m.body_b[lane];
+  one.a_moves[0] = m.a_moves[lane];
+  one.b_moves[0] = m.b_moves[lane];
+  one.point_count = m.point_count;
+  return one;
+}
+
+std::vector<std::uint32_t> bits(std::span<const float> values) {
+  std::vector<std::uint32_t> out;
+  out.reserve(values.size());
+  for (const float v : values) out.push_back(std::bit_cast<std::uint32_t>(v));
+  return out;
+}
+
+void expect_same_bodies(const BodyArrays& x, const BodyArrays& y) {
+  EXPECT_EQ(bits(x.linear), bits(y.linear));
+  EXPECT_EQ(bits(x.angular), bits(y.angular));
+}
+
+TEST(ContactLanes, SimdLanesPlainFloatsAndSingleLanesGiveTheSameBits) {
+  for (const std::uint32_t seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE(seed);
+    const Scenario start = random_scenario(seed);
+
+    Scenario portable = start;
+    const std::uint32_t portable_bounces =
+        run_passes<PortableLanes<kW>>(portable.blocks, portable.bodies);
+
+    // The build's lanes, through the table the solver uses.
+    Scenario native = start;
+    const LaneKernels<kW>& kernels = native_lane_kernels();
+    const LaneBodies view = native.bodies.view();
+    kernels.warm_start(native.blocks, view);
+    kernels.solve(native.blocks, view, kSettings, true);
+    kernels.solve(native.blocks, view, kSettings, false);
+    const std::uint32_t native_bounces = kernels.restitute(native.blocks, view, kSettings);
+    expect_same_bodies(native.bodies, portable.bodies);
+    EXPECT_EQ(native_bounces, portable_bounces);
+
+    // Each pass over every lane one at a time, block by block in the same order.
+    Scenario single = start;
+    std::vector<ManifoldBlock<1>> lanes;
+    for (const ManifoldBlock<kW>& m : single.blocks) {
+      for (int lane = 0; lane < kW; ++lane) lanes.push_back(lane_of(m, lane));
+    }
+    const std::uint32_t single_bounces = run_passes<PortableLanes<1>>(lanes, single.bodies);
+    expect_same_bodies(single.bodies, portable.bodies);
+    EXPECT_EQ(single_bounces, portable_bounces);
+
+    // Impulses too, lane for lane.
+    for (std::size_t b = 0; b < portable.blocks.size(); ++b) {
+      for (int lane = 0; lane < kW; ++lane) {
+        const ManifoldBlock<1>& one = lanes[b * kW + lane];
+        for (int i = 0; i < kManifoldPoints; ++i) {
+          for (int r = 0; r < 3; ++r) {
+            const float expected = portable.blocks[b].points[i].impulse[r][lane];
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(native.blocks[b].points[i].impulse[r][lane]),
+                      std::bit_cast<std::uint32_t>(expected));
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(one.points[i].impulse[r][0]),
+                      std::bit_cast<std::uint32_t>(expected));
+          }
+        }
+      }
+    }
+    // The scenario did exercise what it should: some points bounced, and the passes moved the
+    // bodies.
+    EXPECT_GT(portable_bounces, 0u);
+    EXPECT_NE(bits(portable.bodies.linear), bits(start.bodies.linear));
+  }
+}
+
+// The pieces of arithmetic that could round apart: min and max of equal and signed zeros, the
+// select of a comparison with NaN, square roots and quotients.
+TEST(ContactLanes, EachLaneOperationRoundsAsThePlainFloat) {
+  alignas(32) float a[kW];
+  alignas(32) float b[kW];
+  const float cases[][2] = {{0.0f, -0.0f},   {-0.0f, 0.0f}, {1.0f, 3.0f}, {2.5f, -7.0f},
+                            {1e-30f, 3e-8f}, {7.0f, 7.0f},  {0.1f, 0.3f}, {-1e30f, 1e-30f}};
+  for (std::size_t start = 0; start < std::size(cases); start += kW) {
+    for (int lane = 0; lane < kW; ++lane) {
+      a[lane] = cases[(start + lane) % std::size(cases)][0];
+      b[lane] = cases[(start + lane) % std::size(cases)][1];
+    }
+    const auto same = [&](auto native, auto portable) {
+      alignas(32) float x[kW];
+      alignas(32) float y[kW];
+      native.store(x);
+      portable.store(y);
+      for (int lane = 0; lane < kW; ++lane) {
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(x[lane]), std::bit_cast<std::uint32_t>(y[lane]))
+            << "lane " << lane;
+      }
+    };
+#if defined(__SSE2__)
+    using Native = std::conditional_t<kW == 4, Sse2Lanes, PortableLanes<kW>>;
+#else
+    using Native = PortableLanes<kW>;
+#endif
+    using Plain = PortableLanes<kW>;
+    const Native na = Native::load(a);
+    const Native nb = Native::load(b);
+    const Plain pa = Plain::load(a);
+    const Plain pb = Plain::load(b);
+    same(min(na, nb), min(pa, pb));
+    same(max(na, nb), max(pa, pb));
+    same(na / nb, pa / pb);
+    same(sqrt(max(na, nb)), sqrt(max(pa, pb)));
+    same(select(na < nb, na, nb), select(pa < pb, pa, pb));
+    same(select((na > nb) & (nb > Native::splat(0.0f)), na - nb, na * nb),
+         select((pa > pb) & (pb > Plain::splat(0.0f)), pa - pb, pa * pb));
+  }
+}
+
+}  // namespace
+}  // namespace sphys
