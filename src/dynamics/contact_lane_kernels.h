@@ -33,6 +33,10 @@ template <class F>
 F dot(const V3<F>& a, const V3<F>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+template <class F>
+V3<F> cross(const V3<F>& a, const V3<F>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 
 template <class F>
 V3<F> load3(const float (&p)[3][F::kWidth]) {
@@ -121,47 +125,75 @@ struct LaneMotion {
   }
 };
 
-// An impulse along each row's direction at a point: body a takes minus, body b plus.
-template <class F, int W>
-void push(const typename ManifoldBlock<W>::Point& p, std::size_t row, const V3<F>& direction,
-          const F& impulse, const F& inverse_mass_a, const F& inverse_mass_b, LaneBody<F>& a,
-          LaneBody<F>& b) {
-  a.linear = a.linear - (inverse_mass_a * impulse) * direction;
-  b.linear = b.linear + (inverse_mass_b * impulse) * direction;
-  a.angular = a.angular - impulse * load3<F>(p.turn_a[row]);
-  b.angular = b.angular + impulse * load3<F>(p.turn_b[row]);
-}
+// A lane's two bodies as a contact sees them: velocities, inverse masses and world inverse
+// inertias (3 × 3, column-major, loaded once per block).
+template <class F>
+struct LanePair {
+  static constexpr int W = F::kWidth;
+  LaneBody<F> a;
+  LaneBody<F> b;
+  F inverse_mass_a;
+  F inverse_mass_b;
+  F inverse_inertia_a[9];
+  F inverse_inertia_b[9];
 
-// The relative speed of the bodies at a point along a row's direction. unit: m/s
-template <class F, int W>
-F row_speed(const typename ManifoldBlock<W>::Point& p, std::size_t row, const V3<F>& direction,
-            const LaneBody<F>& a, const LaneBody<F>& b) {
-  return dot(direction, b.linear - a.linear) + dot(load3<F>(p.rb_cross[row]), b.angular) -
-         dot(load3<F>(p.ra_cross[row]), a.angular);
-}
+  LanePair(const ManifoldBlock<W>& m, const LaneBodies& bodies)
+      : a(LaneBody<F>::gather(bodies, m.body_a)),
+        b(LaneBody<F>::gather(bodies, m.body_b)),
+        inverse_mass_a(F::load(m.inverse_mass_a)),
+        inverse_mass_b(F::load(m.inverse_mass_b)) {
+    for (int k = 0; k < 9; ++k) {
+      inverse_inertia_a[k] = F::load(m.inverse_inertia_a[k]);
+      inverse_inertia_b[k] = F::load(m.inverse_inertia_b[k]);
+    }
+  }
+  void scatter(const ManifoldBlock<W>& m, const LaneBodies& bodies) const {
+    a.scatter(bodies, m.body_a, m.a_moves);
+    b.scatter(bodies, m.body_b, m.b_moves);
+  }
+  // The velocity of b's point at rb relative to a's point at ra. unit: m/s
+  [[nodiscard]] V3<F> relative_velocity(const V3<F>& ra, const V3<F>& rb) const {
+    return b.linear + cross(b.angular, rb) - a.linear - cross(a.angular, ra);
+  }
+  // An impulse at the point (ra from a's centre, rb from b's): a takes minus, b plus.
+  void push(const V3<F>& ra, const V3<F>& rb, const V3<F>& impulse) {
+    a.linear = a.linear - inverse_mass_a * impulse;
+    b.linear = b.linear + inverse_mass_b * impulse;
+    a.angular = a.angular - times<F>(inverse_inertia_a, cross(ra, impulse));
+    b.angular = b.angular + times<F>(inverse_inertia_b, cross(rb, impulse));
+  }
+  // An angular impulse on b, its opposite on a.
+  void turn(const V3<F>& impulse) {
+    a.angular = a.angular - times<F>(inverse_inertia_a, impulse);
+    b.angular = b.angular + times<F>(inverse_inertia_b, impulse);
+  }
+};
 
 template <class F>
 void warm_start(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies) {
   constexpr int W = F::kWidth;
   for (ManifoldBlock<W>& m : blocks) {
-    LaneBody<F> a = LaneBody<F>::gather(bodies, m.body_a);
-    LaneBody<F> b = LaneBody<F>::gather(bodies, m.body_b);
-    const F inverse_mass_a = F::load(m.inverse_mass_a);
-    const F inverse_mass_b = F::load(m.inverse_mass_b);
+    LanePair<F> pair(m, bodies);
+    // The points' impulses summed: linear, and their moments about each centre.
+    V3<F> linear{F::splat(0.0f), F::splat(0.0f), F::splat(0.0f)};
+    V3<F> moment_a = linear;
+    V3<F> moment_b = linear;
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
       const auto& p = m.points[i];
-      push<F, W>(p, 0, load3<F>(p.normal), F::load(p.impulse[0]), inverse_mass_a, inverse_mass_b, a,
-                 b);
-      push<F, W>(p, 1, load3<F>(p.tangent1), F::load(p.impulse[1]), inverse_mass_a, inverse_mass_b,
-                 a, b);
-      push<F, W>(p, 2, load3<F>(p.tangent2), F::load(p.impulse[2]), inverse_mass_a, inverse_mass_b,
-                 a, b);
+      const V3<F> normal = load3<F>(p.normal);
+      const V3<F> tangent1 = load3<F>(p.tangent1);
+      const V3<F> impulse = F::load(p.impulse[0]) * normal + F::load(p.impulse[1]) * tangent1 +
+                            F::load(p.impulse[2]) * cross(normal, tangent1);
+      linear = linear + impulse;
+      moment_a = moment_a + cross(load3<F>(p.ra), impulse);
+      moment_b = moment_b + cross(load3<F>(p.rb), impulse);
     }
+    pair.a.linear = pair.a.linear - pair.inverse_mass_a * linear;
+    pair.b.linear = pair.b.linear + pair.inverse_mass_b * linear;
     const V3<F> rolling = load3<F>(m.rolling_impulse);
-    a.angular = a.angular - times<F>(m.inverse_inertia_a, rolling);
-    b.angular = b.angular + times<F>(m.inverse_inertia_b, rolling);
-    a.scatter(bodies, m.body_a, m.a_moves);
-    b.scatter(bodies, m.body_b, m.b_moves);
+    pair.a.angular = pair.a.angular - times<F>(pair.inverse_inertia_a, moment_a + rolling);
+    pair.b.angular = pair.b.angular + times<F>(pair.inverse_inertia_b, moment_b + rolling);
+    pair.scatter(m, bodies);
   }
 }
 
@@ -178,22 +210,20 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
   const F slop = F::splat(settings.linear_slop);
   const F most_correction = F::splat(-settings.max_correction_speed);
   for (ManifoldBlock<W>& m : blocks) {
-    LaneBody<F> a = LaneBody<F>::gather(bodies, m.body_a);
-    LaneBody<F> b = LaneBody<F>::gather(bodies, m.body_b);
+    LanePair<F> pair(m, bodies);
     const LaneMotion<F> motion_a = LaneMotion<F>::gather(bodies, m.body_a);
     const LaneMotion<F> motion_b = LaneMotion<F>::gather(bodies, m.body_b);
-    const F inverse_mass_a = F::load(m.inverse_mass_a);
-    const F inverse_mass_b = F::load(m.inverse_mass_b);
     const F friction = F::load(m.friction);
     const F bias_rate = F::load(m.bias_rate);
     F pushed = zero;  // the manifold's normal impulses summed, for its rolling resistance
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
       auto& p = m.points[i];
       const V3<F> normal = load3<F>(p.normal);
+      const V3<F> ra = load3<F>(p.ra);
+      const V3<F> rb = load3<F>(p.rb);
       // The separation now, from the bodies' motion since the step's start (anchors carried).
-      const V3<F> moved = motion_b.moved - motion_a.moved +
-                          times<F>(motion_b.turned, load3<F>(p.rb)) -
-                          times<F>(motion_a.turned, load3<F>(p.ra));
+      const V3<F> moved = motion_b.moved - motion_a.moved + times<F>(motion_b.turned, rb) -
+                          times<F>(motion_a.turned, ra);
       const F separation = F::load(p.base_separation) + dot(normal, moved);
       const auto apart = separation > zero;
       F bias = select(apart, separation * inverse_substep, zero);
@@ -207,7 +237,7 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
         mass_scale = select(apart, one, soft_mass);
         impulse_scale = select(apart, zero, F::load(p.impulse_scale));
       }
-      const F speed = row_speed<F, W>(p, 0, normal, a, b);
+      const F speed = dot(normal, pair.relative_velocity(ra, rb));
       // The fastest approach met in the solve passes: a body falling onto a contact within the
       // step meets it at the speed gravity gave it by then, not the step's start speed.
       if (use_bias) min(F::load(p.approach), speed).store(p.approach);
@@ -217,16 +247,17 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
                                    zero);
       normal_impulse.store(p.impulse[0]);
       max(F::load(p.max_normal_impulse), normal_impulse).store(p.max_normal_impulse);
-      push<F, W>(p, 0, normal, normal_impulse - old_normal, inverse_mass_a, inverse_mass_b, a, b);
+      pair.push(ra, rb, (normal_impulse - old_normal) * normal);
       pushed = pushed + normal_impulse;
 
       // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
       const V3<F> tangent1 = load3<F>(p.tangent1);
-      const V3<F> tangent2 = load3<F>(p.tangent2);
+      const V3<F> tangent2 = cross(normal, tangent1);
+      const V3<F> slip = pair.relative_velocity(ra, rb);
       const F old1 = F::load(p.impulse[1]);
       const F old2 = F::load(p.impulse[2]);
-      F t1 = old1 - F::load(p.mass[1]) * row_speed<F, W>(p, 1, tangent1, a, b);
-      F t2 = old2 - F::load(p.mass[2]) * row_speed<F, W>(p, 2, tangent2, a, b);
+      F t1 = old1 - F::load(p.mass[1]) * dot(tangent1, slip);
+      F t2 = old2 - F::load(p.mass[2]) * dot(tangent2, slip);
       const F limit = friction * normal_impulse;
       const F length_squared = t1 * t1 + t2 * t2;
       const auto outside = length_squared > limit * limit;
@@ -235,26 +266,22 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       t2 = select(outside, t2 * scale, t2);
       t1.store(p.impulse[1]);
       t2.store(p.impulse[2]);
-      push<F, W>(p, 1, tangent1, t1 - old1, inverse_mass_a, inverse_mass_b, a, b);
-      push<F, W>(p, 2, tangent2, t2 - old2, inverse_mass_a, inverse_mass_b, a, b);
+      pair.push(ra, rb, (t1 - old1) * tangent1 + (t2 - old2) * tangent2);
     }
     if (settings.rolling_resistance > 0.0f) {
       // Rolling resistance: an angular impulse against the pair's relative turning (rolling and
       // spinning), at most the arm times the manifold's normal impulse.
       const V3<F> old = load3<F>(m.rolling_impulse);
-      V3<F> rolling = old - times<F>(m.rolling_mass, b.angular - a.angular);
+      V3<F> rolling = old - times<F>(m.rolling_mass, pair.b.angular - pair.a.angular);
       const F limit = F::splat(settings.rolling_resistance) * max(pushed, zero);
       const F length_squared = dot(rolling, rolling);
       const auto outside = length_squared > limit * limit;
       const F scale = select(outside, limit / sqrt(length_squared), one);
       rolling = scale * rolling;
       store3(rolling, m.rolling_impulse);
-      const V3<F> change = rolling - old;
-      a.angular = a.angular - times<F>(m.inverse_inertia_a, change);
-      b.angular = b.angular + times<F>(m.inverse_inertia_b, change);
+      pair.turn(rolling - old);
     }
-    a.scatter(bodies, m.body_a, m.a_moves);
-    b.scatter(bodies, m.body_b, m.b_moves);
+    pair.scatter(m, bodies);
   }
 }
 
@@ -269,10 +296,7 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
   const F threshold = F::splat(-settings.restitution_threshold);
   F bounces = zero;
   for (ManifoldBlock<W>& m : blocks) {
-    LaneBody<F> a = LaneBody<F>::gather(bodies, m.body_a);
-    LaneBody<F> b = LaneBody<F>::gather(bodies, m.body_b);
-    const F inverse_mass_a = F::load(m.inverse_mass_a);
-    const F inverse_mass_b = F::load(m.inverse_mass_b);
+    LanePair<F> pair(m, bodies);
     const F restitution = F::load(m.restitution);
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
       auto& p = m.points[i];
@@ -280,17 +304,18 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
       const auto bounce =
           (restitution > zero) & (F::load(p.max_normal_impulse) > zero) & (approach < threshold);
       const V3<F> normal = load3<F>(p.normal);
+      const V3<F> ra = load3<F>(p.ra);
+      const V3<F> rb = load3<F>(p.rb);
       const F old = F::load(p.impulse[0]);
       const F target = zero - restitution * approach;
-      const F total =
-          max(old - F::load(p.mass[0]) * (row_speed<F, W>(p, 0, normal, a, b) - target), zero);
+      const F speed = dot(normal, pair.relative_velocity(ra, rb));
+      const F total = max(old - F::load(p.mass[0]) * (speed - target), zero);
       const F impulse = select(bounce, total, old);
       impulse.store(p.impulse[0]);
-      push<F, W>(p, 0, normal, impulse - old, inverse_mass_a, inverse_mass_b, a, b);
+      pair.push(ra, rb, (impulse - old) * normal);
       bounces = bounces + select(bounce, one, zero);
     }
-    a.scatter(bodies, m.body_a, m.a_moves);
-    b.scatter(bodies, m.body_b, m.b_moves);
+    pair.scatter(m, bodies);
   }
   alignas(32) float counted[W];
   bounces.store(counted);

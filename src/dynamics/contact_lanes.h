@@ -30,19 +30,15 @@ inline constexpr int kLaneWidth = 4;
 // manifold's last, is all zeros (and names the ground's slot): solving it changes nothing.
 template <int W>
 struct alignas(32) ManifoldBlock {
+  // What a point keeps is little, so that a pass streams little memory: the Jacobians' angular
+  // parts (r × d) and the inverse inertias times them are made afresh in each pass from the
+  // anchors and the lane's inverse inertias.
   struct Point {
-    float normal[3][W];  // from body a to body b
-    float tangent1[3][W];
-    float tangent2[3][W];
-    float ra[3][W];  // contact point from each centre of mass at the step's start. unit: m
+    float normal[3][W];    // from body a to body b
+    float tangent1[3][W];  // tangent2 is normal × tangent1 (tangent_basis.h)
+    float ra[3][W];        // contact point from each centre of mass at the step's start. unit: m
     float rb[3][W];
-    // Per direction (normal, tangent1, tangent2) and axis: the angular part of the Jacobian
-    // (r × d) and each body's inverse world inertia times it.
-    float ra_cross[3][3][W];
-    float rb_cross[3][3][W];
-    float turn_a[3][3][W];
-    float turn_b[3][3][W];
-    float mass[3][W];  // 1 / inverse effective mass along each direction. unit: kg
+    float mass[3][W];  // 1 / inverse effective mass along normal, tangent1, tangent2. unit: kg
     // The soft spring's share of the rigid impulse and of the accumulated one (a penetrating
     // contact's solve passes).
     float mass_scale[W];

@@ -65,23 +65,20 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
     const float inverse_mass = inverse_mass_[c.a] + inverse_mass_[c.b];
     const std::array<Vec3, 3> directions = {c.normal, c.tangent1, c.tangent2};
     for (std::size_t r = 0; r < 3; ++r) {
-      Constraint::Row& row = c.rows[r];
-      row.ra_cross = c.ra.cross(directions[r]);
-      row.rb_cross = c.rb.cross(directions[r]);
-      row.turn_a = inverse_inertia_[c.a] * row.ra_cross;
-      row.turn_b = inverse_inertia_[c.b] * row.rb_cross;
-      row.mass =
-          1.0f / (inverse_mass + row.ra_cross.dot(row.turn_a) + row.rb_cross.dot(row.turn_b));
+      const Vec3 ra_cross = c.ra.cross(directions[r]);
+      const Vec3 rb_cross = c.rb.cross(directions[r]);
+      c.mass[r] = 1.0f / (inverse_mass + ra_cross.dot(inverse_inertia_[c.a] * ra_cross) +
+                          rb_cross.dot(inverse_inertia_[c.b] * rb_cross));
     }
     const bool against_immovable = !c.a_moves || !c.b_moves;
     const float spring = against_immovable ? spring_immovable_ : spring_moving_;
     const float ratio =
-        c.rows[0].mass / std::max(mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]));
+        c.mass[0] / std::max(mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]));
     const float share = ratio / spring;
     c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
     c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
-    c.approach = c.normal.dot(linear_[c.b] - linear_[c.a]) + c.rows[0].rb_cross.dot(angular_[c.b]) -
-                 c.rows[0].ra_cross.dot(angular_[c.a]);
+    c.approach = c.normal.dot(linear_[c.b] + angular_[c.b].cross(c.rb) - linear_[c.a] -
+                              angular_[c.a].cross(c.ra));
     c.contact = static_cast<std::uint32_t>(k);
     const ContactMemory& kept = memory[k];
     if (settings.warm_starting && kept.solved_impulse >= 0.0f) {
@@ -133,16 +130,9 @@ void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& mat
     auto& p = block.points[i];
     put(c.normal, lane, p.normal);
     put(c.tangent1, lane, p.tangent1);
-    put(c.tangent2, lane, p.tangent2);
     put(c.ra, lane, p.ra);
     put(c.rb, lane, p.rb);
-    for (std::size_t r = 0; r < 3; ++r) {
-      put(c.rows[r].ra_cross, lane, p.ra_cross[r]);
-      put(c.rows[r].rb_cross, lane, p.rb_cross[r]);
-      put(c.rows[r].turn_a, lane, p.turn_a[r]);
-      put(c.rows[r].turn_b, lane, p.turn_b[r]);
-      p.mass[r][lane] = c.rows[r].mass;
-    }
+    for (std::size_t r = 0; r < 3; ++r) p.mass[r][lane] = c.mass[r];
     p.mass_scale[lane] = c.soft.mass_scale;
     p.impulse_scale[lane] = c.soft.impulse_scale;
     p.base_separation[lane] = c.base_separation;
@@ -281,8 +271,9 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
       ContactMemory& kept = memory[block.contact[i][lane]];
       kept.normal_impulse = p.impulse[0][lane];
       kept.solved_impulse = p.impulse[0][lane];
+      const Vec3 normal(p.normal[0][lane], p.normal[1][lane], p.normal[2][lane]);
       const Vec3 tangent1(p.tangent1[0][lane], p.tangent1[1][lane], p.tangent1[2][lane]);
-      const Vec3 tangent2(p.tangent2[0][lane], p.tangent2[1][lane], p.tangent2[2][lane]);
+      const Vec3 tangent2 = normal.cross(tangent1);
       kept.friction_impulse = p.impulse[1][lane] * tangent1 + p.impulse[2][lane] * tangent2;
     }
   };

@@ -59,17 +59,9 @@ class SoftStepSolver {
     Vec3 rb = Vec3::Zero();
     Vec3 normal = Vec3::UnitY();  // from a to b
     Vec3 tangent1 = Vec3::UnitX();
-    Vec3 tangent2 = Vec3::UnitZ();
-    // Per direction (normal, tangent1, tangent2): the angular parts of its Jacobian (r × d) and
-    // each body's inverse world inertia times them.
-    struct Row {
-      Vec3 ra_cross = Vec3::Zero();
-      Vec3 rb_cross = Vec3::Zero();
-      Vec3 turn_a = Vec3::Zero();
-      Vec3 turn_b = Vec3::Zero();
-      float mass = 0.0f;  // 1 / (inverse effective mass along the direction). unit: kg
-    };
-    std::array<Row, 3> rows{};
+    Vec3 tangent2 = Vec3::UnitZ();  // normal × tangent1
+    // 1 / (inverse effective mass) along the normal and the tangents. unit: kg
+    std::array<float, 3> mass{};
     // Separation at the step's start less the anchors' offset along the normal, so that adding
     // the anchors' current offset gives the current separation. unit: m
     float base_separation = 0.0f;

@@ -86,16 +86,9 @@ Scenario random_scenario(std::uint32_t seed) {
         for (int k = 0; k < 3; ++k) {
           p.normal[k][lane] = unit(random);
           p.tangent1[k][lane] = unit(random);
-          p.tangent2[k][lane] = unit(random);
           p.ra[k][lane] = 0.5f * unit(random);
           p.rb[k][lane] = 0.5f * unit(random);
           p.impulse[k][lane] = 0.2f * positive(random);
-          for (int r = 0; r < 3; ++r) {
-            p.ra_cross[r][k][lane] = unit(random);
-            p.rb_cross[r][k][lane] = unit(random);
-            p.turn_a[r][k][lane] = a_moves ? unit(random) : 0.0f;
-            p.turn_b[r][k][lane] = unit(random);
-          }
         }
         for (auto& mass : p.mass) mass[lane] = positive(random);
         p.mass_scale[lane] = 0.5f * positive(random);
@@ -140,15 +133,8 @@ ManifoldBlock<1> lane_of(const ManifoldBlock<kW>& m, int lane) {
     auto& q = one.points[i];
     copy(p.normal, q.normal);
     copy(p.tangent1, q.tangent1);
-    copy(p.tangent2, q.tangent2);
     copy(p.ra, q.ra);
     copy(p.rb, q.rb);
-    for (int r = 0; r < 3; ++r) {
-      copy(p.ra_cross[r], q.ra_cross[r]);
-      copy(p.rb_cross[r], q.rb_cross[r]);
-      copy(p.turn_a[r], q.turn_a[r]);
-      copy(p.turn_b[r], q.turn_b[r]);
-    }
     copy(p.mass, q.mass);
     copy(p.impulse, q.impulse);
     q.mass_scale[0] = p.mass_scale[lane];
