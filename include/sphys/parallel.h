@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 
 namespace sphys {
 
@@ -34,7 +35,31 @@ class Parallel {
         count, [](const void* f, std::size_t i) { (*static_cast<const Fn*>(f))(i); }, &fn);
   }
 
+  // Runs stages one after another: stage s calls fn(s, i) for every i in [0, counts[s]), in any
+  // order and concurrently when there are threads, and starts once stage s - 1 has finished. For
+  // many short stages (a solver's colours, pass after pass): the threads stay for the whole run
+  // and wait for each other between stages, instead of being handed each stage's items anew. fn
+  // must not touch what another item of its stage writes; it sees what earlier stages wrote.
+  template <class Fn>
+  void for_each_in_stages(std::span<const std::uint32_t> counts, const Fn& fn) const {
+    if (!arena_) {
+      for (std::size_t stage = 0; stage < counts.size(); ++stage) {
+        for (std::uint32_t i = 0; i < counts[stage]; ++i) fn(stage, i);
+      }
+      return;
+    }
+    run_stages(
+        counts,
+        [](const void* f, std::size_t stage, std::uint32_t i) {
+          (*static_cast<const Fn*>(f))(stage, i);
+        },
+        &fn);
+  }
+
  private:
+  void run_stages(std::span<const std::uint32_t> counts,
+                  void (*item)(const void*, std::size_t, std::uint32_t), const void* fn) const;
+
   // The threaded loop, behind a plain function pointer so that oneTBB's headers stay out of this
   // one.
   void run(std::size_t count, void (*item)(const void*, std::size_t), const void* fn) const;

@@ -1,9 +1,13 @@
 #include "sphys/parallel.h"
 
+#include <atomic>
+#include <thread>
+
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 namespace sphys {
 
@@ -27,6 +31,94 @@ void Parallel::run(std::size_t count, void (*item)(const void*, std::size_t),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) item(fn, i);
                       });
+  });
+}
+
+namespace {
+
+// Spins this many times before yielding the processor: with more threads than cores a waiting
+// thread must let the one it waits for run.
+constexpr int kSpinsBeforeYield = 64;
+
+void wait_a_little(int& spins) {
+  if (++spins < kSpinsBeforeYield) return;
+  spins = 0;
+  std::this_thread::yield();
+}
+
+// The shared state of a staged run. A thread claims item i of stage s by raising `claim` from
+// (s, i) to (s, i + 1), so a thread still in an earlier stage can never take a later stage's
+// item; `done` counts the current stage's finished items.
+struct Stages {
+  std::span<const std::uint32_t> counts;
+  void (*item)(const void*, std::size_t, std::uint32_t);
+  const void* fn;
+  // Each on a cache line of its own, so that claiming, finishing and watching do not slow each
+  // other. unit: bytes
+  alignas(64) std::atomic<std::uint64_t> claim{0};
+  alignas(64) std::atomic<std::uint32_t> done{0};
+  alignas(64) std::atomic<std::uint64_t> published{
+      0};  // the current stage + 1; kFinished at the end
+
+  static constexpr std::uint64_t kFinished = ~std::uint64_t{0};
+
+  // Claims and runs the stage's items until none is left.
+  void work(std::size_t stage) {
+    const std::uint32_t count = counts[stage];
+    std::uint64_t claimed = claim.load();
+    while ((claimed >> 32) == stage && (claimed & 0xffffffffu) < count) {
+      if (!claim.compare_exchange_weak(claimed, claimed + 1)) continue;
+      item(fn, stage, static_cast<std::uint32_t>(claimed & 0xffffffffu));
+      done.fetch_add(1);
+      claimed = claim.load();
+    }
+  }
+
+  // Another thread: the items of each stage as it is published, until the run is finished.
+  void help() {
+    std::uint64_t seen = 0;
+    int spins = 0;
+    for (;;) {
+      const std::uint64_t stage = published.load();
+      if (stage == kFinished) return;
+      if (stage == seen) {
+        wait_a_little(spins);
+        continue;
+      }
+      seen = stage;
+      work(stage - 1);
+    }
+  }
+
+  // The calling thread: publishes each stage, works on it and waits until every item is done.
+  void drive() {
+    for (std::size_t stage = 0; stage < counts.size(); ++stage) {
+      if (counts[stage] == 0) continue;
+      done.store(0);
+      claim.store(std::uint64_t{stage} << 32);
+      published.store(stage + 1);
+      work(stage);
+      int spins = 0;
+      while (done.load() < counts[stage]) wait_a_little(spins);
+    }
+    published.store(kFinished);
+  }
+};
+
+}  // namespace
+
+// The helpers are tasks of the arena: one that never starts before the end is run by the calling
+// thread's wait, finds the run finished and returns, so nothing waits on a thread that is not
+// there.
+void Parallel::run_stages(std::span<const std::uint32_t> counts,
+                          void (*item)(const void*, std::size_t, std::uint32_t),
+                          const void* fn) const {
+  Stages stages{.counts = counts, .item = item, .fn = fn};
+  arena_->arena.execute([&] {
+    tbb::task_group helpers;
+    for (std::uint32_t t = 1; t < threads_; ++t) helpers.run([&] { stages.help(); });
+    stages.drive();
+    helpers.wait();
   });
 }
 

@@ -206,58 +206,86 @@ LaneBodies SoftStepSolver::lane_bodies() {
           turned_.data()->data()};
 }
 
-void SoftStepSolver::run_pass(Pass pass, const LaneSettings& settings, const Parallel& parallel) {
-  const LaneBodies bodies = lane_bodies();
+// Awake bodies in runs of this many per item of an integration stage. unit: bodies
+constexpr std::uint32_t kBodiesPerItem = 64;
+
+void SoftStepSolver::add_stage(Work work, std::uint32_t colour, std::uint32_t items) {
+  if (items == 0) return;
+  stages_.push_back({work, colour});
+  stage_items_.push_back(items);
+}
+
+void SoftStepSolver::add_pass(Work work) {
   for (std::uint32_t colour = 0; colour < kColours; ++colour) {
-    const std::size_t first = block_begin_[colour];
-    const std::size_t count = block_begin_[colour + 1] - first;
-    parallel.for_each(count, [&](std::size_t i) {
-      const std::span<ManifoldBlock<kLaneWidth>> block(blocks_.data() + first + i, 1);
-      if (pass == Pass::kWarmStart) {
-        kernels_->warm_start(block, bodies);
-      } else {
-        kernels_->solve(block, bodies, settings, pass == Pass::kSolve);
-      }
-    });
+    add_stage(work, colour, block_begin_[colour + 1] - block_begin_[colour]);
   }
-  const LaneKernels<1>& single = single_lane_kernels();
-  if (pass == Pass::kWarmStart) {
-    single.warm_start(overflow_, bodies);
-  } else {
-    single.solve(overflow_, bodies, settings, pass == Pass::kSolve);
+  add_stage(work, kOverflowColour, overflow_.empty() ? 0u : 1u);
+}
+
+void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting) {
+  stages_.clear();
+  stage_items_.clear();
+  const auto runs = static_cast<std::uint32_t>((awake + kBodiesPerItem - 1) / kBodiesPerItem);
+  for (std::uint32_t i = 0; i < substeps; ++i) {
+    add_stage(Work::kIntegrateVelocities, 0, runs);
+    if (warm_starting) add_pass(Work::kWarmStart);
+    add_pass(Work::kSolve);
+    add_stage(Work::kIntegratePositions, 0, runs);
+    add_pass(Work::kRelax);
   }
 }
 
-// Awake bodies in runs of this many per thread's item. unit: bodies
-constexpr std::size_t kBodiesPerItem = 256;
+void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies,
+                              const Vec3& gravity, float substep, const LaneSettings& settings) {
+  if (stage.work == Work::kIntegrateVelocities || stage.work == Work::kIntegratePositions) {
+    const std::span<const std::uint32_t> awake = bodies.awake();
+    const std::size_t first = std::size_t{item} * kBodiesPerItem;
+    const std::span<const std::uint32_t> run =
+        awake.subspan(first, std::min<std::size_t>(kBodiesPerItem, awake.size() - first));
+    if (stage.work == Work::kIntegrateVelocities) {
+      integrate_velocities(run, gravity, substep);
+    } else {
+      integrate_positions(run, bodies, substep);
+    }
+    return;
+  }
+  const LaneBodies lanes = lane_bodies();
+  if (stage.colour == kOverflowColour) {
+    const LaneKernels<1>& single = single_lane_kernels();
+    if (stage.work == Work::kWarmStart) {
+      single.warm_start(overflow_, lanes);
+    } else {
+      single.solve(overflow_, lanes, settings, stage.work == Work::kSolve);
+    }
+    return;
+  }
+  const std::span<ManifoldBlock<kLaneWidth>> block(
+      blocks_.data() + block_begin_[stage.colour] + item, 1);
+  if (stage.work == Work::kWarmStart) {
+    kernels_->warm_start(block, lanes);
+  } else {
+    kernels_->solve(block, lanes, settings, stage.work == Work::kSolve);
+  }
+}
 
-void SoftStepSolver::integrate_velocities(const BodyStore& bodies, const Vec3& gravity,
-                                          float substep, const Parallel& parallel) {
+void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
+                                          float substep) {
   const Vec3 gained = gravity * substep;
-  const std::span<const std::uint32_t> awake = bodies.awake();
-  parallel.for_each((awake.size() + kBodiesPerItem - 1) / kBodiesPerItem, [&](std::size_t item) {
-    const std::size_t end = std::min(awake.size(), (item + 1) * kBodiesPerItem);
-    for (std::size_t k = item * kBodiesPerItem; k < end; ++k) linear_[awake[k]] += gained;
-  });
+  for (const std::uint32_t i : awake) linear_[i] += gained;
 }
 
 // The bodies' poses by the solved velocities (rigid_body.h's integrator), and their motion since
 // the step's start for the contacts' separations.
-void SoftStepSolver::integrate_positions(BodyStore& bodies, float substep,
-                                         const Parallel& parallel) {
+void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies,
+                                         float substep) {
   const std::span<Transform> poses = bodies.poses();
-  const std::span<const std::uint32_t> awake = bodies.awake();
-  parallel.for_each((awake.size() + kBodiesPerItem - 1) / kBodiesPerItem, [&](std::size_t item) {
-    const std::size_t end = std::min(awake.size(), (item + 1) * kBodiesPerItem);
-    for (std::size_t k = item * kBodiesPerItem; k < end; ++k) {
-      const std::uint32_t i = awake[k];
-      // The angular velocity changes too: the angular momentum is kept as the inertia turns.
-      integrate_position(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
-                         bodies.inverse_inertias_body()[i], substep);
-      moved_[i] = poses[i].translation - position_[i];
-      turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
-    }
-  });
+  for (const std::uint32_t i : awake) {
+    // The angular velocity changes too: the angular momentum is kept as the inertia turns.
+    integrate_position(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
+                       bodies.inverse_inertias_body()[i], substep);
+    moved_[i] = poses[i].translation - position_[i];
+    turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
+  }
 }
 
 void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
@@ -308,13 +336,10 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
                                    .max_correction_speed = settings.max_correction_speed,
                                    .rolling_resistance = settings.rolling_resistance,
                                    .restitution_threshold = settings.restitution_threshold};
-  for (std::uint32_t i = 0; i < substeps; ++i) {
-    integrate_velocities(bodies, gravity, substep, parallel);
-    if (settings.warm_starting) run_pass(Pass::kWarmStart, lane_settings, parallel);
-    run_pass(Pass::kSolve, lane_settings, parallel);
-    integrate_positions(bodies, substep, parallel);
-    run_pass(Pass::kRelax, lane_settings, parallel);
-  }
+  plan_stages(bodies.awake().size(), substeps, settings.warm_starting);
+  parallel.for_each_in_stages(stage_items_, [&](std::size_t stage, std::uint32_t item) {
+    run_item(stages_[stage], item, bodies, gravity, substep, lane_settings);
+  });
   const LaneBodies lanes = lane_bodies();
   stats.bounces = kernels_->restitute(blocks_, lanes, lane_settings) +
                   single_lane_kernels().restitute(overflow_, lanes, lane_settings);

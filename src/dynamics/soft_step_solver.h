@@ -80,7 +80,20 @@ class SoftStepSolver {
     std::uint32_t first = 0;
     std::uint32_t count = 0;
   };
-  enum class Pass { kWarmStart, kSolve, kRelax };
+  // The substeps' work as stages, each run over its items on the threads once the one before has
+  // finished: the bodies' integration in runs of bodies, and each pass colour by colour (a block
+  // per item), the overflow last (one item).
+  enum class Work : std::uint8_t {
+    kIntegrateVelocities,
+    kWarmStart,
+    kSolve,
+    kIntegratePositions,
+    kRelax
+  };
+  struct Stage {
+    Work work = Work::kSolve;
+    std::uint32_t colour = 0;  // of a pass; kOverflowColour for the overflow
+  };
 
   void load_bodies(const BodyStore& bodies);
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
@@ -90,11 +103,17 @@ class SoftStepSolver {
   template <int W>
   void pack_lane(const Manifold& manifold, const PairMaterial& material, ManifoldBlock<W>& block,
                  int lane) const;
-  // One pass over every colour's blocks in order (on threads), then over the overflow.
-  void run_pass(Pass pass, const LaneSettings& settings, const Parallel& parallel);
-  void integrate_velocities(const BodyStore& bodies, const Vec3& gravity, float substep,
-                            const Parallel& parallel);
-  void integrate_positions(BodyStore& bodies, float substep, const Parallel& parallel);
+  // The stages of `substeps` substeps: integrate velocities, warm start, solve, integrate
+  // positions, relax.
+  void plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting);
+  void add_stage(Work work, std::uint32_t colour, std::uint32_t items);
+  void add_pass(Work work);
+  // Item `item` of a stage.
+  void run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies, const Vec3& gravity,
+                float substep, const LaneSettings& settings);
+  void integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
+                            float substep);
+  void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies, float substep);
   void keep_impulses(std::span<ContactMemory> memory) const;
   [[nodiscard]] LaneBodies lane_bodies();
 
@@ -110,6 +129,8 @@ class SoftStepSolver {
   std::vector<ManifoldBlock<kLaneWidth>> blocks_;
   std::vector<std::uint32_t> block_begin_;
   std::vector<ManifoldBlock<1>> overflow_;
+  std::vector<Stage> stages_;
+  std::vector<std::uint32_t> stage_items_;
   const LaneKernels<kLaneWidth>* kernels_ = &native_lane_kernels();
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one lane that holds it in a colour.
