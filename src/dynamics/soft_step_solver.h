@@ -97,7 +97,8 @@ class SoftStepSolver {
 
   void load_bodies(const BodyStore& bodies);
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
-               const SolverSettings& settings, float substep, ContactSolverStats& stats);
+               const SolverSettings& settings, const Vec3& gravity, float substep,
+               ContactSolverStats& stats);
   // The constraints cut into manifolds, coloured and packed into blocks, colour by colour.
   void pack(std::span<const PairMaterial> materials);
   template <int W>

@@ -297,6 +297,36 @@ TEST_P(PlausibleStack, TenBoxesStandForTenSecondsAndFallAsleep) {
   EXPECT_EQ(world.stats().jitter, 0.0);
 }
 
+// The soft step's contact spring takes as its mass the mass whose weight the contact carries (at
+// least the heavier body's), so every contact of a column yields the same g / ω² beyond the slop,
+// 0.28 mm at the 30 Hz the 4 substeps allow, where a spring of one box's mass lets the contact
+// under nine boxes yield nine times that (2.5 mm).
+TEST(PlausibleSoftStep, EachContactOfATenBoxColumnYieldsAsUnderOneBox) {
+  WorldSettings settings = on_plane(0.5f, 0.0f);
+  settings.solver.method = SolverMethod::kSoftStep;
+  World world(settings);
+  std::vector<BodyId> boxes;
+  const float half = cube_half_height();
+  for (int i = 0; i < 10; ++i) {
+    boxes.push_back(
+        world.add_body(cube(Vec3(0.0f, half * static_cast<float>(2 * i + 1), 0.0f), 0.5f)));
+  }
+  run(world, 3.0f);
+  const float substep_rate = static_cast<float>(settings.solver.soft_substeps) / kDt;
+  const float omega = 2.0f * std::numbers::pi_v<float> *
+                      std::min(settings.solver.contact_hertz, substep_rate / 8.0f);
+  const float yield = settings.gravity.norm() / (omega * omega);
+  // Rounding of the spring's implicit solve and the slop's edge. unit: m
+  constexpr float kTolerance = 0.0002f;
+  float below = 0.0f;  // the top of the box below (the plane first)
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const float centre = world.body(boxes[i]).pose.translation.y();
+    EXPECT_GT(centre - half, below - settings.solver.linear_slop - yield - kTolerance)
+        << "box " << i;
+    below = centre + half;
+  }
+}
+
 // 4. The restitution ladder, and no energy gained.
 
 struct Bounce {
