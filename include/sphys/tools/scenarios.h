@@ -29,14 +29,16 @@ inline constexpr std::uint64_t kStacksSeed = 2008;
 
 // S stacks of N bunnies with sphere-trees of the given depth (Combined, branching 8) over the
 // 5-level octree ground, with the runtime's default response (plausible; run_experiment_row sets
-// the paper's). Throws sphys::Error when a count or the depth is out of range.
-[[nodiscard]] Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth);
+// the paper's). `seed` draws the bunnies' yaw angles: another seed, another pile of the same
+// layout (sweeps over seeds). Throws sphys::Error when a count or the depth is out of range.
+[[nodiscard]] Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth,
+                                       std::uint64_t seed = kStacksSeed);
 
 // True when `text` names a preset ("stacks:..."), whether or not it is well formed.
 [[nodiscard]] bool is_preset(std::string_view text);
-// The scene of a preset, e.g. "stacks:4x50" (tree depth 3 unless the caller changes it). Throws
-// sphys::Error naming the preset and listing the valid forms.
-[[nodiscard]] Scene preset_scene(std::string_view text);
+// The scene of a preset, e.g. "stacks:4x50" (tree depth 3 unless the caller changes it), its yaw
+// angles drawn from `seed`. Throws sphys::Error naming the preset and listing the valid forms.
+[[nodiscard]] Scene preset_scene(std::string_view text, std::uint64_t seed = kStacksSeed);
 // A preset name, else a scene file.
 [[nodiscard]] Scene load_scene(std::string_view preset_or_file);
 

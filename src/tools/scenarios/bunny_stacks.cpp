@@ -37,7 +37,7 @@ std::uint64_t SplitMix64::next() {
 
 double SplitMix64::next_unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
-Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth) {
+Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth, std::uint64_t seed) {
   if (stacks <= 0 || per_stack <= 0 || static_cast<long long>(stacks) * per_stack > kMaxBodies) {
     throw Error("stacks: need at least 1 stack of at least 1 bunny and at most " +
                 std::to_string(kMaxBodies) + " bunnies, got " + std::to_string(stacks) + "x" +
@@ -52,7 +52,7 @@ Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth) {
 
   const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(stacks))));
   const int rows = (stacks + cols - 1) / cols;
-  SplitMix64 random(kStacksSeed);
+  SplitMix64 random(seed);
   scene.bodies.reserve(static_cast<std::size_t>(stacks) * static_cast<std::size_t>(per_stack));
   for (int s = 0; s < stacks; ++s) {
     const double x = (s % cols - (cols - 1) / 2.0) * kStackSpacing;
@@ -78,7 +78,7 @@ Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth) {
 
 bool is_preset(std::string_view text) { return text.starts_with(kStacksPrefix); }
 
-Scene preset_scene(std::string_view text) {
+Scene preset_scene(std::string_view text, std::uint64_t seed) {
   if (is_preset(text)) {
     const std::string_view layout = text.substr(kStacksPrefix.size());
     const std::size_t x = layout.find('x');
@@ -86,7 +86,7 @@ Scene preset_scene(std::string_view text) {
       const int stacks = parse_count(layout.substr(0, x));
       const int per_stack = parse_count(layout.substr(x + 1));
       if (stacks > 0 && per_stack > 0) {
-        return bunny_stacks_scene(stacks, per_stack, kPresetTreeDepth);
+        return bunny_stacks_scene(stacks, per_stack, kPresetTreeDepth, seed);
       }
     }
   }

@@ -1,0 +1,146 @@
+#include "sphys/tools/run_summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "sphys/tools/overlap.h"
+
+namespace sphys::tools {
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// The longest bounding-box side of the largest body, the yardstick of penetrations. unit: m
+double largest_body_size(const SimulationSetup& setup) {
+  double size = 0.0;
+  for (const BodyShape& shape : setup.shapes) {
+    size = std::max(size, shape.body_mesh->bounds().sizes().maxCoeff());
+  }
+  return size;
+}
+
+// A number, or null where there is none (NaN, or no value).
+nlohmann::ordered_json number_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
+}
+
+// The state of the bodies at the end of the run.
+void add_end_state(nlohmann::ordered_json& summary, const Scene& scene,
+                   const SimulationSetup& setup, const Plausibility& plausible) {
+  const double size = largest_body_size(setup);
+  const auto percent = [size](double depth) {
+    return number_or_null(size > 0.0 ? 100.0 * depth / size : std::nan(""));
+  };
+  summary["largest_body_size_m"] = size;
+  summary["deepest_penetration_m"] = plausible.deepest_penetration;
+  summary["deepest_penetration_percent_of_size"] = percent(plausible.deepest_penetration);
+  summary["deepest_penetration_frame"] = plausible.deepest_frame;
+  summary["mean_penetration_m"] = plausible.mean_penetration;
+  summary["mean_penetration_percent_of_size"] = percent(plausible.mean_penetration);
+  summary["penetrating_frames"] = plausible.penetrating_frames;
+  summary["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
+  summary["moving_bodies"] = plausible.moving_bodies;
+  summary["bodies_at_rest"] = plausible.bodies_at_rest;
+  summary["bodies_asleep"] = plausible.bodies_asleep;
+  const std::optional<int> settled = plausible.all_at_rest_frame;
+  summary["all_at_rest_from_frame"] =
+      settled ? nlohmann::ordered_json(*settled) : nlohmann::ordered_json();
+  summary["all_at_rest_from_s"] =
+      number_or_null(settled ? *settled * scene.time_step : std::nan(""));
+  summary["jitter_m_per_s"] = plausible.jitter;
+  std::uint32_t below = 0;
+  float lowest = std::numeric_limits<float>::infinity();
+  for (const BodyId body : setup.bodies) {
+    const float y = setup.world->body(body).pose.translation.y();
+    lowest = std::min(lowest, y);
+    if (scene.ground.kind != GroundSpec::Kind::kNone &&
+        !(y >= static_cast<float>(scene.ground.height))) {
+      ++below;
+    }
+  }
+  // The world does not test bodies asleep together against each other, so StepStats says
+  // nothing of a sleeping pile: counted afresh over every pair.
+  const std::optional<float> plane =
+      scene.ground.kind == GroundSpec::Kind::kPlane
+          ? std::optional<float>(static_cast<float>(scene.ground.height))
+          : std::nullopt;
+  const Overlap end_overlap = deepest_overlap(setup, plane);
+  summary["end_overlap_m"] = end_overlap.depth;
+  summary["end_overlap_percent_of_size"] = percent(end_overlap.depth);
+  summary["bodies_below_ground"] = below;
+  summary["lowest_center_y_m"] = lowest;
+}
+
+}  // namespace
+
+void RunTotals::add(const StepStats& s) {
+  step_ms.push_back(s.step_ms);
+  broad += s.broad_phase_ms;
+  narrow += s.narrow_phase_ms;
+  contacts_time += s.contacts_ms;
+  response += s.response_ms;
+  integration += s.integration_ms;
+  step += s.step_ms;
+  contacts += s.contacts;
+  max_contacts = std::max(max_contacts, s.contacts);
+  substeps += s.substeps;
+  max_substeps = std::max(max_substeps, s.substeps);
+  plausibility.add(s);
+}
+
+std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
+                             const RunTotals& totals) {
+  const double frames = static_cast<double>(totals.step_ms.size());
+  const double mean_ms = totals.step / frames;
+  nlohmann::ordered_json summary;
+  summary["scene"] = scene.name;
+  summary["bodies"] = setup.bodies.size();
+  summary["sphere_trees"] = setup.shapes.empty() ? "" : setup.shapes.front().tree_source;
+  summary["response"] = response_mode_name(scene.response);
+  summary["contact_set"] = contact_set_name(scene.solver.contacts);
+  summary["substeps"] = scene.substeps;
+  summary["max_substeps"] = scene.max_substeps;
+  summary["substeps_per_frame"] = {{"mean", totals.substeps / frames},
+                                   {"max", totals.max_substeps}};
+  summary["frames"] = totals.step_ms.size();
+  summary["time_step_s"] = scene.time_step;
+  summary["wall_s"] = totals.wall_s;
+  summary["steps_per_s"] = 1000.0 / mean_ms;
+  summary["step_ms"] = {{"mean", mean_ms}, {"median", median(totals.step_ms)}};
+  summary["contacts_per_frame"] = {{"mean", totals.contacts / frames},
+                                   {"max", totals.max_contacts}};
+  summary["time_share_percent"] = {{"broad_phase", totals.share(totals.broad)},
+                                   {"narrow_phase", totals.share(totals.narrow)},
+                                   {"contacts", totals.share(totals.contacts_time)},
+                                   {"response", totals.share(totals.response)},
+                                   {"integration", totals.share(totals.integration)}};
+  add_end_state(summary, scene, setup, totals.plausibility.result());
+  return summary.dump(2);
+}
+
+std::string non_finite_message(const SimulationSetup& setup, std::uint32_t world_index, int frame) {
+  const auto found = std::find(setup.bodies.begin(), setup.bodies.end(), BodyId{world_index});
+  const auto body = static_cast<std::size_t>(found - setup.bodies.begin());
+  const RigidBody& state = setup.world->body({world_index});
+  char detail[256];
+  std::snprintf(detail, sizeof detail,
+                "position (%g, %g, %g), velocity (%g, %g, %g), angular velocity (%g, %g, %g)",
+                state.pose.translation.x(), state.pose.translation.y(), state.pose.translation.z(),
+                state.linear_velocity.x(), state.linear_velocity.y(), state.linear_velocity.z(),
+                state.angular_velocity.x(), state.angular_velocity.y(), state.angular_velocity.z());
+  return "the simulation went non-finite: body " + std::to_string(body) + " (/bodies/" +
+         std::to_string(body) + ") at frame " + std::to_string(frame) + ": " + detail;
+}
+
+}  // namespace sphys::tools
