@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "sphys/error.h"
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/experiment_json.h"
 #include "sphys/tools/interrupt.h"
 #include "sphys/tools/machine.h"
 #include "sphys/tools/run_experiment.h"
@@ -39,33 +40,6 @@ struct ExperimentCommandOptions {
 
 // The machine, for reports: the experiment steps one world at a time on one thread.
 std::string machine() { return tools::machine_description() + ", one used"; }
-
-nlohmann::ordered_json row_json(const tools::RowResult& result) {
-  const tools::RowSummary summary = tools::summarize(result);
-  nlohmann::ordered_json row;
-  row["id"] = result.row.id();
-  row["frames"] = result.frames.size();
-  row["contacts_per_frame"] = summary.contacts_per_frame;
-  row["fps"] = summary.fps;
-  row["frame_time_sd_ms"] = summary.frame_time_sd_ms;
-  row["detection_share_percent"] = summary.detection_share;
-  row["response_share_percent"] = summary.response_share;
-  row["bodies"] = result.bodies;
-  row["bodies_below_plane"] = result.bodies_below_plane;
-  row["lowest_center_y_m"] = result.lowest_center_y;
-  const tools::Plausibility& plausible = result.plausibility;
-  row["deepest_penetration_m"] = plausible.deepest_penetration;
-  row["mean_penetration_m"] = plausible.mean_penetration;
-  row["bodies_at_rest"] = plausible.bodies_at_rest;
-  row["all_at_rest_from_frame"] = plausible.all_at_rest_frame
-                                      ? nlohmann::ordered_json(*plausible.all_at_rest_frame)
-                                      : nlohmann::ordered_json();
-  row["jitter_m_per_s"] = plausible.jitter;
-  row["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
-  row["stopped_non_finite"] = result.stopped_non_finite;
-  row["tree_builder"] = result.tree_builder;
-  return row;
-}
 
 void run(const ExperimentCommandOptions& options) {
   tools::catch_interruptions();
@@ -113,23 +87,11 @@ void run(const ExperimentCommandOptions& options) {
     json["rows"] = nlohmann::ordered_json::array();
     std::vector<tools::RowSummary> summaries;
     for (const tools::RowResult& result : results) {
-      json["rows"].push_back(row_json(result));
+      json["rows"].push_back(nlohmann::ordered_json::parse(tools::row_result_json(result)));
       summaries.push_back(tools::summarize(result));
     }
-    const tools::ExperimentStatistics stats = tools::compute_statistics(summaries);
-    auto number = [](double value) {
-      return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
-    };
-    json["statistics"] = {
-        {"contacts_fps_correlation", number(stats.contacts_fps_correlation)},
-        {"contacts_frame_sd_correlation", number(stats.contacts_frame_sd_correlation)},
-        {"detection_share_mean_percent", number(stats.detection_share_mean)},
-        {"detection_share_sd_points", number(stats.detection_share_sd)},
-        {"response_share_mean_percent", number(stats.response_share_mean)},
-        {"response_share_sd_points", number(stats.response_share_sd)},
-        {"detection_share_contacts_correlation",
-         number(stats.detection_share_contacts_correlation)},
-        {"response_share_contacts_correlation", number(stats.response_share_contacts_correlation)}};
+    json["statistics"] =
+        nlohmann::ordered_json::parse(tools::statistics_json(tools::compute_statistics(summaries)));
     json["report"] = report.string();
     std::cout << json.dump(2) << '\n';
     return;

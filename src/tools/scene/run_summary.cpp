@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/json_number.h"
 #include "sphys/tools/overlap.h"
 
 namespace sphys::tools {
@@ -28,11 +29,6 @@ double largest_body_size(const SimulationSetup& setup) {
     size = std::max(size, shape.body_mesh->bounds().sizes().maxCoeff());
   }
   return size;
-}
-
-// A number, or null where there is none (NaN, or no value).
-nlohmann::ordered_json number_or_null(double value) {
-  return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
 }
 
 // The state of the bodies at the end of the run.
