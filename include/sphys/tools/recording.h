@@ -40,11 +40,12 @@ class RecordingWriter {
 
   // Appends one frame: a pose per body, in body order. Throws, writing nothing, when the number
   // of poses is not the body count, a value is not finite or an orientation is not of unit
-  // length (what read_recording() would refuse). Not after finish().
+  // length (what read_recording() would refuse), and after finish().
   void add_frame(std::span<const BodyPose> poses);
   // Stores the frame count in the header and moves the file into place, replacing an existing
-  // one. Call once.
+  // one. Throws when called again.
   void finish();
+  [[nodiscard]] bool finished() const;
 
  private:
   struct Impl;

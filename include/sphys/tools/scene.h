@@ -71,9 +71,10 @@ struct PairMaterialSpec {
 [[nodiscard]] std::string_view response_mode_name(ResponseMode mode);
 // Throws sphys::Error listing the valid names.
 [[nodiscard]] ResponseMode parse_response_mode(std::string_view name);
-// The command line's ground options: "octree" (the paper's octree ground) and "plane". Throws
-// sphys::Error "--ground must be octree or plane, got '<name>'".
-[[nodiscard]] GroundSpec::Kind parse_ground_option(std::string_view name);
+// The ground options: "octree" (the paper's octree ground) and "plane". Throws sphys::Error
+// "<option> must be octree or plane, got '<name>'", the option as its front end names it.
+[[nodiscard]] GroundSpec::Kind parse_ground_option(std::string_view name,
+                                                   std::string_view option = "--ground");
 // "all", "reduced": the contact sets by name.
 [[nodiscard]] std::string_view contact_set_name(ContactSet contacts);
 // Throws sphys::Error listing the valid names.

@@ -186,8 +186,8 @@ RecordingWriter::RecordingWriter(const fs::path& path, std::uint32_t body_count,
 RecordingWriter::~RecordingWriter() = default;
 
 void RecordingWriter::add_frame(std::span<const BodyPose> poses) {
-  assert(!impl_->finished);
   const fs::path& path = impl_->file.path();
+  if (impl_->finished) throw Error::in_file(path, "the recording is finished: no frame can follow");
   const std::uint32_t frame = impl_->frame_count;
   if (poses.size() != impl_->body_count) {
     throw Error::in_file(path, "frame " + std::to_string(frame) + " has " +
@@ -216,7 +216,8 @@ void RecordingWriter::add_frame(std::span<const BodyPose> poses) {
 }
 
 void RecordingWriter::finish() {
-  assert(!impl_->finished);
+  if (impl_->finished)
+    throw Error::in_file(impl_->file.path(), "the recording is already finished");
   std::array<char, 4> count{};
   put_u32(count.data(), impl_->frame_count);
   std::ostream& out = impl_->file.stream();
@@ -225,6 +226,8 @@ void RecordingWriter::finish() {
   impl_->file.commit();
   impl_->finished = true;
 }
+
+bool RecordingWriter::finished() const { return impl_->finished; }
 
 std::span<const BodyPose> Recording::frame(std::uint32_t i) const {
   assert(i < frame_count);

@@ -976,10 +976,11 @@ ResponseMode parse_response_mode(std::string_view name) {
   return static_cast<ResponseMode>(parse_name(name, setting_of("response"), "response mode"));
 }
 
-GroundSpec::Kind parse_ground_option(std::string_view name) {
+GroundSpec::Kind parse_ground_option(std::string_view name, std::string_view option) {
   if (name == "octree") return GroundSpec::Kind::kOctreeBox;
   if (name == "plane") return GroundSpec::Kind::kPlane;
-  std::string message = "--ground must be octree or plane, got '";
+  std::string message(option);
+  message += " must be octree or plane, got '";
   message += name;
   message += "'";
   throw Error(message);

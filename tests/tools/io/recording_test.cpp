@@ -318,6 +318,40 @@ TEST(RecordingWriter, NonUnitOrientationThrows) {
               HasSubstr("frame 1, body 1: orientation has length 2, not 1"));
 }
 
+TEST(RecordingWriter, NothingFollowsFinish) {
+  const test::TempDir dir;
+  const fs::path file = dir.path() / "w.sphysrec";
+  RecordingWriter writer(file, 1, 0.01, "{}");
+  writer.add_frame(std::vector<BodyPose>(1));
+  EXPECT_FALSE(writer.finished());
+  writer.finish();
+  EXPECT_TRUE(writer.finished());
+  EXPECT_THROW(
+      {
+        try {
+          writer.add_frame(std::vector<BodyPose>(1));
+        } catch (const Error& error) {
+          EXPECT_EQ(std::string(error.what()),
+                    file.string() + ": the recording is finished: no frame can follow");
+          throw;
+        }
+      },
+      Error);
+  EXPECT_THROW(
+      {
+        try {
+          writer.finish();
+        } catch (const Error& error) {
+          EXPECT_EQ(std::string(error.what()),
+                    file.string() + ": the recording is already finished");
+          throw;
+        }
+      },
+      Error);
+  // The finished file is left as it was: one frame.
+  EXPECT_EQ(read_recording(file).frame_count, 1u);
+}
+
 TEST(RecordingWriter, BadTimeStepThrowsBeforeCreatingTheFile) {
   const test::TempDir dir;
   for (const double step : {0.0, -0.01, std::numeric_limits<double>::quiet_NaN(),
