@@ -1,6 +1,7 @@
 # Installs the sphys build tree into a scratch prefix, then configures and builds a small project
 # that uses it only through find_package(sphys), and runs the result.
-# Inputs: SPHYS_BUILD_DIR, CONSUMER_SOURCE_DIR, WORK_DIR.
+# Inputs: SPHYS_BUILD_DIR, CONSUMER_SOURCE_DIR, WORK_DIR; with the Python module, PYTHON and
+# PYTHON_PACKAGE_DIR (where the package is installed, relative to the prefix).
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 
@@ -17,4 +18,12 @@ run_step("${CMAKE_COMMAND}" -S "${CONSUMER_SOURCE_DIR}" -B "${WORK_DIR}/build" -
 run_step("${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
 run_step("${WORK_DIR}/build/runtime_consumer")
 run_step("${WORK_DIR}/build/tools_consumer")
+if(DEFINED PYTHON)
+  # The installed package, not the build tree's: a cube of side 2 m at 1000 kg/m^3 weighs 8000 kg.
+  set(site "${prefix}/${PYTHON_PACKAGE_DIR}")
+  run_step("${CMAKE_COMMAND}" -E env "PYTHONPATH=${site}" "${PYTHON}" -c
+           "import sys, sphys; assert sphys.__file__.startswith(sys.argv[1]), sphys.__file__; \
+m = sphys.mass_properties(sphys.box((2.0, 2.0, 2.0)), density=1000.0).mass; assert abs(m - 8000.0) < 1e-9, m"
+           "${site}")
+endif()
 message(STATUS "installed sphys consumed from ${prefix}")

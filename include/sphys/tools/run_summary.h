@@ -2,7 +2,7 @@
 
 // What a run of a scene reports: times and counts gathered frame by frame, the plausibility
 // figures, and the bodies' state at the end. `sphys simulate` and the Python module's Simulation
-// report the same figures under the same names (docs/file-formats.md, "simulate summary").
+// report the same figures under the same names (the README's `sphys simulate`, docs/python.md).
 
 #include <string>
 #include <vector>

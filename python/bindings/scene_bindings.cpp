@@ -1,0 +1,306 @@
+// Scenes (JSON files and presets), simulations built from them, and recordings as arrays.
+
+#include <Python.h>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bindings.h"
+#include "sphys/tools/build_world.h"
+#include "sphys/tools/recording.h"
+#include "sphys/tools/run_summary.h"
+#include "sphys/tools/scenarios.h"
+#include "sphys/tools/scene_file.h"
+#include "sphys/tools/tree_cache.h"
+
+namespace sphys::python {
+namespace {
+
+using tools::Scene;
+
+// A scene stepped frame by frame: its world, the scene's bodies in order, and the totals
+// `sphys simulate` reports.
+struct Simulation {
+  Scene scene;
+  tools::SimulationSetup setup;
+  tools::RunTotals totals;
+  int frame = 0;
+};
+
+// What Simulation() accepts as its scene: a Scene, a dict in the scene-file format, a preset's
+// name or a scene file's path.
+Scene scene_from(const py::handle& value) {
+  if (py::isinstance<Scene>(value)) return value.cast<Scene>();
+  if (py::isinstance<py::dict>(value)) {
+    return tools::parse_scene(py::module_::import("json").attr("dumps")(value).cast<std::string>(),
+                              "scene.json");
+  }
+  if (!py::isinstance<py::str>(value) && !py::hasattr(value, "__fspath__")) {
+    throw Error(
+        "scene must be a Scene, a dict in the scene-file format, a preset's name or a "
+        "scene file's path, got " +
+        py::repr(value).cast<std::string>());
+  }
+  return tools::load_scene(spec_from(value, "scene"));
+}
+
+// Poses of the scene's bodies, in scene order: (B, 7) position then (x, y, z, w).
+py::array_t<float> scene_poses(const Simulation& sim) {
+  const auto n = static_cast<py::ssize_t>(sim.setup.bodies.size());
+  py::array_t<float> array({n, py::ssize_t{7}});
+  auto out = array.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const Transform& pose =
+        sim.setup.world->bodies().poses()[sim.setup.bodies[static_cast<std::size_t>(i)].index];
+    for (int k = 0; k < 3; ++k) out(i, k) = pose.translation[k];
+    for (int k = 0; k < 4; ++k) out(i, 3 + k) = pose.rotation.coeffs()[k];
+  }
+  return array;
+}
+
+StepStats step_simulation(Simulation& sim, int frames) {
+  if (frames < 1) throw Error("frames must be at least 1, got " + std::to_string(frames));
+  const auto dt = static_cast<float>(sim.scene.time_step);
+  StepStats stats;
+  for (int i = 0; i < frames; ++i) {
+    {
+      py::gil_scoped_release unlocked;
+      const auto start = std::chrono::steady_clock::now();
+      stats = sim.setup.world->step(dt);
+      sim.totals.wall_s +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    ++sim.frame;
+    if (stats.non_finite_body) {
+      throw Error(tools::non_finite_message(sim.setup, *stats.non_finite_body, sim.frame));
+    }
+    sim.totals.add(stats);
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  return stats;
+}
+
+// Read-only strided views of one member of every BodyPose (positions or orientations): no copy.
+py::array_t<float> pose_member_view(const py::object& self, bool orientations, py::ssize_t width) {
+  const auto& recording = self.cast<const tools::Recording&>();
+  const auto frames = static_cast<py::ssize_t>(recording.frame_count);
+  const auto bodies = static_cast<py::ssize_t>(recording.body_count);
+  constexpr auto stride = static_cast<py::ssize_t>(sizeof(tools::BodyPose));
+  static const tools::BodyPose empty;
+  const tools::BodyPose& first = recording.poses.empty() ? empty : recording.poses.front();
+  py::array_t<float> array(
+      {frames, bodies, width}, {stride * bodies, stride, py::ssize_t{sizeof(float)}},
+      orientations ? first.orientation.coeffs().data() : first.position.data(), self);
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
+
+}  // namespace
+
+void bind_scene(py::module_& m) {
+  py::class_<Scene, std::shared_ptr<Scene>>(
+      m, "Scene",
+      "What a simulation starts from: bodies, ground and world settings (docs/scenes.md). From "
+      "load_scene(), a JSON file, or a dict in the scene-file format (Scene.from_dict).")
+      .def_static(
+          "from_json",
+          [](const std::string& text, const std::string& name) {
+            return tools::parse_scene(text, name);
+          },
+          py::arg("text"), py::arg("name") = "scene.json",
+          "A scene from JSON text; relative mesh paths resolve against the folder of `name`.")
+      .def_static(
+          "from_dict",
+          [](const py::dict& scene, const std::string& name) {
+            return tools::parse_scene(
+                py::module_::import("json").attr("dumps")(scene).cast<std::string>(), name);
+          },
+          py::arg("scene"), py::arg("name") = "scene.json",
+          "A scene from a dict of the scene-file format (docs/scenes.md).")
+      .def("to_json", &tools::scene_to_json, "The scene as a scene file, every key written out.")
+      .def(
+          "to_dict", [](const Scene& scene) { return from_json_text(tools::scene_to_json(scene)); },
+          "The scene as a dict of the scene-file format: edit it, then Scene.from_dict().")
+      .def_readonly("name", &Scene::name)
+      .def_property(
+          "frames", [](const Scene& s) { return s.frames; },
+          [](Scene& s, int frames) {
+            if (frames < 1) throw Error("frames must be at least 1, got " + std::to_string(frames));
+            s.frames = frames;
+          },
+          "Frames a run takes, one step each.")
+      .def_property_readonly(
+          "time_step", [](const Scene& s) { return s.time_step; }, "unit: s")
+      .def(
+          "__len__", [](const Scene& s) { return s.bodies.size(); }, "The number of bodies.")
+      .def_property_readonly(
+          "settings", [](const Scene& s) { return settings_dict(tools::world_settings(s)); },
+          "The world settings the scene carries, by dotted field.")
+      .def(
+          "set_settings",
+          [](Scene& s, const py::dict& settings) {
+            tools::set_world_settings(s, settings_from(settings, tools::world_settings(s)));
+          },
+          py::arg("settings"),
+          "Changes world settings, given as World() takes them ({'solver.method': ...}).")
+      .def("__repr__", [](const Scene& s) {
+        return "<sphys.Scene '" + s.name + "': " + std::to_string(s.bodies.size()) + " bodies, " +
+               std::to_string(s.frames) + " frames>";
+      });
+
+  m.def(
+      "load_scene",
+      [](const py::object& spec_object, const std::optional<std::uint64_t>& seed) {
+        const std::string spec = spec_from(spec_object, "spec");
+        if (!seed) return tools::load_scene(spec);
+        if (!tools::is_preset(spec)) {
+          throw Error("seed: only the stacks:SxN presets take a seed, not '" + spec + "'");
+        }
+        return tools::preset_scene(spec, *seed);
+      },
+      py::arg("spec"), py::kw_only(), py::arg("seed") = std::nullopt,
+      "A preset ('stacks:4x50': 4 stacks of 50 bunnies on the paper's octree ground) or a scene "
+      "file. `seed` draws a preset's yaw angles (default 2008, the committed layout).");
+  m.def("presets", &tools::preset_help, "The preset forms, one line each.");
+
+  py::class_<Simulation>(m, "Simulation",
+                         "A scene's world, stepped frame by frame with the figures `sphys "
+                         "simulate` reports (summary()). Plausibility figures are on.")
+      .def(py::init([](const py::object& scene, std::optional<int> depth, std::uint32_t threads,
+                       bool cache) {
+             auto sim = std::make_unique<Simulation>();
+             sim->scene = scene_from(scene);
+             if (depth) {
+               for (tools::BodySpec& body : sim->scene.bodies) {
+                 if (!body.tree.sph_file) body.tree.depth = *depth;
+               }
+             }
+             tools::BuildWorldOptions options;
+             options.tree_depth = depth;
+             options.threads = threads;
+             options.plausibility_figures = true;
+             if (cache) options.cache_dir = tools::default_cache_dir();
+             py::gil_scoped_release unlocked;
+             sim->setup = tools::build_world(sim->scene, options);
+             return sim;
+           }),
+           py::arg("scene"), py::kw_only(), py::arg("depth") = std::nullopt, py::arg("threads") = 1,
+           py::arg("cache") = true,
+           "Builds the world of a Scene or of a preset or file name: meshes, mass properties and "
+           "sphere-trees (built trees cached as the command line caches them unless cache=False). "
+           "depth replaces every built tree's depth; threads as the world's setting (0: all).")
+      .def_property_readonly(
+          "world", [](Simulation& sim) -> World& { return *sim.setup.world; },
+          py::return_value_policy::reference_internal)
+      .def_property_readonly(
+          "scene", [](const Simulation& sim) { return sim.scene; },
+          "A copy of the scene the simulation was built from (changing it changes nothing).")
+      .def_property_readonly(
+          "body_ids", [](const Simulation& sim) { return sim.setup.bodies; },
+          "The scene's bodies' ids, in scene order.")
+      .def_readonly("frame", &Simulation::frame, "Frames stepped so far.")
+      .def_property_readonly(
+          "time", [](const Simulation& sim) { return sim.frame * sim.scene.time_step; },
+          "Simulated time so far. unit: s")
+      .def("step", &step_simulation, py::arg("frames") = 1,
+           "Steps `frames` frames of the scene's time step with the GIL released; returns the last "
+           "StepStats. Raises sphys.Error (with the command line's diagnostic) when the state goes "
+           "non-finite.")
+      .def(
+          "run",
+          [](Simulation& sim) {
+            if (sim.frame < sim.scene.frames) step_simulation(sim, sim.scene.frames - sim.frame);
+            return from_json_text(tools::run_summary_json(sim.scene, sim.setup, sim.totals));
+          },
+          "Steps to the scene's last frame and returns summary().")
+      .def("poses", &scene_poses,
+           "(B, 7) float32 of the scene's bodies in scene order: position (m), then orientation "
+           "(x, y, z, w). The same numbers as a recording's frame.")
+      .def(
+          "summary",
+          [](const Simulation& sim) {
+            return from_json_text(tools::run_summary_json(sim.scene, sim.setup, sim.totals));
+          },
+          "The figures of `sphys simulate --json` over the frames stepped so far, as a dict.");
+
+  py::class_<tools::Recording>(m, "Recording",
+                               "A recording's poses: every body at every frame (.sphysrec).")
+      .def_readonly("time_step", &tools::Recording::time_step, "between frames. unit: s")
+      .def_readonly("metadata", &tools::Recording::metadata, "the scene as JSON text")
+      .def_readonly("body_count", &tools::Recording::body_count)
+      .def_readonly("frame_count", &tools::Recording::frame_count)
+      .def_property_readonly(
+          "positions", [](const py::object& self) { return pose_member_view(self, false, 3); },
+          "(F, B, 3) float32 read-only view: each body's centre of mass per frame. unit: m")
+      .def_property_readonly(
+          "orientations", [](const py::object& self) { return pose_member_view(self, true, 4); },
+          "(F, B, 4) float32 read-only view: unit quaternions (x, y, z, w), body to world.")
+      .def_property_readonly(
+          "poses",
+          [](const tools::Recording& r) {
+            py::array_t<float> array({static_cast<py::ssize_t>(r.frame_count),
+                                      static_cast<py::ssize_t>(r.body_count), py::ssize_t{7}});
+            float* out = array.mutable_data();
+            for (const tools::BodyPose& pose : r.poses) {
+              for (int k = 0; k < 3; ++k) *out++ = pose.position[k];
+              for (int k = 0; k < 4; ++k) *out++ = pose.orientation.coeffs()[k];
+            }
+            return array;
+          },
+          "(F, B, 7) float32 copy: positions and orientations side by side.")
+      .def(
+          "scene",
+          [](const tools::Recording& r) {
+            return tools::parse_scene(r.metadata, "recording.json");
+          },
+          "The scene the recording was made from.");
+  m.def(
+      "read_recording",
+      [](const std::filesystem::path& path) { return tools::read_recording(path); },
+      py::arg("path"), py::call_guard<py::gil_scoped_release>(),
+      "Reads and checks a .sphysrec file.");
+
+  py::class_<tools::RecordingWriter>(
+      m, "RecordingWriter",
+      "Writes a .sphysrec frame by frame; the file appears only at finish() (use it as a "
+      "context manager: an exception leaves no file).")
+      .def(py::init([](const std::filesystem::path& path, std::uint32_t bodies, double time_step,
+                       const std::string& metadata) {
+             return std::make_unique<tools::RecordingWriter>(path, bodies, time_step, metadata);
+           }),
+           py::arg("path"), py::arg("bodies"), py::arg("time_step"), py::arg("metadata") = "",
+           "time_step between frames (s); metadata: the scene as JSON (Scene.to_json()) for the "
+           "viewer.")
+      .def(
+          "add_frame",
+          [](tools::RecordingWriter& writer,
+             const py::array_t<float, py::array::c_style | py::array::forcecast>& poses) {
+            if (poses.ndim() != 2 || poses.shape(1) != 7)
+              throw Error("poses must be an array of shape (B, 7)");
+            std::vector<tools::BodyPose> frame(static_cast<std::size_t>(poses.shape(0)));
+            const auto p = poses.unchecked<2>();
+            for (std::size_t i = 0; i < frame.size(); ++i) {
+              const auto row = static_cast<py::ssize_t>(i);
+              frame[i].position = Vec3(p(row, 0), p(row, 1), p(row, 2));
+              frame[i].orientation = Quat(p(row, 6), p(row, 3), p(row, 4), p(row, 5));
+            }
+            writer.add_frame(frame);
+          },
+          py::arg("poses"), "One frame: (B, 7) poses as Simulation.poses() gives them.")
+      .def("finish", &tools::RecordingWriter::finish,
+           "Moves the file into place. Once only: nothing can follow.")
+      .def(
+          "__enter__",
+          [](tools::RecordingWriter& writer) -> tools::RecordingWriter& { return writer; },
+          py::return_value_policy::reference)
+      .def("__exit__", [](tools::RecordingWriter& writer, const py::object& type, const py::object&,
+                          const py::object&) {
+        if (type.is_none() && !writer.finished()) writer.finish();
+        return false;
+      });
+}
+
+}  // namespace sphys::python

@@ -1,0 +1,428 @@
+// Worlds: settings, bodies, stepping (the GIL released), poses, velocities and contacts as arrays.
+
+#include <Python.h>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bindings.h"
+#include "sphys/settings_table.h"
+#include "sphys/world.h"
+
+namespace sphys::python {
+namespace {
+
+// Settings nested in sub-mappings flattened to dotted fields.
+void flatten(const py::handle& mapping, const std::string& prefix,
+             std::vector<std::pair<std::string, py::object>>& out) {
+  if (!py::isinstance<py::dict>(mapping)) throw Error("settings must be a dict");
+  for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(mapping)) {
+    const std::string name = prefix + py::str(key).cast<std::string>();
+    if (py::isinstance<py::dict>(value)) {
+      flatten(value, name + ".", out);
+    } else {
+      out.emplace_back(name, py::reinterpret_borrow<py::object>(value));
+    }
+  }
+}
+
+const Setting* find_setting(std::string_view field) {
+  for (const Setting& setting : settings_table()) {
+    if (setting.field == field) return &setting;
+  }
+  return nullptr;
+}
+
+// A Python value as the command line's text for set_setting_from_text: repr() of a float is the
+// shortest text that reads back to the same double.
+std::string setting_text(const py::object& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) {
+    return py::repr(value).cast<std::string>();
+  }
+  // numpy scalars and the like: their float, else their text, which the table then refuses.
+  try {
+    return py::repr(py::float_(value)).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    return py::str(value).cast<std::string>();
+  }
+}
+
+py::array_t<float> rows_of(const World& world, const std::vector<std::uint32_t>& slots, int columns,
+                           bool poses) {
+  py::array_t<float> array(
+      {static_cast<py::ssize_t>(slots.size()), static_cast<py::ssize_t>(columns)});
+  auto out = array.mutable_unchecked<2>();
+  const BodyStore& store = world.bodies();
+  for (std::size_t row = 0; row < slots.size(); ++row) {
+    const auto i = static_cast<py::ssize_t>(row);
+    const std::uint32_t slot = slots[row];
+    if (poses) {
+      const Transform& pose = store.poses()[slot];
+      for (int k = 0; k < 3; ++k) out(i, k) = pose.translation[k];
+      // (x, y, z, w): scalar last.
+      for (int k = 0; k < 4; ++k) out(i, 3 + k) = pose.rotation.coeffs()[k];
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        out(i, k) = store.linear_velocities()[slot][k];
+        out(i, 3 + k) = store.angular_velocities()[slot][k];
+      }
+    }
+  }
+  return array;
+}
+
+// The slots of the given bodies, or of every body in the world in slot order.
+std::vector<std::uint32_t> slots_of(const World& world,
+                                    const std::optional<std::vector<BodyId>>& ids) {
+  std::vector<std::uint32_t> slots;
+  if (ids) {
+    for (const BodyId id : *ids) {
+      if (!world.alive(id)) {
+        throw Error("body " + std::to_string(id.index) + " (generation " +
+                    std::to_string(id.generation) + ") is not in the world");
+      }
+      slots.push_back(id.index);
+    }
+    return slots;
+  }
+  for (std::uint32_t slot = 0; slot < world.body_slots(); ++slot) {
+    if (world.alive(world.id_of(slot))) slots.push_back(slot);
+  }
+  return slots;
+}
+
+// Steps `steps` times without the GIL; between steps, takes it back to let Ctrl-C through.
+StepStats step_world(World& world, float dt, int steps) {
+  if (steps < 1) throw Error("steps must be at least 1, got " + std::to_string(steps));
+  StepStats stats;
+  for (int i = 0; i < steps; ++i) {
+    {
+      py::gil_scoped_release unlocked;
+      stats = world.step(dt);
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (world.stopped()) break;
+  }
+  return stats;
+}
+
+py::dict stats_dict(const StepStats& s) {
+  py::dict d;
+  d["broad_phase_ms"] = s.broad_phase_ms;
+  d["narrow_phase_ms"] = s.narrow_phase_ms;
+  d["contacts_ms"] = s.contacts_ms;
+  d["response_ms"] = s.response_ms;
+  d["integration_ms"] = s.integration_ms;
+  d["step_ms"] = s.step_ms;
+  d["detection_ms"] = s.detection_ms();
+  d["bodies"] = s.bodies;
+  d["candidate_pairs"] = s.candidate_pairs;
+  d["sphere_tests"] = s.sphere_tests;
+  d["leaf_pairs"] = s.leaf_pairs;
+  d["contacts"] = s.contacts;
+  d["impulses"] = s.impulses;
+  d["response_passes"] = s.response_passes;
+  d["substeps"] = s.substeps;
+  d["warm_started"] = s.warm_started;
+  d["bounces"] = s.bounces;
+  d["pairs_cut_short"] = s.pairs_cut_short;
+  d["coincident_centres"] = s.coincident_centres;
+  d["islands"] = s.islands;
+  d["descended_pairs"] = s.descended_pairs;
+  d["reused_pairs"] = s.reused_pairs;
+  d["moving_bodies"] = s.moving_bodies;
+  d["bodies_asleep"] = s.bodies_asleep;
+  d["deepest_penetration"] = s.deepest_penetration;
+  d["mean_penetration"] = s.mean_penetration;
+  d["penetrating_contacts"] = s.penetrating_contacts;
+  d["kinetic_energy"] = s.kinetic_energy;
+  d["bodies_at_rest"] = s.bodies_at_rest;
+  d["jitter"] = s.jitter;
+  d["non_finite_body"] =
+      s.non_finite_body ? py::object(py::int_(*s.non_finite_body)) : py::object(py::none());
+  return d;
+}
+
+}  // namespace
+
+WorldSettings settings_from(const py::handle& mapping, WorldSettings base) {
+  std::vector<std::pair<std::string, py::object>> fields;
+  flatten(mapping, "", fields);
+  for (const auto& [field, value] : fields) {
+    const Setting* setting = find_setting(field);
+    if (setting != nullptr && setting->kind == SettingKind::kVector3) {
+      setting->set_vector(base, vec3_from(value, setting->field.data()));
+    } else {
+      set_setting_from_text(base, field, setting_text(value), "settings");
+    }
+  }
+  check_world_settings(base);
+  return base;
+}
+
+py::dict settings_dict(const WorldSettings& settings) {
+  py::dict d;
+  for (const Setting& setting : settings_table()) {
+    const std::string field(setting.field);
+    switch (setting.kind) {
+      case SettingKind::kVector3: {
+        const Vec3 v = setting.get_vector(settings);
+        d[field.c_str()] =
+            py::make_tuple(shortest_double(v.x()), shortest_double(v.y()), shortest_double(v.z()));
+        break;
+      }
+      case SettingKind::kBool:
+        d[field.c_str()] = setting.get(settings) != 0.0;
+        break;
+      case SettingKind::kEnum:
+        d[field.c_str()] =
+            std::string(setting.choices[static_cast<std::size_t>(setting.get(settings))]);
+        break;
+      case SettingKind::kInteger:
+        d[field.c_str()] = static_cast<std::uint64_t>(setting.get(settings));
+        break;
+      case SettingKind::kNumber:
+        d[field.c_str()] = setting.get(settings);
+        break;
+    }
+  }
+  return d;
+}
+
+void bind_world(py::module_& m) {
+  m.attr("GROUND_PLANE_BODY") = kGroundPlaneBody;
+  py::class_<BodyId>(m, "BodyId", "A body of a world: its slot and the slot's generation.")
+      .def_readonly("index", &BodyId::index)
+      .def_readonly("generation", &BodyId::generation)
+      .def("__eq__", [](const BodyId& a, const BodyId& b) { return a == b; })
+      .def("__hash__",
+           [](const BodyId& id) { return (std::uint64_t{id.generation} << 32) | id.index; })
+      .def("__repr__", [](const BodyId& id) {
+        return "BodyId(index=" + std::to_string(id.index) +
+               ", generation=" + std::to_string(id.generation) + ")";
+      });
+
+  py::class_<StepStats>(m, "StepStats",
+                        "Figures of one step; times in ms, penetrations in m, energy in J. The "
+                        "plausibility figures need the world's plausibility_figures setting.")
+      .def_readonly("broad_phase_ms", &StepStats::broad_phase_ms)
+      .def_readonly("narrow_phase_ms", &StepStats::narrow_phase_ms)
+      .def_readonly("contacts_ms", &StepStats::contacts_ms)
+      .def_readonly("response_ms", &StepStats::response_ms)
+      .def_readonly("integration_ms", &StepStats::integration_ms)
+      .def_readonly("step_ms", &StepStats::step_ms)
+      .def_readonly("bodies", &StepStats::bodies)
+      .def_readonly("candidate_pairs", &StepStats::candidate_pairs)
+      .def_readonly("sphere_tests", &StepStats::sphere_tests)
+      .def_readonly("leaf_pairs", &StepStats::leaf_pairs)
+      .def_readonly("contacts", &StepStats::contacts)
+      .def_readonly("impulses", &StepStats::impulses)
+      .def_readonly("response_passes", &StepStats::response_passes)
+      .def_readonly("substeps", &StepStats::substeps)
+      .def_readonly("warm_started", &StepStats::warm_started)
+      .def_readonly("bounces", &StepStats::bounces)
+      .def_readonly("pairs_cut_short", &StepStats::pairs_cut_short)
+      .def_readonly("coincident_centres", &StepStats::coincident_centres)
+      .def_readonly("islands", &StepStats::islands)
+      .def_readonly("descended_pairs", &StepStats::descended_pairs)
+      .def_readonly("reused_pairs", &StepStats::reused_pairs)
+      .def_readonly("moving_bodies", &StepStats::moving_bodies)
+      .def_readonly("bodies_asleep", &StepStats::bodies_asleep)
+      .def_readonly("deepest_penetration", &StepStats::deepest_penetration)
+      .def_readonly("mean_penetration", &StepStats::mean_penetration)
+      .def_readonly("penetrating_contacts", &StepStats::penetrating_contacts)
+      .def_readonly("kinetic_energy", &StepStats::kinetic_energy)
+      .def_readonly("bodies_at_rest", &StepStats::bodies_at_rest)
+      .def_readonly("jitter", &StepStats::jitter)
+      .def_readonly("non_finite_body", &StepStats::non_finite_body)
+      .def_property_readonly("detection_ms", &StepStats::detection_ms)
+      .def("to_dict", &stats_dict, "Every figure by name (the names of sphys/step_stats.h).")
+      .def("__repr__", [](const StepStats& s) {
+        return "<sphys.StepStats " + std::to_string(s.step_ms) + " ms, " +
+               std::to_string(s.contacts) + " contacts>";
+      });
+
+  m.def(
+      "settings_table",
+      [] {
+        py::list rows;
+        const py::dict defaults = settings_dict(WorldSettings{});
+        for (const Setting& setting : settings_table()) {
+          py::dict row;
+          row["field"] = std::string(setting.field);
+          row["unit"] = std::string(setting.unit);
+          row["valid"] = range_text(setting);
+          row["default"] = defaults[std::string(setting.field).c_str()];
+          row["doc"] = std::string(setting.doc);
+          rows.append(row);
+        }
+        return rows;
+      },
+      "Every world setting: its field, unit, valid values, default and what it does.");
+
+  py::class_<World>(m, "World",
+                    "A world of rigid bodies with sphere-trees. Settings are keyword arguments "
+                    "named as in scene files, nested for the solver and sleep "
+                    "(World(gravity=(0, -9.81, 0), solver={'method': 'soft_step'})); see "
+                    "settings_table(). ground_plane: height (m) of an exact ground plane, or None.")
+      .def(py::init([](const py::object& ground_plane, const py::kwargs& settings) {
+             WorldSettings world_settings = settings_from(settings, WorldSettings{});
+             if (!ground_plane.is_none()) {
+               // Any real number (numpy's included), not a bool or a str.
+               const py::object real = py::module_::import("numbers").attr("Real");
+               if (py::isinstance<py::bool_>(ground_plane) || !py::isinstance(ground_plane, real)) {
+                 throw Error("ground_plane must be a height (m) or None, got " +
+                             py::repr(ground_plane).cast<std::string>());
+               }
+               const auto height = py::float_(ground_plane).cast<double>();
+               if (!std::isfinite(height)) throw Error("ground_plane must be finite or None");
+               world_settings.collision.ground_plane_height = static_cast<float>(height);
+             }
+             return std::make_unique<World>(world_settings);
+           }),
+           py::kw_only(), py::arg("ground_plane") = py::none())
+      .def_property_readonly(
+          "settings", [](const World& world) { return settings_dict(world.settings()); },
+          "Every setting by its dotted field.")
+      .def_property_readonly(
+          "ground_plane",
+          [](const World& world) { return world.settings().collision.ground_plane_height; },
+          "Height of the exact ground plane (m), or None.")
+      .def(
+          "add_body",
+          [](World& world, const std::shared_ptr<SphereTree>& tree, const py::object& position,
+             const py::object& orientation, const py::object& linear_velocity,
+             const py::object& angular_velocity, float mass, const py::object& inertia,
+             float restitution, float friction, bool is_static) {
+            BodyDesc desc;
+            desc.tree = tree;
+            desc.pose.translation = vec3_from(position, "position");
+            desc.pose.rotation = quat_from(orientation, "orientation");
+            desc.linear_velocity = vec3_from(linear_velocity, "linear_velocity");
+            desc.angular_velocity = vec3_from(angular_velocity, "angular_velocity");
+            desc.mass = mass;
+            if (!inertia.is_none()) {
+              const auto rows =
+                  py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(inertia);
+              if (!rows || rows.ndim() != 2 || rows.shape(0) != 3 || rows.shape(1) != 3) {
+                throw Error("inertia must be a 3x3 matrix (kg·m²)");
+              }
+              for (int r = 0; r < 3; ++r) {
+                for (int c = 0; c < 3; ++c) desc.inertia(r, c) = static_cast<float>(rows.at(r, c));
+              }
+            }
+            desc.restitution = restitution;
+            desc.friction = friction;
+            desc.is_static = is_static;
+            return world.add_body(desc);
+          },
+          py::arg("tree"), py::kw_only(), py::arg("position") = py::make_tuple(0, 0, 0),
+          py::arg("orientation") = py::make_tuple(0, 0, 0, 1),
+          py::arg("linear_velocity") = py::make_tuple(0, 0, 0),
+          py::arg("angular_velocity") = py::make_tuple(0, 0, 0), py::arg("mass") = 1.0f,
+          py::arg("inertia") = py::none(), py::arg("restitution") = BodyDesc{}.restitution,
+          py::arg("friction") = BodyDesc{}.friction, py::arg("static") = false,
+          "Adds a body whose sphere-tree is in its body frame (origin at the centre of mass). "
+          "position (m); orientation a unit quaternion (x, y, z, w); velocities in m/s and rad/s "
+          "(world frame); mass (kg); inertia 3x3 about the centre of mass in body axes (kg·m², "
+          "identity if None); restitution 0..1; friction >= 0. Returns its BodyId.")
+      .def("remove_body", &World::remove_body, py::arg("body"))
+      .def("alive", &World::alive, py::arg("body"))
+      .def("asleep", &World::asleep, py::arg("body"))
+      .def(
+          "body_ids",
+          [](const World& world) {
+            std::vector<BodyId> ids;
+            for (const std::uint32_t slot : slots_of(world, std::nullopt))
+              ids.push_back(world.id_of(slot));
+            return ids;
+          },
+          "The bodies in the world, in the order of poses() and velocities().")
+      .def("__len__", [](const World& world) { return slots_of(world, std::nullopt).size(); })
+      .def(
+          "set_velocity",
+          [](World& world, BodyId body, const py::object& linear, const py::object& angular) {
+            world.set_velocity(body, vec3_from(linear, "linear"), vec3_from(angular, "angular"));
+          },
+          py::arg("body"), py::arg("linear"), py::arg("angular") = py::make_tuple(0, 0, 0),
+          "Sets a body's velocities (m/s, rad/s, world frame) and wakes it.")
+      .def(
+          "apply_impulse",
+          [](World& world, BodyId body, const py::object& impulse, const py::object& point) {
+            world.apply_impulse(body, vec3_from(impulse, "impulse"), vec3_from(point, "point"));
+          },
+          py::arg("body"), py::arg("impulse"), py::arg("point"),
+          "An impulse (N·s, world frame) at a world point (m); wakes the body.")
+      .def(
+          "set_pair_material",
+          [](World& world, BodyId a, BodyId b, float friction, float restitution) {
+            if (a == b) throw Error("set_pair_material: a and b are the same body");
+            world.set_pair_material(a, b, PairMaterial{friction, restitution});
+          },
+          py::arg("a"), py::arg("b"), py::kw_only(), py::arg("friction"), py::arg("restitution"),
+          "The friction (>= 0) and restitution (0..1) of contacts between two bodies.")
+      .def("step", &step_world, py::arg("dt") = 1.0 / 60.0, py::arg("steps") = 1,
+           "Advances the world `steps` times by dt (s) with the GIL released; returns the last "
+           "step's StepStats. Ctrl-C stops between steps. A world whose state went non-finite "
+           "stops (StepStats.non_finite_body says which body).")
+      .def_property_readonly(
+          "stats", [](const World& world) { return world.stats(); }, "The last step's StepStats.")
+      .def_property_readonly("stopped", &World::stopped, "True once the state went non-finite.")
+      .def(
+          "poses",
+          [](const World& world, const std::optional<std::vector<BodyId>>& ids) {
+            return rows_of(world, slots_of(world, ids), 7, true);
+          },
+          py::arg("ids") = std::nullopt,
+          "(N, 7) float32: position (m) then orientation (x, y, z, w) of the given bodies, or of "
+          "every body in body_ids() order. A copy: it does not change as the world steps.")
+      .def(
+          "velocities",
+          [](const World& world, const std::optional<std::vector<BodyId>>& ids) {
+            return rows_of(world, slots_of(world, ids), 6, false);
+          },
+          py::arg("ids") = std::nullopt,
+          "(N, 6) float32: linear (m/s) then angular (rad/s) velocity, world frame.")
+      .def(
+          "contacts",
+          [](const World& world) {
+            const auto contacts = world.contacts();
+            const auto n = static_cast<py::ssize_t>(contacts.size());
+            py::array_t<std::uint32_t> bodies({n, py::ssize_t{2}});
+            py::array_t<float> points({n, py::ssize_t{3}});
+            py::array_t<float> normals({n, py::ssize_t{3}});
+            py::array_t<float> depths({n});
+            auto b = bodies.mutable_unchecked<2>();
+            auto p = points.mutable_unchecked<2>();
+            auto nn = normals.mutable_unchecked<2>();
+            auto d = depths.mutable_unchecked<1>();
+            for (py::ssize_t i = 0; i < n; ++i) {
+              const Contact& c = contacts[static_cast<std::size_t>(i)];
+              b(i, 0) = c.body_a;
+              b(i, 1) = c.body_b;
+              for (int k = 0; k < 3; ++k) {
+                p(i, k) = c.point[k];
+                nn(i, k) = c.normal[k];
+              }
+              d(i) = c.depth;
+            }
+            py::dict out;
+            out["bodies"] = bodies;
+            out["points"] = points;
+            out["normals"] = normals;
+            out["depths"] = depths;
+            return out;
+          },
+          "The last step's contacts as arrays: bodies (K, 2) uint32 body indices (BodyId.index; "
+          "GROUND_PLANE_BODY for the ground plane), points (K, 3) m, normals (K, 3) unit vectors "
+          "from the first body to the second, "
+          "depths (K,) m.")
+      .def("set_detection_budget", &World::set_detection_budget, py::arg("max_sphere_tests"),
+           py::arg("max_microseconds"),
+           "The narrow phase's budgets from the next step on; 0 turns one off.");
+}
+
+}  // namespace sphys::python
