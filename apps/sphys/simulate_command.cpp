@@ -177,6 +177,14 @@ std::string percent_text(const nlohmann::ordered_json& value) {
   return text;
 }
 
+// "-0.25 m", or "n/a" for a figure the run could not give (no bodies).
+std::string metres_text(const nlohmann::ordered_json& value) {
+  if (value.is_null()) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g m", value.get<double>());
+  return text;
+}
+
 // "plausible, reduced contacts, 1 substep per frame"
 std::string response_text(const nlohmann::ordered_json& s) {
   std::string text = s["response"].get<std::string>();
@@ -246,13 +254,19 @@ void print_summary(const nlohmann::ordered_json& s) {
               s["end_overlap_m"].get<double>(),
               percent_text(s["end_overlap_percent_of_size"]).c_str());
   std::printf("kinetic energy      %.6g J at the end\n", s["final_kinetic_energy_J"].get<double>());
-  std::printf("at rest             %u of %u moving bodies at the end, %u asleep; %s\n",
-              s["bodies_at_rest"].get<unsigned>(), s["moving_bodies"].get<unsigned>(),
-              s["bodies_asleep"].get<unsigned>(), settled_text(s).c_str());
+  std::printf(
+      "at rest             %u of %u movable bodies at the end (%u asleep, %u still "
+      "moving); %s\n",
+      s["bodies_at_rest"].get<unsigned>(), s["movable_bodies"].get<unsigned>(),
+      s["bodies_asleep"].get<unsigned>(), s["bodies_still_moving"].get<unsigned>(),
+      settled_text(s).c_str());
   std::printf("jitter              %.4g m/s (mean over the last %zu frames or fewer)\n",
               s["jitter_m_per_s"].get<double>(), tools::kJitterFrames);
-  std::printf("below the ground    %u bodies (lowest centre of mass y = %.4g m)\n",
-              s["bodies_below_ground"].get<unsigned>(), s["lowest_center_y_m"].get<double>());
+  std::printf(
+      "below the ground    %u bodies at the end (lowest centre of mass y: %s at the end, "
+      "%s over the run)\n",
+      s["bodies_below_ground"].get<unsigned>(), metres_text(s["lowest_center_y_end_m"]).c_str(),
+      metres_text(s["lowest_center_y_run_m"]).c_str());
   std::printf("wrote               %s, %s\n", s["csv"].get<std::string>().c_str(),
               s["recording"].get<std::string>().c_str());
 }
@@ -300,7 +314,7 @@ void run(const SimulateOptions& options) {
         failure = tools::non_finite_message(setup, *stats.non_finite_body, frame);
         break;
       }
-      totals.add(stats);
+      totals.add(stats, setup);
       rows.push_back(frame_row(frame, frame * scene.time_step, stats));
       recording.add_frame(poses(setup));
       bar.update(static_cast<double>(frame) / scene.frames);

@@ -44,7 +44,7 @@ struct StepStats {
   // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
   std::uint32_t descended_pairs = 0;
   std::uint32_t reused_pairs = 0;
-  std::uint32_t moving_bodies = 0;  // bodies that are not static
+  std::uint32_t movable_bodies = 0;  // bodies that are not static
   std::uint32_t bodies_asleep = 0;
 
   // Plausibility figures, measured on the leaf-pair contacts before any reduction and on the

@@ -77,7 +77,7 @@ StepStats step_simulation(Simulation& sim, int frames) {
     if (stats.non_finite_body) {
       throw Error(tools::non_finite_message(sim.setup, *stats.non_finite_body, sim.frame));
     }
-    sim.totals.add(stats);
+    sim.totals.add(stats, sim.setup);
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
   return stats;

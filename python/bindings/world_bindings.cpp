@@ -133,7 +133,7 @@ py::dict stats_dict(const StepStats& s) {
   d["islands"] = s.islands;
   d["descended_pairs"] = s.descended_pairs;
   d["reused_pairs"] = s.reused_pairs;
-  d["moving_bodies"] = s.moving_bodies;
+  d["movable_bodies"] = s.movable_bodies;
   d["bodies_asleep"] = s.bodies_asleep;
   d["deepest_penetration"] = s.deepest_penetration;
   d["mean_penetration"] = s.mean_penetration;
@@ -229,7 +229,7 @@ void bind_world(py::module_& m) {
       .def_readonly("islands", &StepStats::islands)
       .def_readonly("descended_pairs", &StepStats::descended_pairs)
       .def_readonly("reused_pairs", &StepStats::reused_pairs)
-      .def_readonly("moving_bodies", &StepStats::moving_bodies)
+      .def_readonly("movable_bodies", &StepStats::movable_bodies)
       .def_readonly("bodies_asleep", &StepStats::bodies_asleep)
       .def_readonly("deepest_penetration", &StepStats::deepest_penetration)
       .def_readonly("mean_penetration", &StepStats::mean_penetration)

@@ -244,8 +244,8 @@ const StepStats& World::step(float dt) {
   // Islands whose bodies parted in the last step are built afresh, once a step.
   if (settings_.response == ResponseMode::kPlausible) sleep_->split_islands(detector_.contacts());
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
-  stats.moving_bodies = store_->dynamic_bodies();
-  stats.bodies_asleep = stats.moving_bodies - static_cast<std::uint32_t>(store_->awake().size());
+  stats.movable_bodies = store_->dynamic_bodies();
+  stats.bodies_asleep = stats.movable_bodies - static_cast<std::uint32_t>(store_->awake().size());
   if (settings_.plausibility_figures) measure_rest(stats);
   stats.step_ms = elapsed_ms(step_start);
   stats_ = stats;

@@ -95,7 +95,7 @@ TEST(ExperimentCommand, JsonHasTheRowAndItsFrames) {
   EXPECT_GT(row["fps"].get<double>(), 0.0);
   EXPECT_THAT(row["tree_builder"].get<std::string>(), HasSubstr("combined, branching 8"));
   // Three frames of falling from 1 m: the lowest bunny is still well above the plane.
-  EXPECT_GT(row["lowest_center_y_m"].get<double>(), 0.9);
+  EXPECT_GT(row["lowest_center_y_end_m"].get<double>(), 0.9);
   EXPECT_EQ(json["report"], (out / "report.md").string());
   EXPECT_TRUE(fs::exists(out / "d2-8x10.csv"));
 }

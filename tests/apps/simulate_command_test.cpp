@@ -150,7 +150,7 @@ TEST(SimulateCommand, JsonSummaryParses) {
   EXPECT_DOUBLE_EQ(json["largest_body_size_m"].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(json["deepest_penetration_percent_of_size"].get<double>(),
                    100.0 * json["deepest_penetration_m"].get<double>());
-  EXPECT_EQ(json["moving_bodies"], 2);
+  EXPECT_EQ(json["movable_bodies"], 2);
   EXPECT_LE(json["bodies_at_rest"].get<int>(), 2);
   EXPECT_LE(json["bodies_asleep"].get<int>(), json["bodies_at_rest"].get<int>());
   // Five frames of falling: nothing rests yet.
@@ -310,6 +310,34 @@ nlohmann::json dropped_bunny(const test::TempDir& dir, const std::string& mode) 
   return nlohmann::json::parse(r.out);
 }
 
+TEST(SimulateCommand, TheLowestCentreIsGivenAtTheEndAndOverTheRun) {
+  // A bunny thrown up at 5 m/s from y = 0 with nothing below, for half a second: it is lowest
+  // after the first step, y1 = (5 - g dt) dt = 0.0806 m (semi-implicit Euler), and at the end
+  // y30 = 30 dt 5 - g dt^2 (1 + ... + 30) = 2.5 - 9.81 * 465 / 3600 = 1.2329 m, still rising.
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const fs::path scene =
+      dir.write("throw.json", scene_text(R"("frames": 30, "ground": {"type": "none"},
+                                 "bodies": [{"position": [0, 0, 0], "linear_velocity": [0, 5, 0]}])"));
+  const test::CommandResult r =
+      sphys_cli({"simulate", scene.string(), "--out", (dir.path() / "out").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  constexpr double g = 9.81, dt = 1.0 / 60.0;
+  EXPECT_NEAR(json["lowest_center_y_run_m"].get<double>(), (5.0 - g * dt) * dt, 1e-5);
+  EXPECT_NEAR(json["lowest_center_y_end_m"].get<double>(), 30 * dt * 5.0 - g * dt * dt * 465, 1e-4);
+  EXPECT_EQ(json["movable_bodies"], 1);
+  EXPECT_EQ(json["bodies_still_moving"], 1);
+  EXPECT_EQ(json["bodies_at_rest"], 0);
+  EXPECT_EQ(json["bodies_below_ground"], 0);
+  // The text says the same.
+  const test::CommandResult text =
+      sphys_cli({"simulate", scene.string(), "--out", (dir.path() / "text").string()});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("0 of 1 movable bodies at the end (0 asleep, 1 still moving)"));
+  EXPECT_THAT(text.out, HasSubstr("m at the end, 0.08061 m over the run)"));
+}
+
 TEST(SimulateCommand, PlausibleModeBringsADroppedBunnyToRestOnThePlane) {
   test::use_shared_tree_cache();
   const test::TempDir dir;
@@ -317,7 +345,7 @@ TEST(SimulateCommand, PlausibleModeBringsADroppedBunnyToRestOnThePlane) {
   EXPECT_EQ(plausible["response"], "plausible");
   // It lands within half a second and settles soon after (seen: at rest and asleep from frame
   // 84 of 300), then stays at rest to the end.
-  EXPECT_EQ(plausible["moving_bodies"], 1);
+  EXPECT_EQ(plausible["movable_bodies"], 1);
   EXPECT_EQ(plausible["bodies_at_rest"], 1);
   EXPECT_EQ(plausible["bodies_asleep"], 1);
   ASSERT_FALSE(plausible["all_at_rest_from_frame"].is_null());
@@ -331,7 +359,11 @@ TEST(SimulateCommand, PlausibleModeBringsADroppedBunnyToRestOnThePlane) {
   EXPECT_LT(plausible["deepest_penetration_percent_of_size"].get<double>(), 1.0);
   EXPECT_LT(plausible["mean_penetration_percent_of_size"].get<double>(),
             plausible["deepest_penetration_percent_of_size"].get<double>());
-  EXPECT_GT(plausible["lowest_center_y_m"].get<double>(), 0.0);
+  EXPECT_EQ(plausible["bodies_still_moving"], 0);
+  EXPECT_GT(plausible["lowest_center_y_end_m"].get<double>(), 0.0);
+  EXPECT_GT(plausible["lowest_center_y_run_m"].get<double>(), 0.0);
+  EXPECT_LE(plausible["lowest_center_y_run_m"].get<double>(),
+            plausible["lowest_center_y_end_m"].get<double>());
   // Asleep on the plane, it rests on it within the slop: the overlap counted afresh at the end
   // sees what the world no longer tests.
   EXPECT_GE(plausible["end_overlap_m"].get<double>(), 0.0);
@@ -361,8 +393,8 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("response            paper, 3 substeps per frame\n"));
   EXPECT_THAT(r.out, HasSubstr("\nmean penetration    0 m (0%; over the 0 frames with overlaps)"));
-  EXPECT_THAT(r.out, HasSubstr("\nat rest             0 of 1 moving bodies at the end, 0 asleep; "
-                               "never all at rest\n"));
+  EXPECT_THAT(r.out, HasSubstr("\nat rest             0 of 1 movable bodies at the end (0 asleep, "
+                               "1 still moving); never all at rest\n"));
   // The recording keeps the scene as run.
   const auto recorded =
       nlohmann::json::parse(tools::read_recording(out / "recording.sphysrec").metadata);

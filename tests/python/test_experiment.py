@@ -62,9 +62,9 @@ ROW_LINE = re.compile(r"^\s*\d+\s+\d+ × \d+\s")
 # RowResult.summary(), as `sphys experiment --json` prints a row, in order.
 SUMMARY_KEYS = ["id", "depth", "stacks", "per_stack", "frames", "contacts_per_frame",
                 "mean_frame_ms", "fps", "frame_time_sd_ms", "detection_share_percent",
-                "response_share_percent", "bodies", "bodies_below_plane", "lowest_center_y_m",
+                "response_share_percent", "bodies", "bodies_below_plane", "lowest_center_y_end_m",
                 "deepest_penetration_m", "deepest_penetration_frame", "mean_penetration_m",
-                "penetrating_frames", "moving_bodies", "bodies_at_rest", "bodies_asleep",
+                "penetrating_frames", "movable_bodies", "bodies_at_rest", "bodies_asleep", "bodies_still_moving",
                 "all_at_rest_from_frame", "jitter_m_per_s", "final_kinetic_energy_J",
                 "stopped_non_finite", "ground", "tree_builder"]
 # The summary's figures that measure time: the rest is the same on every run of a build.
@@ -224,12 +224,12 @@ def test_plausibility_figures_are_consistent(short_row):
     assert 1 <= p["deepest_penetration_frame"] <= 40
     assert 1 <= p["penetrating_frames"] <= 40
     assert p["deepest_penetration_m"] >= p["mean_penetration_m"] > 0.0
-    assert p["moving_bodies"] == p["bodies"] == 80
+    assert p["movable_bodies"] == p["bodies"] == 80
     # Paper mode has no sleeping, and falling bunnies are not at rest after 40 frames.
     assert p["bodies_asleep"] == 0 and p["bodies_at_rest"] == 0
     assert p["all_at_rest_from_frame"] is None
     assert p["final_kinetic_energy_J"] > 0.0 and p["jitter_m_per_s"] >= 0.0
-    assert p["bodies_below_plane"] == 0 and p["lowest_center_y_m"] > 0.0
+    assert p["bodies_below_plane"] == 0 and p["lowest_center_y_end_m"] > 0.0
 
 
 def test_free_fall_on_the_exact_plane():
@@ -244,7 +244,7 @@ def test_free_fall_on_the_exact_plane():
     assert p["contacts_per_frame"] == 0.0
     assert p["penetrating_frames"] == 0 and p["deepest_penetration_frame"] == 0
     assert p["deepest_penetration_m"] == 0.0 and p["mean_penetration_m"] == 0.0
-    assert p["lowest_center_y_m"] == pytest.approx(1.0 - G * DT * DT * n * (n + 1) / 2, abs=1e-5)
+    assert p["lowest_center_y_end_m"] == pytest.approx(1.0 - G * DT * DT * n * (n + 1) / 2, abs=1e-5)
     assert p["bodies_below_plane"] == 0
     mass = p["bodies"] * BUNNY_MASS
     assert p["final_kinetic_energy_J"] == pytest.approx(0.5 * mass * (n * G * DT) ** 2, rel=1e-3)

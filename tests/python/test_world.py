@@ -93,7 +93,7 @@ def test_free_fall_with_adaptive_substeps_stays_within_the_euler_bound(sphere_tr
     assert vy == pytest.approx(-g * t, abs=1e-4)
     # The kinetic energy the step reports is ½ m v² of the one moving body.
     assert world.stats.kinetic_energy == pytest.approx(0.5 * mass * vy * vy, rel=1e-6)
-    assert world.stats.bodies == 1 and world.stats.moving_bodies == 1
+    assert world.stats.bodies == 1 and world.stats.movable_bodies == 1
     assert world.stats.contacts == 0 and world.stats.candidate_pairs == 0
 
 
@@ -201,7 +201,7 @@ def test_static_body_does_not_move(sphere_tree):
     np.testing.assert_array_equal(world.poses([wall])[0], [0, 1, 0, 0, 0, 0, 1])
     np.testing.assert_array_equal(world.velocities([wall])[0], 0)
     assert world.poses([ball])[0, 1] < 1
-    assert stats.bodies == 2 and stats.moving_bodies == 1
+    assert stats.bodies == 2 and stats.movable_bodies == 1
 
 
 # ---------------------------------------------------------------------------------------------
@@ -417,7 +417,7 @@ def test_step_steps_and_stats(sphere_tree):
         stats.broad_phase_ms + stats.narrow_phase_ms + stats.contacts_ms)
     assert 0 <= stats.integration_ms <= stats.step_ms
     assert sphys.GROUND_PLANE_BODY == GROUND
-    assert d["bodies"] == 1 and d["moving_bodies"] == 1 and d["substeps"] == 1
+    assert d["bodies"] == 1 and d["movable_bodies"] == 1 and d["substeps"] == 1
     assert d["contacts"] == 0 and d["non_finite_body"] is None
     assert last.bodies == stats.bodies
     assert "contacts" in repr(stats) and repr(stats).startswith("<sphys.StepStats")
@@ -434,7 +434,7 @@ def test_step_stats_count_a_two_sphere_collision(sphere_tree):
     first = history[0]
     assert first["kinetic_energy"] == pytest.approx(0.5 * 1 * 2**2 + 0.5 * 3 * 1**2, rel=1e-6)
     assert (first["candidate_pairs"], first["sphere_tests"], first["contacts"]) == (0, 0, 0)
-    assert first["islands"] == 2 and first["bodies"] == 2 and first["moving_bodies"] == 2
+    assert first["islands"] == 2 and first["bodies"] == 2 and first["movable_bodies"] == 2
     touching = [k for k, s in enumerate(history) if s["contacts"]]
     assert touching, "the spheres never met"
     meet = history[touching[0]]

@@ -48,7 +48,7 @@ WorldSettings on_plane() {
 bool settle(World& world, float seconds) {
   for (int i = 0; i < static_cast<int>(seconds / kDt); ++i) {
     const StepStats& stats = world.step(kDt);
-    if (stats.moving_bodies > 0 && stats.bodies_asleep == stats.moving_bodies) return true;
+    if (stats.movable_bodies > 0 && stats.bodies_asleep == stats.movable_bodies) return true;
   }
   return false;
 }
@@ -92,7 +92,7 @@ TEST(WorldBodies, RemovingTheSupportOfASleepingStackLetsTheTopFall) {
   world.remove_body(bottom);
   EXPECT_FALSE(world.asleep(top));  // it lost its support
   const StepStats& after = world.step(kDt);
-  EXPECT_EQ(after.moving_bodies, 1u);
+  EXPECT_EQ(after.movable_bodies, 1u);
   for (const Contact& contact : world.contacts()) {
     EXPECT_NE(contact.body_a, bottom.index);
     EXPECT_NE(contact.body_b, bottom.index);

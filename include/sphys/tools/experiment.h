@@ -71,7 +71,7 @@ struct Plausibility {
   double mean_penetration = 0.0;
   int penetrating_frames = 0;  // frames with overlapping leaf pairs
   // At the end of the run: bodies that are not static, and those at rest or asleep among them.
-  std::uint32_t moving_bodies = 0;
+  std::uint32_t movable_bodies = 0;
   std::uint32_t bodies_at_rest = 0;
   std::uint32_t bodies_asleep = 0;
   // The first frame (from 1) from which every moving body stayed at rest to the end; unset when

@@ -4,6 +4,7 @@
 // figures, and the bodies' state at the end. `sphys simulate` and the Python module's Simulation
 // report the same figures under the same names (the README's `sphys simulate`, docs/python.md).
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,11 @@ struct RunTotals {
   double substeps = 0;  // summed over the frames
   std::uint32_t max_substeps = 0;
   PlausibilityMeter plausibility;
+  // The lowest centre of mass of the scene's bodies over the frames. unit: m
+  float lowest_center_y = std::numeric_limits<float>::infinity();
 
-  void add(const StepStats& stats);
+  // One frame: its StepStats and the bodies' poses after it.
+  void add(const StepStats& stats, const SimulationSetup& setup);
   // A phase's share of the step time. unit: %
   [[nodiscard]] double share(double part) const { return step > 0 ? 100.0 * part / step : 0.0; }
 };

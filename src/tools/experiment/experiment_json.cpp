@@ -23,14 +23,15 @@ std::string row_result_json(const RowResult& result) {
   row["response_share_percent"] = summary.response_share;
   row["bodies"] = result.bodies;
   row["bodies_below_plane"] = result.bodies_below_plane;
-  row["lowest_center_y_m"] = result.lowest_center_y;
+  row["lowest_center_y_end_m"] = result.lowest_center_y;
   row["deepest_penetration_m"] = plausible.deepest_penetration;
   row["deepest_penetration_frame"] = plausible.deepest_frame;
   row["mean_penetration_m"] = plausible.mean_penetration;
   row["penetrating_frames"] = plausible.penetrating_frames;
-  row["moving_bodies"] = plausible.moving_bodies;
+  row["movable_bodies"] = plausible.movable_bodies;
   row["bodies_at_rest"] = plausible.bodies_at_rest;
   row["bodies_asleep"] = plausible.bodies_asleep;
+  row["bodies_still_moving"] = plausible.movable_bodies - plausible.bodies_at_rest;
   row["all_at_rest_from_frame"] = plausible.all_at_rest_frame
                                       ? nlohmann::ordered_json(*plausible.all_at_rest_frame)
                                       : nlohmann::ordered_json();

@@ -15,11 +15,11 @@ void PlausibilityMeter::add(const StepStats& stats) {
     penetration_sum_ += stats.mean_penetration;
     ++figures_.penetrating_frames;
   }
-  figures_.moving_bodies = stats.moving_bodies;
+  figures_.movable_bodies = stats.movable_bodies;
   figures_.bodies_at_rest = stats.bodies_at_rest;
   figures_.bodies_asleep = stats.bodies_asleep;
   figures_.final_kinetic_energy = stats.kinetic_energy;
-  if (stats.bodies_at_rest < stats.moving_bodies) {
+  if (stats.bodies_at_rest < stats.movable_bodies) {
     figures_.all_at_rest_frame.reset();
   } else if (!figures_.all_at_rest_frame) {
     figures_.all_at_rest_frame = frames_;

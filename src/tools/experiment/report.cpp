@@ -270,7 +270,7 @@ Table runs_table(std::span<const RowResult> results) {
       {"", "ground", "ground", false},
       {"", "frames", "frames", true},
       {"", "every bunny above the plane", "every bunny above the plane", false},
-      {"", "lowest centre (m)", "lowest centre of mass (m)", true},
+      {"", "lowest centre at the end (m)", "lowest centre of mass at the end (m)", true},
       {"", "stopped on a non-finite state", "stopped on a non-finite state", false},
   };
   for (const RowResult* result : in_paper_order(results)) {

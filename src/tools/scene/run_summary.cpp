@@ -31,9 +31,9 @@ double largest_body_size(const SimulationSetup& setup) {
   return size;
 }
 
-// The state of the bodies at the end of the run.
+// The state of the bodies at the end of the run, and the lowest any went (`run_lowest`, m).
 void add_end_state(nlohmann::ordered_json& summary, const Scene& scene,
-                   const SimulationSetup& setup, const Plausibility& plausible) {
+                   const SimulationSetup& setup, const Plausibility& plausible, float run_lowest) {
   const double size = largest_body_size(setup);
   const auto percent = [size](double depth) {
     return number_or_null(size > 0.0 ? 100.0 * depth / size : std::nan(""));
@@ -46,9 +46,10 @@ void add_end_state(nlohmann::ordered_json& summary, const Scene& scene,
   summary["mean_penetration_percent_of_size"] = percent(plausible.mean_penetration);
   summary["penetrating_frames"] = plausible.penetrating_frames;
   summary["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
-  summary["moving_bodies"] = plausible.moving_bodies;
+  summary["movable_bodies"] = plausible.movable_bodies;
   summary["bodies_at_rest"] = plausible.bodies_at_rest;
   summary["bodies_asleep"] = plausible.bodies_asleep;
+  summary["bodies_still_moving"] = plausible.movable_bodies - plausible.bodies_at_rest;
   const std::optional<int> settled = plausible.all_at_rest_frame;
   summary["all_at_rest_from_frame"] =
       settled ? nlohmann::ordered_json(*settled) : nlohmann::ordered_json();
@@ -75,12 +76,13 @@ void add_end_state(nlohmann::ordered_json& summary, const Scene& scene,
   summary["end_overlap_m"] = end_overlap.depth;
   summary["end_overlap_percent_of_size"] = percent(end_overlap.depth);
   summary["bodies_below_ground"] = below;
-  summary["lowest_center_y_m"] = lowest;
+  summary["lowest_center_y_end_m"] = number_or_null(lowest);
+  summary["lowest_center_y_run_m"] = number_or_null(std::min(lowest, run_lowest));
 }
 
 }  // namespace
 
-void RunTotals::add(const StepStats& s) {
+void RunTotals::add(const StepStats& s, const SimulationSetup& setup) {
   step_ms.push_back(s.step_ms);
   broad += s.broad_phase_ms;
   narrow += s.narrow_phase_ms;
@@ -93,6 +95,9 @@ void RunTotals::add(const StepStats& s) {
   substeps += s.substeps;
   max_substeps = std::max(max_substeps, s.substeps);
   plausibility.add(s);
+  for (const BodyId body : setup.bodies) {
+    lowest_center_y = std::min(lowest_center_y, setup.world->body(body).pose.translation.y());
+  }
 }
 
 std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
@@ -121,7 +126,7 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
                                    {"contacts", totals.share(totals.contacts_time)},
                                    {"response", totals.share(totals.response)},
                                    {"integration", totals.share(totals.integration)}};
-  add_end_state(summary, scene, setup, totals.plausibility.result());
+  add_end_state(summary, scene, setup, totals.plausibility.result(), totals.lowest_center_y);
   return summary.dump(2);
 }
 

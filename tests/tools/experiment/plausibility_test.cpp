@@ -12,7 +12,7 @@ namespace {
 // A frame's figures: `at_rest` of `moving` bodies at rest.
 StepStats frame(std::uint32_t moving, std::uint32_t at_rest) {
   StepStats stats;
-  stats.moving_bodies = moving;
+  stats.movable_bodies = moving;
   stats.bodies_at_rest = at_rest;
   return stats;
 }
@@ -73,7 +73,7 @@ TEST(PlausibilityMeter, TheEndStateIsTheLastFrames) {
   StepStats first = frame(5, 0);
   first.kinetic_energy = 99.0;
   const Plausibility figures = measured({first, last});
-  EXPECT_EQ(figures.moving_bodies, 4u);
+  EXPECT_EQ(figures.movable_bodies, 4u);
   EXPECT_EQ(figures.bodies_at_rest, 3u);
   EXPECT_EQ(figures.bodies_asleep, 2u);
   EXPECT_EQ(figures.final_kinetic_energy, 1.5);

@@ -39,7 +39,7 @@ TEST(BunnyPile, FourStacksOfFiftyComeToRestWithoutSinkingIn) {
     const StepStats& stats = world.step(static_cast<float>(scene.time_step));
     ASSERT_FALSE(stats.non_finite_body) << "frame " << frame;
     deepest = std::max(deepest, stats.deepest_penetration);
-    if (stats.bodies_at_rest < stats.moving_bodies) {
+    if (stats.bodies_at_rest < stats.movable_bodies) {
       at_rest_from = -1;
     } else if (at_rest_from < 0) {
       at_rest_from = frame;
