@@ -35,11 +35,31 @@ constexpr std::string_view kFormat = "sphys-scene";
 constexpr long long kVersion = 1;
 
 constexpr long long kMaxFrames = 10'000'000;
-constexpr double kMaxTimeStep = 1.0;                // unit: s
 constexpr long long kMaxTriangles = 4'294'967'295;  // 2^32 - 1, beyond any mesh sphys loads
 constexpr long long kMinTriangles = 4;              // a tetrahedron, the smallest closed mesh
 constexpr long long kMaxGroundDepth = 7;
 constexpr long long kMaxTreeDepth = 6;
+
+// The physical figures a scene may give, [min, max] in `unit`: wide enough for any rigid body
+// from a grain (1 mm, 1 mg) to a building (1 km, 10^9 kg), narrow enough that every product the
+// simulation forms from them (a mass from density and volume, an inertia from mass and size
+// squared, a step's travel from speed and time step) stays finite and normal in single precision,
+// so nothing accepted here fails later (docs/scenes.md lists them).
+struct PhysicalRange {
+  double min;
+  double max;
+  std::string_view unit;
+};
+constexpr PhysicalRange kTimeStepRange{1e-6, 1.0, "s"};
+constexpr PhysicalRange kBodySizeRange{1e-3, 1e3, "m"};
+constexpr PhysicalRange kDensityRange{1e-3, 1e6, "kg/m³"};
+constexpr PhysicalRange kMassRange{1e-6, 1e9, "kg"};
+constexpr PhysicalRange kGroundSizeRange{1e-2, 1e5, "m"};
+constexpr PhysicalRange kGroundThicknessRange{1e-3, 1e4, "m"};
+// Coordinates beyond this lose centimetres in single precision. unit: m
+constexpr double kMaxCoordinate = 1e5;
+// Beyond any rigid body's speed (a rifle bullet: 1,000 m/s). unit: m/s; rad/s for spin
+constexpr double kMaxSpeed = 1e4;
 // A double from here on rounds to infinity as a float: FLT_MAX plus half its ulp.
 constexpr double kFloatOverflow = 0x1.ffffffp127;
 // A quaternion whose length is within this of 1 is kept as written: dividing floats that already
@@ -433,6 +453,16 @@ double read_positive(const Node& node) {
   return value;
 }
 
+// A positive figure within `range`.
+double read_physical(const Node& node, const PhysicalRange& range) {
+  const double value = read_positive(node);
+  if (value < range.min || value > range.max) {
+    node.fail("must be between " + number_text(range.min) + " and " + number_text(range.max) + " " +
+              std::string(range.unit) + ", got " + shown(node.json()));
+  }
+  return value;
+}
+
 double read_non_negative(const Node& node) {
   const double value = read_number(node);
   if (value < 0.0) node.fail("must not be negative, got " + shown(node.json()));
@@ -520,6 +550,23 @@ Vec3 read_vec3(const Node& node) {
   return out;
 }
 
+// A number within [-limit, limit] (unit).
+double read_bounded(const Node& node, double limit, std::string_view unit) {
+  const double value = read_number(node);
+  if (std::abs(value) > limit) {
+    node.fail("must be between " + number_text(-limit) + " and " + number_text(limit) + " " +
+              std::string(unit) + ", got " + shown(node.json()));
+  }
+  return value;
+}
+
+// Three numbers each within [-limit, limit] (unit).
+Vec3 read_bounded_vec3(const Node& node, double limit, std::string_view unit) {
+  const Vec3 out = read_vec3(node);
+  for (std::size_t k = 0; k < 3; ++k) (void)read_bounded(node.element(k), limit, unit);
+  return out;
+}
+
 // The path of a file that must exist, as written; it resolves against the scene's folder. The
 // input gate's checks run now, so a named pipe or an oversized file is named at its JSON path.
 fs::path read_existing_file(const Node& node, std::string_view what, InputKind kind) {
@@ -549,9 +596,9 @@ std::optional<std::size_t> read_triangles(const Node& node) {
   return static_cast<std::size_t>(triangles);
 }
 
-std::optional<double> read_optional_positive(const Node& node) {
+std::optional<double> read_optional_physical(const Node& node, const PhysicalRange& range) {
   if (node.json().is_null()) return std::nullopt;
-  return read_positive(node);
+  return read_physical(node, range);
 }
 
 TreeSpec read_tree(const Node& node, const TreeSpec& start) {
@@ -667,14 +714,20 @@ void read_body(const Node& node, BodySpec& body) {
   check_keys(node, kBodyKeys);
   if (const auto n = node.find("mesh")) body.mesh = read_mesh(*n);
   if (const auto n = node.find("triangles")) body.triangles = read_triangles(*n);
-  if (const auto n = node.find("size")) body.size = read_optional_positive(*n);
+  if (const auto n = node.find("size")) body.size = read_optional_physical(*n, kBodySizeRange);
   if (const auto n = node.find("sphere_tree")) body.tree = read_tree(*n, body.tree);
-  if (const auto n = node.find("position")) body.position = read_vec3(*n);
+  if (const auto n = node.find("position")) {
+    body.position = read_bounded_vec3(*n, kMaxCoordinate, "m");
+  }
   if (const auto n = node.find("orientation")) body.orientation = read_orientation(*n);
-  if (const auto n = node.find("linear_velocity")) body.linear_velocity = read_vec3(*n);
-  if (const auto n = node.find("angular_velocity")) body.angular_velocity = read_vec3(*n);
-  if (const auto n = node.find("density")) body.density = read_positive(*n);
-  if (const auto n = node.find("mass")) body.mass = read_optional_positive(*n);
+  if (const auto n = node.find("linear_velocity")) {
+    body.linear_velocity = read_bounded_vec3(*n, kMaxSpeed, "m/s");
+  }
+  if (const auto n = node.find("angular_velocity")) {
+    body.angular_velocity = read_bounded_vec3(*n, kMaxSpeed, "rad/s");
+  }
+  if (const auto n = node.find("density")) body.density = read_physical(*n, kDensityRange);
+  if (const auto n = node.find("mass")) body.mass = read_optional_physical(*n, kMassRange);
   if (const auto n = node.find("restitution")) body.restitution = read_fraction(*n);
   if (const auto n = node.find("friction")) body.friction = read_non_negative_single(*n);
   if (const auto n = node.find("static")) body.is_static = read_bool(*n);
@@ -698,9 +751,11 @@ GroundSpec read_ground(const Node& node) {
   check_keys(node, ground_keys());
   GroundSpec ground;
   if (const auto n = node.find("type")) ground.kind = read_choice(*n, kGroundKinds);
-  if (const auto n = node.find("height")) ground.height = read_number(*n);
-  if (const auto n = node.find("size")) ground.size = read_positive(*n);
-  if (const auto n = node.find("thickness")) ground.thickness = read_positive(*n);
+  if (const auto n = node.find("height")) ground.height = read_bounded(*n, kMaxCoordinate, "m");
+  if (const auto n = node.find("size")) ground.size = read_physical(*n, kGroundSizeRange);
+  if (const auto n = node.find("thickness")) {
+    ground.thickness = read_physical(*n, kGroundThicknessRange);
+  }
   if (const auto n = node.find("depth")) {
     ground.depth = static_cast<int>(read_integer(*n, 1, kMaxGroundDepth));
   }
@@ -848,10 +903,7 @@ Scene read_scene(const Json& document, const fs::path& name) {
   scene.name = name.filename().string();
   scene.base_directory = source.base_directory;
   if (const auto n = root.find("time_step")) {
-    scene.time_step = read_positive(*n);
-    if (scene.time_step > kMaxTimeStep) {
-      n->fail("must be at most " + number_text(kMaxTimeStep) + " s, got " + shown(n->json()));
-    }
+    scene.time_step = read_physical(*n, kTimeStepRange);
   }
   if (const auto n = root.find("frames")) {
     scene.frames = static_cast<int>(read_integer(*n, 1, kMaxFrames));

@@ -1,5 +1,6 @@
 #include "sphys/tools/scene_file.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -441,7 +442,7 @@ class RandomScene {
     Scene scene;
     scene.name = "s.json";
     scene.gravity = any_vec3();
-    scene.time_step = std::uniform_real_distribution<double>(1e-9, 1.0)(rng_);
+    scene.time_step = in_range(1e-6, 1.0);
     scene.frames = std::uniform_int_distribution<int>(1, 10'000'000)(rng_);
     scene.paper_passes = std::uniform_int_distribution<int>(1, 1000)(rng_);
     scene.response = pick(std::array{ResponseMode::kPaper, ResponseMode::kPlausible});
@@ -453,9 +454,9 @@ class RandomScene {
         .enabled = coin(), .speed = std::abs(any_float()), .time = std::abs(any_float())};
     scene.ground.kind = pick(std::array{GroundSpec::Kind::kNone, GroundSpec::Kind::kPlane,
                                         GroundSpec::Kind::kOctreeBox});
-    scene.ground.height = any_double();
-    scene.ground.size = std::abs(any_double()) + 1e-300;
-    scene.ground.thickness = std::abs(any_double()) + 1e-300;
+    scene.ground.height = within(1e5);
+    scene.ground.size = in_range(1e-2, 1e5);
+    scene.ground.thickness = in_range(1e-3, 1e4);
     scene.ground.depth = std::uniform_int_distribution<int>(1, 7)(rng_);
     scene.ground.restitution = unit_float();
     scene.ground.friction = std::abs(any_float());
@@ -503,7 +504,7 @@ class RandomScene {
     BodySpec body;
     body.mesh = coin() ? "bunny" : "meshes/box.obj";
     if (coin()) body.triangles = std::uniform_int_distribution<std::size_t>(4, 4'294'967'295)(rng_);
-    body.size = coin() ? std::optional<double>() : std::abs(any_double()) + 1e-300;
+    body.size = coin() ? std::optional<double>() : in_range(1e-3, 1e3);
     if (coin()) {
       body.tree.sph_file = "trees/bunny.sph";
     } else {
@@ -513,15 +514,15 @@ class RandomScene {
       body.tree.branching = std::uniform_int_distribution<int>(2, 8)(rng_);
       body.tree.depth = std::uniform_int_distribution<int>(1, 6)(rng_);
     }
-    body.position = any_vec3();
+    body.position = vec3_within(1e5f);
     Eigen::Vector4f wxyz;
     for (int k = 0; k < 4; ++k) wxyz[k] = std::normal_distribution<float>()(rng_);
     wxyz.normalize();
     body.orientation = Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
-    body.linear_velocity = any_vec3();
-    body.angular_velocity = any_vec3();
-    body.density = std::abs(any_double()) + 1e-300;
-    if (coin()) body.mass = std::abs(any_double()) + 1e-300;
+    body.linear_velocity = vec3_within(1e4f);
+    body.angular_velocity = vec3_within(1e4f);
+    body.density = in_range(1e-3, 1e6);
+    if (coin()) body.mass = in_range(1e-6, 1e9);
     body.restitution = unit_float();
     body.friction = std::abs(any_float());
     body.is_static = coin();
@@ -553,6 +554,25 @@ class RandomScene {
     }
   }
   Vec3 any_vec3() { return {any_float(), any_float(), any_float()}; }
+  // Any double in [lo, hi] (0 < lo), every exponent between alike.
+  double in_range(double lo, double hi) {
+    const double u = std::uniform_real_distribution<double>()(rng_);
+    return std::clamp(lo * std::pow(hi / lo, u), lo, hi);
+  }
+  // Any finite double, or float, of magnitude at most `limit`, every exponent alike.
+  double within(double limit) {
+    for (;;) {
+      const double value = any_double();
+      if (std::abs(value) <= limit) return value;
+    }
+  }
+  float within(float limit) {
+    for (;;) {
+      const float value = any_float();
+      if (std::abs(value) <= limit) return value;
+    }
+  }
+  Vec3 vec3_within(float limit) { return {within(limit), within(limit), within(limit)}; }
 
   std::mt19937 rng_;
 };
@@ -651,7 +671,36 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
       {scene_text(R"("time_step": 0, "bodies": [])"), "/time_step", "must be positive, got 0"},
       {scene_text(R"("time_step": -0.01, "bodies": [])"), "/time_step",
        "must be positive, got -0.01"},
-      {scene_text(R"("time_step": 2, "bodies": [])"), "/time_step", "must be at most 1 s, got 2"},
+      {scene_text(R"("time_step": 2, "bodies": [])"), "/time_step",
+       "must be between 1e-06 and 1 s, got 2"},
+      // Figures that would overflow or vanish in the simulation's products are refused here,
+      // named, rather than failing later: each just past its limit.
+      {scene_text(R"("time_step": 1e-320, "bodies": [])"), "/time_step",
+       "must be between 1e-06 and 1 s, got 1e-320"},
+      {scene_text(R"("bodies": [{"density": 3.4e38}])"), "/bodies/0/density",
+       "must be between 0.001 and 1e+06 kg/m³, got 3.4e+38"},
+      {scene_text(R"("bodies": [{"density": 0.0009}])"), "/bodies/0/density",
+       "must be between 0.001 and 1e+06 kg/m³, got 0.0009"},
+      {scene_text(R"("bodies": [{"mass": 1e-300}])"), "/bodies/0/mass",
+       "must be between 1e-06 and 1e+09 kg, got 1e-300"},
+      {scene_text(R"("bodies": [{"mass": 1.1e9}])"), "/bodies/0/mass",
+       "must be between 1e-06 and 1e+09 kg, got 1100000000.0"},
+      {scene_text(R"("defaults": {"size": 9.2e18}, "bodies": [])"), "/defaults/size",
+       "must be between 0.001 and 1000 m, got 9.2e+18"},
+      {scene_text(R"("bodies": [{"size": 0.0009}])"), "/bodies/0/size",
+       "must be between 0.001 and 1000 m, got 0.0009"},
+      {scene_text(R"("bodies": [{"position": [0, 100001, 0]}])"), "/bodies/0/position/1",
+       "must be between -1e+05 and 1e+05 m, got 100001"},
+      {scene_text(R"("bodies": [{"linear_velocity": [-10001, 0, 0]}])"),
+       "/bodies/0/linear_velocity/0", "must be between -10000 and 10000 m/s, got -10001"},
+      {scene_text(R"("bodies": [{"angular_velocity": [0, 0, 20000]}])"),
+       "/bodies/0/angular_velocity/2", "must be between -10000 and 10000 rad/s, got 20000"},
+      {scene_text(R"("ground": {"thickness": 3.4e38}, "bodies": [])"), "/ground/thickness",
+       "must be between 0.001 and 10000 m, got 3.4e+38"},
+      {scene_text(R"("ground": {"size": 0.001}, "bodies": [])"), "/ground/size",
+       "must be between 0.01 and 1e+05 m, got 0.001"},
+      {scene_text(R"("ground": {"height": -2e5}, "bodies": [])"), "/ground/height",
+       "must be between -1e+05 and 1e+05 m, got -200000"},
       {scene_text(R"("frames": 2.5, "bodies": [])"), "/frames", "must be an integer, got 2.5"},
       {scene_text(R"("paper_passes": 0, "bodies": [])"), "/paper_passes",
        "must be between 1 and 1000, got 0"},
