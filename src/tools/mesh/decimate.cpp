@@ -36,7 +36,12 @@ TriangleMesh compact(const TriangleMesh& source, const std::vector<std::uint32_t
 }  // namespace
 
 TriangleMesh decimate(const TriangleMesh& mesh, std::size_t target_triangles) {
-  if (target_triangles == 0) throw Error::in_file(mesh.name, "cannot decimate to 0 triangles");
+  // A tetrahedron is the smallest closed surface: fewer triangles enclose nothing.
+  constexpr std::size_t kFewestClosed = 4;
+  if (target_triangles < kFewestClosed) {
+    throw Error::in_file(mesh.name, "cannot decimate to " + std::to_string(target_triangles) +
+                                        " triangles: a closed surface needs at least 4");
+  }
   if (target_triangles >= mesh.triangles.size()) return mesh;
 
   std::vector<float> positions;

@@ -60,11 +60,22 @@ TEST(Decimate, OpenMeshKeepsItsBorder) {
   EXPECT_EQ(check_mesh(small).boundary_edges, border_before);
 }
 
-TEST(Decimate, TargetAtOrAboveCountIsUnchangedAndZeroIsAnError) {
-  const TriangleMesh box = make_box({1, 2, 3});
+TEST(Decimate, TargetAtOrAboveCountIsUnchangedAndBelowATetrahedronIsAnError) {
+  TriangleMesh box = make_box({1, 2, 3});
+  box.name = "box.obj";
   EXPECT_EQ(decimate(box, 12).triangles, box.triangles);
   EXPECT_EQ(decimate(box, 100).vertices, box.vertices);
-  EXPECT_THROW((void)decimate(box, 0), Error);
+  // Fewer than 4 triangles close no surface: refused by the count asked for, not by what the
+  // decimated mesh would then lack.
+  for (const std::size_t target : {0, 1, 3}) {
+    try {
+      (void)decimate(box, target);
+      ADD_FAILURE() << "no error for " << target;
+    } catch (const Error& error) {
+      EXPECT_EQ(std::string(error.what()), "box.obj: cannot decimate to " + std::to_string(target) +
+                                               " triangles: a closed surface needs at least 4");
+    }
+  }
 }
 
 }  // namespace
