@@ -44,6 +44,11 @@ inline py::object from_json_text(const std::string& text) {
   return py::module_::import("json").attr("loads")(text);
 }
 
+// A Python value (a dict of a scene file, ...) as JSON text, for sphys's readers.
+inline std::string to_json_text(const py::handle& value) {
+  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+}
+
 // Three numbers from any sequence (a tuple, a list, a numpy array); sphys::Error naming `what`
 // otherwise or when one is not finite.
 Vec3 vec3_from(const py::handle& value, const char* what);

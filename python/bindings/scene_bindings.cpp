@@ -35,8 +35,7 @@ struct Simulation {
 Scene scene_from(const py::handle& value) {
   if (py::isinstance<Scene>(value)) return value.cast<Scene>();
   if (py::isinstance<py::dict>(value)) {
-    return tools::parse_scene(py::module_::import("json").attr("dumps")(value).cast<std::string>(),
-                              "scene.json");
+    return tools::parse_scene(to_json_text(value), "scene.json");
   }
   if (!py::isinstance<py::str>(value) && !py::hasattr(value, "__fspath__")) {
     throw Error(
@@ -115,8 +114,7 @@ void bind_scene(py::module_& m) {
       .def_static(
           "from_dict",
           [](const py::dict& scene, const std::string& name) {
-            return tools::parse_scene(
-                py::module_::import("json").attr("dumps")(scene).cast<std::string>(), name);
+            return tools::parse_scene(to_json_text(scene), name);
           },
           py::arg("scene"), py::arg("name") = "scene.json",
           "A scene from a dict of the scene-file format (docs/scenes.md).")

@@ -2,13 +2,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/plausibility_json.h"
 #include "io/json_number.h"
 
 namespace sphys::tools {
 
 std::string row_result_json(const RowResult& result) {
   const RowSummary summary = summarize(result);
-  const Plausibility& plausible = result.plausibility;
   nlohmann::ordered_json row;
   row["id"] = result.row.id();
   row["depth"] = result.row.depth;
@@ -24,19 +24,7 @@ std::string row_result_json(const RowResult& result) {
   row["bodies"] = result.bodies;
   row["bodies_below_plane"] = result.bodies_below_plane;
   row["lowest_center_y_end_m"] = result.lowest_center_y;
-  row["deepest_penetration_m"] = plausible.deepest_penetration;
-  row["deepest_penetration_frame"] = plausible.deepest_frame;
-  row["mean_penetration_m"] = plausible.mean_penetration;
-  row["penetrating_frames"] = plausible.penetrating_frames;
-  row["movable_bodies"] = plausible.movable_bodies;
-  row["bodies_at_rest"] = plausible.bodies_at_rest;
-  row["bodies_asleep"] = plausible.bodies_asleep;
-  row["bodies_still_moving"] = plausible.movable_bodies - plausible.bodies_at_rest;
-  row["all_at_rest_from_frame"] = plausible.all_at_rest_frame
-                                      ? nlohmann::ordered_json(*plausible.all_at_rest_frame)
-                                      : nlohmann::ordered_json();
-  row["jitter_m_per_s"] = plausible.jitter;
-  row["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
+  add_plausibility_json(row, result.plausibility);
   row["stopped_non_finite"] = result.stopped_non_finite;
   row["ground"] = result.ground;
   row["tree_builder"] = result.tree_builder;

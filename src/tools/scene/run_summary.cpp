@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/plausibility_json.h"
 #include "io/json_number.h"
 #include "sphys/tools/overlap.h"
 
@@ -39,23 +40,12 @@ void add_end_state(nlohmann::ordered_json& summary, const Scene& scene,
     return number_or_null(size > 0.0 ? 100.0 * depth / size : std::nan(""));
   };
   summary["largest_body_size_m"] = size;
-  summary["deepest_penetration_m"] = plausible.deepest_penetration;
+  add_plausibility_json(summary, plausible);
   summary["deepest_penetration_percent_of_size"] = percent(plausible.deepest_penetration);
-  summary["deepest_penetration_frame"] = plausible.deepest_frame;
-  summary["mean_penetration_m"] = plausible.mean_penetration;
   summary["mean_penetration_percent_of_size"] = percent(plausible.mean_penetration);
-  summary["penetrating_frames"] = plausible.penetrating_frames;
-  summary["final_kinetic_energy_J"] = plausible.final_kinetic_energy;
-  summary["movable_bodies"] = plausible.movable_bodies;
-  summary["bodies_at_rest"] = plausible.bodies_at_rest;
-  summary["bodies_asleep"] = plausible.bodies_asleep;
-  summary["bodies_still_moving"] = plausible.movable_bodies - plausible.bodies_at_rest;
   const std::optional<int> settled = plausible.all_at_rest_frame;
-  summary["all_at_rest_from_frame"] =
-      settled ? nlohmann::ordered_json(*settled) : nlohmann::ordered_json();
   summary["all_at_rest_from_s"] =
       number_or_null(settled ? *settled * scene.time_step : std::nan(""));
-  summary["jitter_m_per_s"] = plausible.jitter;
   std::uint32_t below = 0;
   float lowest = std::numeric_limits<float>::infinity();
   for (const BodyId body : setup.bodies) {
