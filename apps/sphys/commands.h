@@ -57,5 +57,6 @@ void add_build_tree_command(CLI::App& app);
 void add_tree_info_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_experiment_command(CLI::App& app);
+void add_spherize_command(CLI::App& app);
 
 }  // namespace sphys::cli

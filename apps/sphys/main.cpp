@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   sphys::cli::add_experiment_command(app);
   sphys::cli::add_export_command(app);
   sphys::cli::add_view_command(app);
+  sphys::cli::add_spherize_command(app);
 
   try {
     app.parse(argc, argv);

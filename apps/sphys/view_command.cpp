@@ -1,9 +1,15 @@
+#include <filesystem>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
+#include "sphys/tools/robot.h"
 #include "sphys/tools/scene.h"
+#include "viewer/robot_view.h"
 #include "viewer/viewer.h"
 
 namespace sphys::cli {
@@ -17,7 +23,49 @@ struct ViewArguments {
   std::optional<std::string> screenshot;
   bool no_cache = false;
   bool no_shadows = false;
+  // A robot (the scene argument is a .urdf file).
+  std::vector<std::string> packages;
+  std::optional<std::string> spheres_from;
+  std::vector<std::string> joints;
 };
+
+bool is_urdf(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  return extension == ".urdf" || extension == ".URDF";
+}
+
+// "NAME=VALUE" of --joint, the value in rad or m.
+std::pair<std::string, double> parse_joint(const std::string& text) {
+  const std::size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw Error("--joint: expected NAME=VALUE, got \"" + text + "\"");
+  }
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text.substr(equals + 1), &used);
+    if (used != text.size() - equals - 1) throw std::invalid_argument(text);
+    return {text.substr(0, equals), value};
+  } catch (const std::logic_error&) {
+    throw Error("--joint: \"" + text.substr(equals + 1) + "\" is not a number");
+  }
+}
+
+// `sphys view ROBOT.urdf`: the robot's links and their spheres.
+void view_robot(const viewer::ViewerOptions& options, const ViewArguments& args) {
+  viewer::RobotViewOptions robot;
+  robot.urdf = *args.scene;
+  for (const std::string& package : args.packages) {
+    robot.packages.push_back(tools::parse_robot_package(package));
+  }
+  if (args.spheres_from) robot.spheres_from = *args.spheres_from;
+  for (const std::string& joint : args.joints) robot.joints.insert(parse_joint(joint));
+  robot.screenshot = options.screenshot;
+  robot.width = options.width;
+  robot.height = options.height;
+  robot.msaa = options.msaa;
+  robot.shadows = options.shadows;
+  viewer::run_robot_viewer(robot);
+}
 
 }  // namespace
 
@@ -26,9 +74,10 @@ void add_view_command(CLI::App& app) {
   auto args = std::make_shared<ViewArguments>();
   CLI::App* cmd = app.add_subcommand(
       "view", "Watch a scene live or replay a recording in a window (or render a frame to a PNG)");
-  cmd->add_option("scene", args->scene,
-                  std::string("Scene file (.json) or preset, e.g. stacks:4x50; default ") +
-                      viewer::kDefaultScene)
+  cmd->add_option(
+         "scene", args->scene,
+         std::string("Scene file (.json), preset (e.g. stacks:4x50) or robot (.urdf); default ") +
+             viewer::kDefaultScene)
       ->check(kFileName);
   cmd->add_option("--replay", args->replay,
                   "Play back a recording of sphys simulate (recording.sphysrec) instead")
@@ -56,7 +105,28 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--msaa", options->msaa,
                   "Antialiasing samples per pixel (0: off); default 4, none on software OpenGL");
   cmd->add_flag("--no-cache", args->no_cache, "Build sphere-trees even if they are cached");
+  cmd->add_option("--spheres-from", args->spheres_from,
+                  "With a robot (.urdf): draw the spheres of this file of sphys spherize")
+      ->check(kFileName);
+  cmd->add_option("--joint", args->joints,
+                  "With a robot: NAME=VALUE sets a joint (rad or m; others stand at 0)");
+  cmd->add_option("--package", args->packages,
+                  "With a robot: NAME=DIR, where package://NAME/ mesh paths point");
   cmd->callback([options, args] {
+    if (args->scene && is_urdf(*args->scene)) {
+      if (args->replay || args->mode || args->ground || options->sphere_level != 0) {
+        throw Error(
+            "--replay, --mode, --ground and --spheres are for scenes; a robot takes "
+            "--spheres-from, --joint and --package");
+      }
+      if (args->screenshot) options->screenshot = *args->screenshot;
+      options->shadows = !args->no_shadows;
+      view_robot(*options, *args);
+      return;
+    }
+    if (args->spheres_from || !args->joints.empty() || !args->packages.empty()) {
+      throw Error("--spheres-from, --joint and --package are for a robot (.urdf)");
+    }
     if (args->replay) {
       if (args->scene) throw Error("give a scene or --replay, not both");
       if (args->mode || args->ground) {

@@ -14,6 +14,11 @@ namespace sphys::tools {
 // the sphere of the given radius.
 [[nodiscard]] TriangleMesh make_icosphere(double radius, int subdivisions);
 
+// A closed cylinder around the z axis (as URDF's), centred at the origin: `sides` quads around,
+// each end cap a fan of `sides` triangles. Its vertices lie on the true cylinder, so the true
+// surface is at most radius · (1 - cos(π / sides)) outside the mesh.
+[[nodiscard]] TriangleMesh make_cylinder(double radius, double length, int sides);
+
 // A torus around the y axis: ring radius `major`, tube radius `minor`, a grid of `rings` by
 // `sides` quads split into triangles.
 [[nodiscard]] TriangleMesh make_torus(double major, double minor, int rings, int sides);

@@ -28,6 +28,9 @@ struct LevelQuality {
   double outside_volume = 0.0;    // volume of the union of spheres outside the mesh / mesh volume
   double worst_protrusion = 0.0;  // largest distance from the union's boundary outside the mesh
                                   // to the mesh surface
+  // The last two in metres and cubic metres, for users who need absolute figures (a robot link).
+  double outside_volume_m3 = 0.0;
+  double worst_protrusion_m = 0.0;
 };
 
 struct QualityOptions {
@@ -35,12 +38,15 @@ struct QualityOptions {
   std::size_t volume_samples = 400000;   // Monte Carlo points for the outside volume. unit: count
   std::size_t boundary_samples = 400;    // per sphere, for protrusion. unit: count
   std::uint64_t seed = 2008;             // fixed: the same tree and mesh give the same figures
+  // Whether the mesh must enclose a volume. When false, an open or flat mesh is measured too
+  // (inside and outside by its winding number) and outside_volume, the ratio, is NaN for it.
+  bool require_volume = true;
 };
 
 // Measures one set of spheres (level is left 0). The figures depend only on the spheres, the
 // mesh and the options, not on the number of threads. Throws sphys::Error when there are no
 // spheres, a sphere is not finite or has a negative radius, a sample count is 0, or the mesh
-// encloses no volume.
+// encloses no volume while options.require_volume is set.
 [[nodiscard]] LevelQuality measure_level(std::span<const Sphere> spheres, const MeshQuery& mesh,
                                          const QualityOptions& options = {});
 // One entry per level of the tree, with the same surface samples for every level.

@@ -1,9 +1,9 @@
 #include "sphys/tools/build_tree.h"
 
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "coverage.h"
 #include "octree.h"
@@ -18,12 +18,6 @@ using build::Ball;
 using build::BallNode;
 
 constexpr int kMaxDepth = 6;
-// Surface samples the point-set methods cover: enough for the deepest level's regions to keep a
-// few hundred each at branching 8, depth 3.
-constexpr std::size_t kSurfaceSamples = 20000;
-// Pieces of the surface smaller than this (relative to the bounding-box diagonal) make a ball
-// grow in the coverage pass instead of being split further.
-constexpr double kCoverageResolution = 1e-4;
 
 void validate(const TriangleMesh& mesh, const BuildOptions& options) {
   if (mesh.triangles.empty()) throw Error::in_file(mesh.name, "the mesh has no triangles");
@@ -72,15 +66,6 @@ std::vector<BallNode> build_top_down(const build::BuildContext& context, BuildMe
   return nodes;
 }
 
-// Float spheres that contain the double balls despite rounding the centre and radius.
-Sphere to_sphere(const Ball& ball) {
-  const Vec3 center = ball.center.cast<float>();
-  const double rounding = (center.cast<double>() - ball.center).norm();
-  const double margin = 4.0 * std::numeric_limits<float>::epsilon() *
-                        (ball.radius + ball.center.cwiseAbs().maxCoeff());
-  return {center, static_cast<float>(ball.radius + rounding + margin)};
-}
-
 }  // namespace
 
 SphereTree build_sphere_tree(const TriangleMesh& mesh, const BuildOptions& options) {
@@ -90,7 +75,7 @@ SphereTree build_sphere_tree(const TriangleMesh& mesh, const BuildOptions& optio
   if (options.method == BuildMethod::Octree) {
     nodes = build::build_octree(query, options.depth, options.progress);
   } else {
-    const build::SurfaceSamples samples = build::sample_surface(mesh, kSurfaceSamples);
+    const build::SurfaceSamples samples = build::sample_surface(mesh, build::kBuildSurfaceSamples);
     const build::BuildContext context{mesh, query, samples, options.seed};
     nodes = build_top_down(context, options.method, options);
   }
@@ -101,17 +86,14 @@ SphereTree build_sphere_tree(const TriangleMesh& mesh, const BuildOptions& optio
   for (std::size_t i = 1; i < nodes.size(); ++i) {
     level[i] = level[static_cast<std::size_t>(nodes[i].parent)] + 1;
   }
-  const double resolution = kCoverageResolution * mesh.bounds().diagonal().norm();
   std::vector<SphereTreeNode> packed(nodes.size());
   for (std::size_t begin = 0, end = 0; begin < nodes.size(); begin = end) {
     end = begin;
     std::vector<Ball> balls;
     for (; end < nodes.size() && level[end] == level[begin]; ++end)
       balls.push_back(nodes[end].ball);
-    build::ensure_coverage(balls, mesh, resolution);
-    for (std::size_t i = begin; i < end; ++i) {
-      packed[i] = {to_sphere(balls[i - begin]), nodes[i].parent};
-    }
+    const std::vector<Sphere> spheres = build::certified_spheres(std::move(balls), mesh);
+    for (std::size_t i = begin; i < end; ++i) packed[i] = {spheres[i - begin], nodes[i].parent};
   }
   return SphereTree::from_nodes(packed, options.branching);
 }

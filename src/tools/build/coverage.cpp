@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <utility>
 
 namespace sphys::tools::build {
 namespace {
@@ -35,6 +36,15 @@ std::vector<std::uint32_t> candidates(const std::vector<Ball>& balls, const Piec
     if (ball_box.intersects(box)) out.push_back(i);
   }
   return out;
+}
+
+// A float sphere that contains the double ball despite rounding the centre and radius.
+Sphere to_sphere(const Ball& ball) {
+  const Vec3 center = ball.center.cast<float>();
+  const double rounding = (center.cast<double>() - ball.center).norm();
+  const double margin = 4.0 * std::numeric_limits<float>::epsilon() *
+                        (ball.radius + ball.center.cwiseAbs().maxCoeff());
+  return {center, static_cast<float>(ball.radius + rounding + margin)};
 }
 
 }  // namespace
@@ -89,6 +99,14 @@ std::size_t ensure_coverage(std::vector<Ball>& balls, const TriangleMesh& mesh, 
     }
   }
   return static_cast<std::size_t>(std::count(grown.begin(), grown.end(), true));
+}
+
+std::vector<Sphere> certified_spheres(std::vector<Ball> balls, const TriangleMesh& mesh) {
+  ensure_coverage(balls, mesh, kCoverageResolution * mesh.bounds().diagonal().norm());
+  std::vector<Sphere> spheres;
+  spheres.reserve(balls.size());
+  for (const Ball& ball : balls) spheres.push_back(to_sphere(ball));
+  return spheres;
 }
 
 }  // namespace sphys::tools::build

@@ -18,6 +18,10 @@ struct SurfaceSamples {
   double spacing = 0.0;                 // unit: m
 };
 
+// Surface samples the point-set builders cover: enough for the deepest level's regions to keep a
+// few hundred each at branching 8, depth 3.
+constexpr std::size_t kBuildSurfaceSamples = 20000;
+
 // Chooses the spacing so that roughly `target_count` samples result (at least three per
 // triangle).
 [[nodiscard]] SurfaceSamples sample_surface(const TriangleMesh& mesh, std::size_t target_count);

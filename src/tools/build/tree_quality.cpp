@@ -265,7 +265,15 @@ Reference make_reference(const MeshQuery& query, const QualityOptions& options) 
   if (!(reference.diagonal > 0.0)) {
     throw Error::in_file(mesh.name, "has a point-sized bounding box, so quality is undefined");
   }
-  reference.volume = compute_mass_properties(mesh).volume;
+  if (options.require_volume) {
+    reference.volume = compute_mass_properties(mesh).volume;
+  } else {
+    try {
+      reference.volume = compute_mass_properties(mesh).volume;
+    } catch (const Error&) {
+      reference.volume = std::numeric_limits<double>::quiet_NaN();  // open or flat
+    }
+  }
   reference.surface_points = sample_surface(mesh, options.surface_samples, options.seed);
   reference.sphere_directions = sphere_directions(options.boundary_samples);
   return reference;
@@ -350,6 +358,7 @@ LevelQuality measure(std::span<const Sphere> spheres, const Reference& reference
   }
   const double union_outside_volume = static_cast<double>(outside_mesh) /
                                       static_cast<double>(options.volume_samples) * box_size.prod();
+  quality.outside_volume_m3 = union_outside_volume;
   quality.outside_volume = union_outside_volume / reference.volume;
 
   // Protrusion: points of each sphere's surface that lie on the union's boundary and outside the
@@ -373,6 +382,7 @@ LevelQuality measure(std::span<const Sphere> spheres, const Reference& reference
            })) {
     quality.worst_protrusion = std::max(quality.worst_protrusion, chunk.worst);
   }
+  quality.worst_protrusion_m = quality.worst_protrusion;
   quality.worst_protrusion /= reference.diagonal;
   return quality;
 }

@@ -22,6 +22,8 @@ const char* kind_name(InputKind kind) {
       return "scene file";
     case InputKind::kRecording:
       return "recording";
+    case InputKind::kRobot:
+      return "robot file";
   }
   return "file";
 }
@@ -70,6 +72,8 @@ std::uint64_t max_file_bytes(InputKind kind) {
       return kMaxSceneFileBytes;
     case InputKind::kRecording:
       return kMaxRecordingFileBytes;
+    case InputKind::kRobot:
+      return kMaxRobotFileBytes;
   }
   return 0;
 }

@@ -14,7 +14,7 @@
 namespace sphys::tools {
 
 // What a file is read as: it sets the size limit and the words of the messages.
-enum class InputKind { kMesh, kSphereTree, kScene, kRecording };
+enum class InputKind { kMesh, kSphereTree, kScene, kRecording, kRobot };
 
 // The largest file of each kind sphys reads. unit: bytes
 //
@@ -27,6 +27,9 @@ constexpr std::uint64_t kMaxSphereTreeFileBytes = std::uint64_t{1} << 30;
 constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t{64} << 20;
 // Recordings are read whole into memory: 4 GiB is 150 million body poses (28 bytes each).
 constexpr std::uint64_t kMaxRecordingFileBytes = std::uint64_t{4} << 30;
+// Robot files (URDF, and the sphere files `sphys spherize` writes) are read whole as XML or YAML;
+// a large robot's URDF is some 100 kB.
+constexpr std::uint64_t kMaxRobotFileBytes = std::uint64_t{64} << 20;
 
 [[nodiscard]] std::uint64_t max_file_bytes(InputKind kind);
 

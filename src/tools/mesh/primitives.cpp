@@ -119,6 +119,34 @@ TriangleMesh make_icosphere(double radius, int subdivisions) {
   return mesh;
 }
 
+TriangleMesh make_cylinder(double radius, double length, int sides) {
+  if (!positive_finite(radius) || !positive_finite(length)) {
+    throw Error("make_cylinder: radius and length must be positive and finite");
+  }
+  if (sides < 3) throw Error("make_cylinder: sides must be at least 3");
+  TriangleMesh mesh;
+  mesh.name = "cylinder";
+  // Vertex 2k is on the bottom rim (z = -length/2), 2k + 1 above it; the caps' centres come last.
+  for (int k = 0; k < sides; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / sides;
+    for (const double z : {-0.5 * length, 0.5 * length}) {
+      mesh.vertices.emplace_back(radius * std::cos(angle), radius * std::sin(angle), z);
+    }
+  }
+  const auto bottom = [&](int k) { return static_cast<std::uint32_t>(2 * (k % sides)); };
+  const auto top = [&](int k) { return bottom(k) + 1; };
+  const auto bottom_centre = static_cast<std::uint32_t>(mesh.vertices.size());
+  mesh.vertices.emplace_back(0.0, 0.0, -0.5 * length);
+  mesh.vertices.emplace_back(0.0, 0.0, 0.5 * length);
+  const std::uint32_t top_centre = bottom_centre + 1;
+  for (int k = 0; k < sides; ++k) {
+    add_quad(mesh.triangles, bottom(k), bottom(k + 1), top(k + 1), top(k));
+    mesh.triangles.push_back({bottom_centre, bottom(k + 1), bottom(k)});
+    mesh.triangles.push_back({top_centre, top(k), top(k + 1)});
+  }
+  return mesh;
+}
+
 TriangleMesh make_torus(double major, double minor, int rings, int sides) {
   if (!positive_finite(minor) || !std::isfinite(major) || major <= minor) {
     throw Error("make_torus: radii must be finite with 0 < minor < major");
