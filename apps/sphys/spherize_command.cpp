@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -25,7 +26,6 @@ struct SpherizeArguments {
   std::vector<std::string> packages;
   std::string format;
   std::string output;
-  std::uint64_t seed = 1;
   bool json = false;
 };
 
@@ -111,6 +111,11 @@ void run(const SpherizeArguments& args) {
   const auto start = std::chrono::steady_clock::now();
   const tools::SphereFileFormat format =
       parse_option("--format", args.format, tools::parse_sphere_file_format);
+  // Refused before the work rather than after it.
+  const std::filesystem::path folder = std::filesystem::absolute(args.output).parent_path();
+  if (!std::filesystem::is_directory(folder)) {
+    throw Error::in_file(args.output, "cannot write: the directory does not exist");
+  }
   std::vector<tools::RobotPackage> packages;
   for (const std::string& package : args.packages) {
     packages.push_back(tools::parse_robot_package(package));
@@ -126,7 +131,6 @@ void run(const SpherizeArguments& args) {
   tools::SpherizeOptions options;
   options.total_spheres = args.spheres;
   options.max_protrusion = args.max_protrusion;
-  options.seed = args.seed;
   ProgressBar bar("spherizing " + robot.name);
   options.progress = [&bar](double fraction) { bar.update(fraction); };
   const std::vector<tools::LinkSpheres> links = tools::spherize(robot, options);
@@ -147,11 +151,12 @@ void add_spherize_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "spherize", "Cover each link of a URDF robot with spheres, for motion planners");
   cmd->add_option("urdf", args->urdf, "The robot's URDF file")->check(kFileName)->required();
-  cmd->add_option("--spheres", args->spheres,
-                  "Spheres for the whole robot, shared among the links (each further sphere goes "
-                  "to the link that protrudes most)");
+  cmd->add_option(
+      "--spheres", args->spheres,
+      "Spheres for the whole robot at most, shared among the links so that all have the "
+      "same, smallest protrusion bound");
   cmd->add_option("--max-protrusion", args->max_protrusion,
-                  "Or: spheres per link until its worst protrusion is at most this (unit: m)");
+                  "Or: each link's spheres reach at most this far out of it (unit: m)");
   cmd->add_option("--package", args->packages,
                   "NAME=DIR: where package://NAME/ mesh paths point (repeatable)");
   cmd->add_option("--format", args->format,
@@ -159,7 +164,6 @@ void add_spherize_command(CLI::App& app) {
                   "urdf (the URDF with spheres as collision elements)")
       ->required();
   cmd->add_option("-o,--output", args->output, "The file to write")->check(kFileName)->required();
-  cmd->add_option("--seed", args->seed, "Seed of every random choice")->capture_default_str();
   cmd->add_flag("--json", args->json, "Print the report as JSON");
   cmd->callback([args] { run(*args); });
 }

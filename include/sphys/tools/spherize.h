@@ -18,14 +18,11 @@
 namespace sphys::tools {
 
 struct SpherizeOptions {
-  // Spheres for the whole robot (at most), shared among the links: each link starts with one, and
-  // the link whose worst protrusion is the largest has its worst sphere split (SphereSetBuilder)
-  // until the budget is spent.
+  // Spheres for the whole robot (at most), shared among the links through one protrusion bound
+  // for all (ProtrusionCover), the tightest whose covers fit the budget.
   std::optional<int> total_spheres;
-  // Or: each link's worst sphere is split until the link's worst protrusion is at most this.
-  // unit: m
+  // Or: each link's spheres reach at most this far out of it (as measured). unit: m
   std::optional<double> max_protrusion;
-  std::uint64_t seed = 1;  // the builder's: same seed, same spheres
   // Called with the fraction done (0..1) now and then, for progress bars.
   std::function<void(double)> progress;
 };

@@ -13,6 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "grid_cells.h"
 #include "sphys/error.h"
 #include "sphys/tools/mass_properties.h"
 
@@ -76,27 +77,12 @@ std::vector<Result> per_chunk(std::size_t count, const Body& body) {
 // of cells instead of at every sphere.
 class SphereGrid {
  public:
-  SphereGrid(const std::vector<Ball>& balls, const Box3d& domain) : balls_(balls) {
-    // Cells about a sphere across, but not more than a few per sphere (spheres far apart).
-    std::vector<double> radii;
-    radii.reserve(balls.size());
-    for (const Ball& b : balls) radii.push_back(b.radius);
-    std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2),
-                     radii.end());
-    const Vec3d extent = domain.sizes();
-    const double max_cells = 8.0 * static_cast<double>(balls.size()) + 64.0;
-    const double volume = std::max(extent.prod(), std::pow(extent.maxCoeff(), 3) * 1e-9);
-    cell_ = std::max({2.0 * radii[radii.size() / 2], std::cbrt(volume / max_cells),
-                      1e-9 * extent.maxCoeff(), std::numeric_limits<double>::min()});
-    origin_ = domain.min();
-    for (int axis = 0; axis < 3; ++axis) {
-      dims_[axis] = std::max(1, static_cast<int>(std::ceil(extent[axis] / cell_)));
-    }
-
+  SphereGrid(const std::vector<Ball>& balls, const Box3d& domain)
+      : balls_(balls), grid_(domain, cell_size(balls, domain)) {
     // Two passes (count, then fill) give each cell a contiguous, sphere-ordered list.
-    cell_begin_.assign(cell_count() + 1, 0);
+    cell_begin_.assign(grid_.count() + 1, 0);
     for_each_ball_cell([&](std::size_t cell, std::uint32_t) { ++cell_begin_[cell + 1]; });
-    for (std::size_t c = 0; c < cell_count(); ++c) cell_begin_[c + 1] += cell_begin_[c];
+    for (std::size_t c = 0; c < grid_.count(); ++c) cell_begin_[c + 1] += cell_begin_[c];
     entries_.resize(cell_begin_.back());
     std::vector<std::size_t> fill(cell_begin_.begin(), cell_begin_.end() - 1);
     for_each_ball_cell(
@@ -106,7 +92,7 @@ class SphereGrid {
   // Whether a sphere other than `skip` holds p, by more than `margin` when margin > 0.
   [[nodiscard]] bool covered(const Vec3d& p, double margin = 0.0,
                              std::uint32_t skip = kNone) const {
-    const std::size_t cell = index(cell_of(p));
+    const std::size_t cell = grid_.index(grid_.cell_of(p));
     for (std::size_t e = cell_begin_[cell]; e < cell_begin_[cell + 1]; ++e) {
       const std::uint32_t b = entries_[e];
       if (b == skip) continue;
@@ -120,18 +106,18 @@ class SphereGrid {
   // around p's cell; a sphere listed only beyond shell k has its bounding box, and so its
   // surface, at least k cells from p, which ends the search once the best is within that.
   [[nodiscard]] double distance_to_nearest(const Vec3d& p) const {
-    const std::array<int, 3> home = cell_of(p);
-    const int last_shell = std::max({dims_[0], dims_[1], dims_[2]});
+    const std::array<int, 3> home = grid_.cell_of(p);
+    const int last_shell = std::max({grid_.dims[0], grid_.dims[1], grid_.dims[2]});
     double best = std::numeric_limits<double>::infinity();
-    for (int k = 0; k <= last_shell && best > (k - 1) * cell_; ++k) {
+    for (int k = 0; k <= last_shell && best > (k - 1) * grid_.cell; ++k) {
       for (int dz = -k; dz <= k; ++dz) {
         for (int dy = -k; dy <= k; ++dy) {
           const bool on_face = std::abs(dz) == k || std::abs(dy) == k;
           // Inside the shell only the two cells at dx = ±k are new.
           for (int dx = -k; dx <= k; dx += on_face ? 1 : std::max(1, 2 * k)) {
             const std::array<int, 3> c{home[0] + dx, home[1] + dy, home[2] + dz};
-            if (!in_grid(c)) continue;
-            const std::size_t cell = index(c);
+            if (!grid_.contains(c)) continue;
+            const std::size_t cell = grid_.index(c);
             for (std::size_t e = cell_begin_[cell]; e < cell_begin_[cell + 1]; ++e) {
               const Ball& b = balls_[entries_[e]];
               best = std::min(best, (p - b.center).norm() - b.radius);
@@ -146,48 +132,35 @@ class SphereGrid {
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
  private:
-  [[nodiscard]] std::size_t cell_count() const {
-    return static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
-           static_cast<std::size_t>(dims_[2]);
-  }
-  // Points outside the grid go to the nearest cell, which keeps both queries right: no sphere
-  // reaches outside the grid, and the shell bound still holds.
-  [[nodiscard]] std::array<int, 3> cell_of(const Vec3d& p) const {
-    std::array<int, 3> c{};
-    for (int axis = 0; axis < 3; ++axis) {
-      const double t = std::floor((p[axis] - origin_[axis]) / cell_);
-      c[axis] = static_cast<int>(std::clamp(t, 0.0, static_cast<double>(dims_[axis] - 1)));
-    }
-    return c;
-  }
-  [[nodiscard]] bool in_grid(const std::array<int, 3>& c) const {
-    return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < dims_[0] && c[1] < dims_[1] &&
-           c[2] < dims_[2];
-  }
-  [[nodiscard]] std::size_t index(const std::array<int, 3>& c) const {
-    return (static_cast<std::size_t>(c[2]) * static_cast<std::size_t>(dims_[1]) +
-            static_cast<std::size_t>(c[1])) *
-               static_cast<std::size_t>(dims_[0]) +
-           static_cast<std::size_t>(c[0]);
+  // Cells about a sphere across, but not more than a few per sphere (spheres far apart).
+  static double cell_size(const std::vector<Ball>& balls, const Box3d& domain) {
+    std::vector<double> radii;
+    radii.reserve(balls.size());
+    for (const Ball& b : balls) radii.push_back(b.radius);
+    std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2),
+                     radii.end());
+    const Vec3d extent = domain.sizes();
+    const double max_cells = 8.0 * static_cast<double>(balls.size()) + 64.0;
+    const double volume = std::max(extent.prod(), std::pow(extent.maxCoeff(), 3) * 1e-9);
+    return std::max({2.0 * radii[radii.size() / 2], std::cbrt(volume / max_cells),
+                     1e-9 * extent.maxCoeff(), std::numeric_limits<double>::min()});
   }
   template <typename Visit>
   void for_each_ball_cell(const Visit& visit) const {
     for (std::uint32_t b = 0; b < balls_.size(); ++b) {
       const Vec3d r = Vec3d::Constant(balls_[b].radius);
-      const std::array<int, 3> lo = cell_of(balls_[b].center - r);
-      const std::array<int, 3> hi = cell_of(balls_[b].center + r);
+      const std::array<int, 3> lo = grid_.cell_of(balls_[b].center - r);
+      const std::array<int, 3> hi = grid_.cell_of(balls_[b].center + r);
       for (int z = lo[2]; z <= hi[2]; ++z) {
         for (int y = lo[1]; y <= hi[1]; ++y) {
-          for (int x = lo[0]; x <= hi[0]; ++x) visit(index({x, y, z}), b);
+          for (int x = lo[0]; x <= hi[0]; ++x) visit(grid_.index({x, y, z}), b);
         }
       }
     }
   }
 
   const std::vector<Ball>& balls_;
-  Vec3d origin_;
-  double cell_ = 1.0;
-  std::array<int, 3> dims_{1, 1, 1};
+  build::GridCells grid_;
   std::vector<std::size_t> cell_begin_;
   std::vector<std::uint32_t> entries_;
 };

@@ -21,10 +21,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Cylinders and spheres are meshed finely enough that the true surface is within 0.2% of the
-// radius of the mesh (1 - cos(π/64) = 0.0012; the icosphere's faces come within 0.16%).
+// Cylinders and spheres are meshed finely enough that the true surface is within 0.5% of the
+// radius of the mesh (1 - cos(π/64) = 0.0012; the faces of the icosphere's 1,280 come within
+// 0.5%), and coarsely enough that the link's spheres take a fraction of a second.
 constexpr int kCylinderSides = 64;
-constexpr int kSphereSubdivisions = 4;
+constexpr int kSphereSubdivisions = 3;
 
 // urdfdom tells why a file is not a URDF through console_bridge, on standard error by default.
 // While a file is parsed the messages are collected instead, to go into sphys's one-line error.

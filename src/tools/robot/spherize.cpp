@@ -10,51 +10,38 @@
 
 #include "sphys/error.h"
 #include "sphys/tools/mesh_query.h"
-#include "sphys/tools/sphere_set.h"
+#include "sphys/tools/protrusion_cover.h"
 #include "sphys/tools/tree_quality.h"
 
 namespace sphys::tools {
 namespace {
 
-// A link's spheres are never more than this: a budget or protrusion that asks for more is a
-// mistake (a millimetre on a metre-long link), and it bounds the time spent.
-constexpr int kMaxSpheresPerLink = 512;
+// A budget is met by bisecting the protrusion bound on a log scale this many times: the bound
+// then lies within a factor kBoundRange^(-1 / 2^k) ≈ 1.0002 of the tightest that fits.
+constexpr int kBisections = 16;
+// The bounds searched for a budget: from the largest link's diagonal (one sphere each) down to
+// this fraction of it.
+constexpr double kBoundRange = 1e-5;
+// A protrusion limit is met by lowering the bound given to the cover while the measured
+// protrusion (the certificate may grow spheres) exceeds the limit, at most this often.
+constexpr int kLimitTries = 8;
 
-// Quick figures for choosing sphere counts (hundreds of builds), and the full ones for the report
-// (one per link). Only the protrusion matters while choosing, so the other figures get few
-// samples; the protrusion's own samples are the report's, so that the protrusion that met a
-// limit is the one reported.
-QualityOptions choosing_quality() {
-  QualityOptions options;
-  options.surface_samples = 1000;
-  options.volume_samples = 1000;
-  options.require_volume = false;
-  return options;
-}
-
+// The report's figures; the protrusion's samples are tree-info's, the others fewer (they are
+// only reported).
 QualityOptions report_quality() {
   QualityOptions options;
   options.require_volume = false;
   return options;
 }
 
-// One link while its spheres are being chosen.
-struct LinkWork {
-  const LinkGeometry* geometry = nullptr;
-  std::unique_ptr<MeshQuery> query;
-  std::unique_ptr<SphereSetBuilder> builder;
-  std::vector<Sphere> spheres;
-  double protrusion = 0.0;  // unit: m
-
-  // Takes the builder's spheres, grown by the gap between the meshed and the true primitives so
-  // that the true shape is covered too, and measures them.
-  void update() {
-    spheres = builder->spheres();
-    for (Sphere& s : spheres) s.radius += static_cast<float>(geometry->tessellation_error);
-    protrusion = measure_level(spheres, *query, choosing_quality()).worst_protrusion_m;
-  }
-  [[nodiscard]] int count() const { return static_cast<int>(spheres.size()); }
-};
+// The spheres of one link for a bound, grown by the gap between the meshed and the true
+// primitives so that the true shape is covered too.
+std::vector<Sphere> link_spheres(const ProtrusionCover& cover, const LinkGeometry& link,
+                                 double bound) {
+  std::vector<Sphere> spheres = cover.cover(bound);
+  for (Sphere& s : spheres) s.radius += static_cast<float>(link.tessellation_error);
+  return spheres;
+}
 
 Sphere bounding_sphere(const std::vector<Sphere>& spheres) {
   // Ritter-style: the box's centre, then the farthest sphere's far side decides the radius. Not
@@ -73,18 +60,13 @@ Sphere bounding_sphere(const std::vector<Sphere>& spheres) {
 
 void validate(const Robot& robot, const SpherizeOptions& options) {
   if (options.total_spheres.has_value() == options.max_protrusion.has_value()) {
-    throw Error("give either a number of spheres or a largest protrusion, not " +
-                std::string(options.total_spheres ? "both" : "neither"));
+    throw Error(options.total_spheres ? "give --spheres or --max-protrusion, not both"
+                                      : "give --spheres N or --max-protrusion D");
   }
   const auto links = static_cast<int>(robot.links.size());
   if (options.total_spheres && *options.total_spheres < links) {
     throw Error("--spheres: " + std::to_string(*options.total_spheres) + " is fewer than the " +
                 std::to_string(links) + " links with geometry (each needs at least one)");
-  }
-  if (options.total_spheres && *options.total_spheres > links * kMaxSpheresPerLink) {
-    throw Error("--spheres: at most " + std::to_string(kMaxSpheresPerLink) + " per link (" +
-                std::to_string(links * kMaxSpheresPerLink) + " for this robot), got " +
-                std::to_string(*options.total_spheres));
   }
   if (options.max_protrusion &&
       !(std::isfinite(*options.max_protrusion) && *options.max_protrusion > 0.0)) {
@@ -92,80 +74,96 @@ void validate(const Robot& robot, const SpherizeOptions& options) {
   }
 }
 
-// Each refinement goes to the link that protrudes most: the robot's worst protrusion is what a
-// planner's clearance must allow for, and this lowers it first. A link whose spheres can no
-// longer be split drops out.
-void share_budget(std::vector<LinkWork>& links, int total, const SpherizeOptions& options) {
-  int given = static_cast<int>(links.size());
-  const int extra = total - given;
-  std::vector<bool> done(links.size(), false);
-  while (given < total) {
-    std::size_t worst = links.size();
-    for (std::size_t i = 0; i < links.size(); ++i) {
-      if (!done[i] && (worst == links.size() || links[i].protrusion > links[worst].protrusion)) {
-        worst = i;
-      }
+// One bound for every link, the tightest whose spheres fit the budget: the robot's worst
+// protrusion, what a planner's clearance must allow for, is then as small as the covers allow,
+// and no link is tighter than it needs to be at another's expense.
+std::vector<std::vector<Sphere>> share_budget(const Robot& robot,
+                                              const std::vector<ProtrusionCover>& covers, int total,
+                                              const SpherizeOptions& options) {
+  double largest = 0.0;
+  for (const LinkGeometry& link : robot.links) {
+    largest = std::max(largest, link.mesh.bounds().diagonal().norm());
+  }
+  const auto fits = [&](double bound) {
+    std::size_t spheres = 0;
+    for (const ProtrusionCover& cover : covers) {
+      spheres +=
+          cover.count(bound, static_cast<std::size_t>(total) -
+                                 std::min<std::size_t>(spheres, static_cast<std::size_t>(total)));
+      if (spheres > static_cast<std::size_t>(total)) return false;
     }
-    if (worst == links.size()) break;
-    LinkWork& link = links[worst];
-    const int before = link.count();
-    if (link.count() >= kMaxSpheresPerLink ||
-        !link.builder->refine(
-            std::min(8, std::min(total - given, kMaxSpheresPerLink - before) + 1))) {
-      done[worst] = true;
-      continue;
-    }
-    link.update();
-    given += link.count() - before;
-    if (options.progress && extra > 0) {
-      options.progress(0.9 * (given - total + extra) / static_cast<double>(extra));
+    return true;
+  };
+  double high = largest;  // fits: one sphere per link reaches everything
+  double low = largest * kBoundRange;
+  if (fits(low)) {
+    high = low;
+  } else {
+    for (int k = 0; k < kBisections; ++k) {
+      const double middle = std::sqrt(low * high);
+      (fits(middle) ? high : low) = middle;
+      if (options.progress) options.progress(0.9 * (k + 1) / kBisections);
     }
   }
+  std::vector<std::vector<Sphere>> spheres;
+  for (std::size_t i = 0; i < covers.size(); ++i) {
+    spheres.push_back(link_spheres(covers[i], robot.links[i], high));
+  }
+  return spheres;
 }
 
-// Refines the link's worst sphere until the protrusion is within the limit.
-void meet_protrusion(LinkWork& link, double limit) {
-  while (link.protrusion > limit) {
-    if (link.count() >= kMaxSpheresPerLink || !link.builder->refine()) {
-      throw Error::in_file(link.geometry->mesh.name,
-                           "still protrudes " + std::to_string(link.protrusion) + " m with " +
-                               std::to_string(link.count()) +
-                               " spheres, more than --max-protrusion allows");
-    }
-    link.update();
+// The link's spheres for the bound that keeps the measured protrusion within the limit.
+std::vector<Sphere> meet_protrusion(const ProtrusionCover& cover, const LinkGeometry& link,
+                                    const MeshQuery& query, double limit) {
+  double bound = limit - link.tessellation_error;
+  for (int attempt = 0; attempt < kLimitTries && bound > 0.0; ++attempt) {
+    std::vector<Sphere> spheres = link_spheres(cover, link, bound);
+    const double protrusion = measure_level(spheres, query, report_quality()).worst_protrusion_m;
+    if (protrusion <= limit) return spheres;
+    // The certificate grew some sphere by protrusion - bound; ask for that much less.
+    bound -= 1.1 * (protrusion - bound) + 0.05 * bound;
   }
+  throw Error::in_file(link.mesh.name, "no cover within --max-protrusion " + std::to_string(limit) +
+                                           " m: the surface samples are " +
+                                           std::to_string(cover.spacing()) +
+                                           " m apart; ask for a larger protrusion");
 }
 
 }  // namespace
 
 std::vector<LinkSpheres> spherize(const Robot& robot, const SpherizeOptions& options) {
   validate(robot, options);
-  std::vector<LinkWork> links(robot.links.size());
-  for (std::size_t i = 0; i < links.size(); ++i) {
-    links[i].geometry = &robot.links[i];
-    links[i].query = std::make_unique<MeshQuery>(robot.links[i].mesh);
-    links[i].builder = std::make_unique<SphereSetBuilder>(robot.links[i].mesh,
-                                                          BuildMethod::Combined, options.seed);
-    links[i].update();
-    if (options.max_protrusion) {
-      meet_protrusion(links[i], *options.max_protrusion);
-      if (options.progress)
-        options.progress(0.9 * static_cast<double>(i + 1) / static_cast<double>(links.size()));
+  std::vector<ProtrusionCover> covers;
+  std::vector<MeshQuery> queries;
+  covers.reserve(robot.links.size());
+  queries.reserve(robot.links.size());
+  for (const LinkGeometry& link : robot.links) {
+    covers.emplace_back(link.mesh, options.max_protrusion.value_or(0.0));
+    queries.emplace_back(link.mesh);
+  }
+  std::vector<std::vector<Sphere>> spheres;
+  if (options.total_spheres) {
+    spheres = share_budget(robot, covers, *options.total_spheres, options);
+  } else {
+    for (std::size_t i = 0; i < covers.size(); ++i) {
+      spheres.push_back(
+          meet_protrusion(covers[i], robot.links[i], queries[i], *options.max_protrusion));
+      if (options.progress) {
+        options.progress(0.9 * static_cast<double>(i + 1) / static_cast<double>(covers.size()));
+      }
     }
   }
-  if (options.total_spheres) share_budget(links, *options.total_spheres, options);
-
   std::vector<LinkSpheres> result;
-  for (LinkWork& link : links) {
-    const LevelQuality quality = measure_level(link.spheres, *link.query, report_quality());
-    LinkSpheres spheres;
-    spheres.link = link.geometry->link;
-    spheres.bounding = bounding_sphere(link.spheres);
-    spheres.spheres = std::move(link.spheres);
-    spheres.coverage = quality.coverage;
-    spheres.worst_protrusion = quality.worst_protrusion_m;
-    spheres.outside_volume = quality.outside_volume_m3;
-    result.push_back(std::move(spheres));
+  for (std::size_t i = 0; i < covers.size(); ++i) {
+    const LevelQuality quality = measure_level(spheres[i], queries[i], report_quality());
+    LinkSpheres link;
+    link.link = robot.links[i].link;
+    link.bounding = bounding_sphere(spheres[i]);
+    link.spheres = std::move(spheres[i]);
+    link.coverage = quality.coverage;
+    link.worst_protrusion = quality.worst_protrusion_m;
+    link.outside_volume = quality.outside_volume_m3;
+    result.push_back(std::move(link));
   }
   if (options.progress) options.progress(1.0);
   return result;
