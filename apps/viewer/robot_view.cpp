@@ -42,14 +42,9 @@ struct PlacedLink {
 
 class RobotScene {
  public:
-  RobotScene(Renderer& renderer, const tools::Robot& robot, const RobotViewOptions& options) {
-    const std::map<std::string, tools::Pose3d> poses = tools::link_poses(robot, options.joints);
-    std::map<std::string, std::vector<Sphere>> spheres;
-    if (options.spheres_from) {
-      for (tools::LinkSpheres& link : tools::read_robot_spheres(*options.spheres_from)) {
-        spheres[link.link] = std::move(link.spheres);
-      }
-    }
+  RobotScene(Renderer& renderer, const tools::Robot& robot,
+             const std::map<std::string, tools::Pose3d>& poses,
+             const std::map<std::string, std::vector<Sphere>>& spheres) {
     for (const tools::LinkGeometry& link : robot.links) {
       const auto pose = poses.find(link.link);
       if (pose == poses.end()) continue;  // not connected to the root
@@ -63,15 +58,6 @@ class RobotScene {
       }
       links_.push_back(std::move(placed));
     }
-    if (options.spheres_from) {
-      for (const auto& [name, set] : spheres) {
-        if (!poses.contains(name)) {
-          throw Error::in_file(*options.spheres_from, "has spheres for link \"" + name +
-                                                          "\", which " + robot.file.string() +
-                                                          " does not have");
-        }
-      }
-    }
     sphere_ = renderer.add_mesh(tools::make_icosphere(1.0, 3));
   }
 
@@ -79,7 +65,7 @@ class RobotScene {
   [[nodiscard]] OrbitCamera camera() const {
     OrbitCamera camera;
     camera.target = bounds_.center();
-    camera.distance = std::max(1.6f * bounds_.diagonal().norm(), 0.5f);
+    camera.distance = std::max(1.1f * bounds_.diagonal().norm(), 0.5f);
     return camera;
   }
 
@@ -110,18 +96,38 @@ class RobotScene {
   Eigen::AlignedBox3f bounds_;
 };
 
+// The spheres of the file, by link; every link must be the robot's.
+std::map<std::string, std::vector<Sphere>> read_spheres(const std::filesystem::path& file,
+                                                        const tools::Robot& robot) {
+  std::map<std::string, std::vector<Sphere>> spheres;
+  for (tools::LinkSpheres& link : tools::read_robot_spheres(file)) {
+    const bool known =
+        std::any_of(robot.links.begin(), robot.links.end(),
+                    [&](const tools::LinkGeometry& g) { return g.link == link.link; });
+    if (!known) {
+      throw Error::in_file(file, "has spheres for link \"" + link.link + "\", which " +
+                                     robot.file.string() + " has not (or it has no geometry)");
+    }
+    spheres[link.link] = std::move(link.spheres);
+  }
+  return spheres;
+}
+
 }  // namespace
 
 void run_robot_viewer(const RobotViewOptions& options) {
   if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192) {
     throw Error("--width and --height must be between 16 and 8192");
   }
+  // Everything read and checked before a window opens, so that bad input fails fast.
   const tools::Robot robot = tools::load_robot(options.urdf, options.packages);
-  // Joints are checked before a window opens, so a typo fails fast.
-  static_cast<void>(tools::link_poses(robot, options.joints));
+  const std::map<std::string, tools::Pose3d> poses = tools::link_poses(robot, options.joints);
+  const std::map<std::string, std::vector<Sphere>> spheres =
+      options.spheres_from ? read_spheres(*options.spheres_from, robot)
+                           : std::map<std::string, std::vector<Sphere>>{};
   const Window window(options.width, options.height, options.msaa);
   Renderer renderer;
-  const RobotScene scene(renderer, robot, options);
+  const RobotScene scene(renderer, robot, poses, spheres);
   OrbitCamera camera = scene.camera();
   if (options.screenshot) {
     glViewport(0, 0, window.width(), window.height());

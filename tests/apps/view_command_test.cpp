@@ -3,13 +3,13 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <stb_image.h>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "apps/cli.h"
+#include "support/screenshot.h"
 #include "support/temp_file.h"
 
 namespace sphys {
@@ -20,49 +20,15 @@ namespace fs = std::filesystem;
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<unsigned char> rgb;
-
-  [[nodiscard]] const unsigned char* at(int x, int y) const {
-    return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-  }
-};
-
-// The sky's colour, as the renderer clears to it.
-bool is_sky(const unsigned char* p) {
-  return std::abs(p[0] - 199) <= 3 && std::abs(p[1] - 209) <= 3 && std::abs(p[2] - 222) <= 3;
-}
-
-Image read_png(const fs::path& png) {
-  Image image;
-  int channels = 0;
-  unsigned char* data = stbi_load(png.string().c_str(), &image.width, &image.height, &channels, 3);
-  if (data == nullptr) {
-    ADD_FAILURE() << "no PNG at " << png;
-    return image;
-  }
-  image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
-  stbi_image_free(data);
-  return image;
-}
-
-// Runs `sphys view ARGS` under Xvfb.
-test::CommandResult view(std::vector<std::string> args) {
-  // Mesa's software renderer keeps allocations past exit, which LeakSanitizer would report.
-  setenv("ASAN_OPTIONS", "detect_leaks=0:abort_on_error=1", 1);
-  args.insert(args.begin(), {"-a", "-s", "-screen 0 640x480x24", SPHYS_CLI_PATH, "view"});
-  return test::run_command("xvfb-run", args);
-}
+using test::count_pixels;
+using test::Image;
+using test::is_sky;
+using test::read_png;
+using test::view;
 
 // `sphys view ARGS --screenshot` at kWidth × kHeight.
-Image screenshot(const fs::path& png, std::vector<std::string> args) {
-  args.insert(args.end(), {"--screenshot", png.string(), "--width", std::to_string(kWidth),
-                           "--height", std::to_string(kHeight)});
-  const test::CommandResult r = view(args);
-  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-  return read_png(png);
+Image screenshot(const fs::path& png, const std::vector<std::string>& args) {
+  return test::screenshot(png, args, kWidth, kHeight);
 }
 
 // Renders stacks:4x25 (depth 2) after `frames` frames, with the sphere overlay at `spheres`.
@@ -71,16 +37,6 @@ Image screenshot(const test::TempDir& dir, int frames, int spheres) {
       dir.path() / ("shot-" + std::to_string(frames) + "-" + std::to_string(spheres) + ".png");
   return screenshot(png, {"stacks:4x25", "--depth", "2", "--frames", std::to_string(frames),
                           "--spheres", std::to_string(spheres)});
-}
-
-// Pixels of `image` for which `pick` holds.
-template <typename Pick>
-int count_pixels(const Image& image, Pick pick) {
-  int count = 0;
-  for (std::size_t i = 0; i + 2 < image.rgb.size(); i += 3) {
-    count += pick(image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]) ? 1 : 0;
-  }
-  return count;
 }
 
 TEST(ViewCommand, AScreenshotShowsTheGroundAndTheBunniesWhereTheCameraLooks) {
