@@ -3,7 +3,9 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -19,6 +21,8 @@
 #include "sphys/tools/scene.h"
 #include "sphys/tools/text_file.h"
 #include "sphys/tools/tree_cache.h"
+#include "viewer/frame_drawer.h"
+#include "viewer/window.h"
 
 namespace sphys::cli {
 namespace {
@@ -36,6 +40,58 @@ struct ExperimentCommandOptions {
   bool json = false;
   bool no_plots = false;
   bool no_cache = false;
+  bool no_pictures = false;
+  bool render = false;
+};
+
+// Figure 2's pictures of one row (its first and last frame) and, with --render, every frame
+// drawn: a frame callback for run_experiment_row. Without an OpenGL window (no display) the
+// row says why it has no pictures (--render is refused before any row runs).
+class RowPictures {
+ public:
+  RowPictures(const fs::path& out, const tools::ExperimentRow& row, bool every_frame)
+      : out_(out), id_(row.id()), every_frame_(every_frame) {}
+
+  // Whether it drew the frame.
+  bool operator()(const tools::ExperimentFrame& frame) {
+    if (!every_frame_ && frame.frame != 0 && !frame.last) return false;
+    if (!drawer_ && missing_.empty()) {
+      try {
+        drawer_ = std::make_unique<viewer::FrameDrawer>(
+            frame.scene, frame.setup, tools::kDrawnFrameWidth, tools::kDrawnFrameHeight);
+      } catch (const Error&) {
+        throw;
+      } catch (const std::runtime_error& error) {
+        missing_ = error.what();
+      }
+    }
+    if (!drawer_) return false;
+    drawer_->draw(frame.frame == 0);
+    if (frame.frame == 0) save(first_, "-first.png");
+    if (frame.last) save(last_, "-last.png");
+    return true;
+  }
+
+  // Into the row's result: the pictures' file names, or why there are none.
+  void report(tools::RowResult& result) const {
+    result.first_picture = first_;
+    result.last_picture = last_;
+    result.pictures_missing = missing_;
+  }
+
+ private:
+  void save(std::string& name, const char* suffix) {
+    name = id_ + suffix;
+    drawer_->save(out_ / name);
+  }
+
+  fs::path out_;
+  std::string id_;
+  bool every_frame_;
+  std::unique_ptr<viewer::FrameDrawer> drawer_;
+  std::string first_;
+  std::string last_;
+  std::string missing_;
 };
 
 // The machine, for reports: the experiment steps one world at a time on one thread.
@@ -44,6 +100,14 @@ std::string machine() { return tools::machine_description() + ", one used"; }
 void run(const ExperimentCommandOptions& options) {
   tools::catch_interruptions();
   if (options.frames < 1) throw Error("--frames must be at least 1");
+  if (options.render) {
+    try {
+      const viewer::Window probe(16, 16, 0, false);
+    } catch (const std::runtime_error& error) {
+      throw Error(std::string("--render: cannot draw frames: ") + error.what() +
+                  " (run under xvfb-run where there is no display)");
+    }
+  }
   std::vector<tools::ExperimentRow> rows;
   if (options.only) {
     rows = tools::parse_rows(*options.only);
@@ -68,7 +132,15 @@ void run(const ExperimentCommandOptions& options) {
     ProgressBar bar("row " + std::to_string(i + 1) + "/" + std::to_string(rows.size()) + " " +
                     rows[i].id());
     experiment.progress = [&bar](double fraction) { bar.update(fraction); };
-    results.push_back(tools::run_experiment_row(rows[i], experiment));
+    auto pictures = std::make_shared<RowPictures>(out, rows[i], options.render);
+    if (!options.no_pictures || options.render) {
+      experiment.on_frame = [pictures](const tools::ExperimentFrame& frame) {
+        return (*pictures)(frame);
+      };
+    }
+    tools::RowResult result = tools::run_experiment_row(rows[i], experiment);
+    pictures->report(result);
+    results.push_back(std::move(result));
   }
 
   for (const tools::RowResult& result : results) {
@@ -125,6 +197,10 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_flag("--json", options->json, "Print the results as JSON");
   cmd->add_flag("--no-plots", options->no_plots, "Skip the gnuplot PNGs");
   cmd->add_flag("--no-cache", options->no_cache, "Build sphere-trees even if they are cached");
+  cmd->add_flag("--no-pictures", options->no_pictures,
+                "Skip Figure 2's pictures (each row's first and last frame, drawn offscreen)");
+  cmd->add_flag("--render", options->render,
+                "Draw every frame offscreen too, so that FPS counts drawing as the paper's did");
   cmd->callback([options] { run(*options); });
 }
 

@@ -125,4 +125,20 @@ void SceneDrawer::draw_boxes(LineRenderer& lines, std::span<const Aabb> boxes) {
   lines.draw(points_, kBoxColour, false);
 }
 
+// Tall stacks rise out of view: the live view is for the pile they make.
+OrbitCamera frame_scene(const tools::Scene& scene) {
+  OrbitCamera camera;
+  if (scene.bodies.empty()) return camera;
+  Eigen::AlignedBox3f box;
+  for (const tools::BodySpec& body : scene.bodies) box.extend(body.position);
+  camera.target = box.center();
+  camera.target.y() = std::min(box.center().y(), static_cast<float>(scene.ground.height) + 3.0f);
+  float spread = std::max(box.sizes().x(), box.sizes().z());
+  if (scene.ground.kind == tools::GroundSpec::Kind::kOctreeBox) {
+    spread = std::max(spread, static_cast<float>(scene.ground.size));
+  }
+  camera.distance = std::clamp(1.3f * spread, 12.0f, 150.0f);
+  return camera;
+}
+
 }  // namespace sphys::viewer

@@ -54,6 +54,10 @@ class SceneDrawer {
   std::vector<Eigen::Vector3f> points_;  // line end points, reused
 };
 
+// Looks at the middle of the bodies' starting positions, low enough to see the ground, from far
+// enough to see the ground's box (or the bodies' spread) whole.
+[[nodiscard]] OrbitCamera frame_scene(const tools::Scene& scene);
+
 // The plane drawn for an infinite ground plane. unit: m
 inline constexpr double kPlaneSize = 120.0;
 

@@ -69,23 +69,6 @@ Overlays overlays_of(const ViewerOptions& options) {
   return overlays;
 }
 
-// Looks at the middle of the bodies' starting positions, low enough to see the ground, from far
-// enough to see the ground's box (or the bodies' spread) whole; tall stacks rise out of view.
-OrbitCamera frame_scene(const tools::Scene& scene) {
-  OrbitCamera camera;
-  if (scene.bodies.empty()) return camera;
-  Eigen::AlignedBox3f box;
-  for (const tools::BodySpec& body : scene.bodies) box.extend(body.position);
-  camera.target = box.center();
-  camera.target.y() = std::min(box.center().y(), static_cast<float>(scene.ground.height) + 3.0f);
-  float spread = std::max(box.sizes().x(), box.sizes().z());
-  if (scene.ground.kind == tools::GroundSpec::Kind::kOctreeBox) {
-    spread = std::max(spread, static_cast<float>(scene.ground.size));
-  }
-  camera.distance = std::clamp(1.3f * spread, 12.0f, 150.0f);
-  return camera;
-}
-
 // The display's frame rate, smoothed, and the count and time of the frames shown, for
 // --exit-after's report.
 struct FrameClock {

@@ -33,16 +33,17 @@ bool software_renderer() {
 
 }  // namespace
 
-Window::Window(int width, int height, std::optional<int> samples) {
+Window::Window(int width, int height, std::optional<int> samples, bool visible) {
   if (glfwInit() == GLFW_FALSE) throw std::runtime_error("cannot start GLFW (is there a display?)");
-  open(width, height, samples.value_or(kDefaultSamples));
+  open(width, height, samples.value_or(kDefaultSamples), visible);
   if (!samples && software_renderer()) {
     glfwDestroyWindow(handle_);
-    open(width, height, 0);
+    open(width, height, 0, visible);
   }
 }
 
-void Window::open(int width, int height, int samples) {
+void Window::open(int width, int height, int samples, bool visible) {
+  glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -17,8 +17,9 @@ class Window {
  public:
   // `samples` per pixel for multisample antialiasing (0: none); unset: 4 on a GPU, none on a
   // software renderer (Mesa's llvmpipe draws 2 to 3 times faster without). Throws
-  // std::runtime_error when GLFW cannot start or no OpenGL 3.3 core window can be made.
-  Window(int width, int height, std::optional<int> samples);
+  // std::runtime_error when GLFW cannot start or no OpenGL 3.3 core window can be made. A hidden
+  // window draws offscreen (pictures of a run without a window popping up).
+  Window(int width, int height, std::optional<int> samples, bool visible = true);
   ~Window();
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
@@ -31,7 +32,7 @@ class Window {
   [[nodiscard]] float aspect() const;
 
  private:
-  void open(int width, int height, int samples);
+  void open(int width, int height, int samples, bool visible);
 
   GLFWwindow* handle_ = nullptr;
 };

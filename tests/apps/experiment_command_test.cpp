@@ -27,8 +27,8 @@ TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
   test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "experiment";
-  const test::CommandResult r = sphys_cli(
-      {"experiment", "--only", "d2-8x10", "--frames", "3", "--no-plots", "--out", out.string()});
+  const test::CommandResult r = sphys_cli({"experiment", "--only", "d2-8x10", "--frames", "3",
+                                           "--no-plots", "--no-pictures", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Table 1's row for 8 stacks of 10 at depth 2, on one line: contacts per frame, FPS and
   // frame-time sd as the paper printed them.
@@ -53,11 +53,11 @@ TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
 
   const std::vector<std::string> csv = read_lines(out / "d2-8x10.csv");
   ASSERT_EQ(csv.size(), 4u);
-  EXPECT_EQ(csv[0], "frame,step_ms,detection_ms,response_ms,contacts");
+  EXPECT_EQ(csv[0], "frame,step_ms,detection_ms,response_ms,contacts,render_ms");
   for (int frame = 1; frame <= 3; ++frame) {
     EXPECT_EQ(csv[static_cast<std::size_t>(frame)].substr(0, 2), std::to_string(frame) + ",");
   }
-  // Only the one row ran, and --no-plots drew nothing.
+  // Only the one row ran, and --no-plots and --no-pictures drew nothing.
   int files = 0;
   for (const auto& entry : fs::directory_iterator(out)) {
     EXPECT_NE(entry.path().extension(), ".png") << entry.path();

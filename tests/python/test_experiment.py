@@ -62,11 +62,14 @@ ROW_LINE = re.compile(r"^\s*\d+\s+\d+ × \d+\s")
 # RowResult.summary(), as `sphys experiment --json` prints a row, in order.
 SUMMARY_KEYS = ["id", "depth", "stacks", "per_stack", "frames", "contacts_per_frame",
                 "mean_frame_ms", "fps", "frame_time_sd_ms", "detection_share_percent",
-                "response_share_percent", "bodies", "bodies_below_plane", "lowest_center_y_end_m",
+                "response_share_percent", "fps_with_drawing", "drawing_share_percent",
+                "detection_share_of_drawn_frame_percent", "response_share_of_drawn_frame_percent",
+                "bodies", "bodies_below_plane", "lowest_center_y_end_m",
                 "deepest_penetration_m", "deepest_penetration_frame", "mean_penetration_m",
                 "penetrating_frames", "movable_bodies", "bodies_at_rest", "bodies_asleep", "bodies_still_moving",
                 "all_at_rest_from_frame", "jitter_m_per_s", "final_kinetic_energy_J",
-                "stopped_non_finite", "ground", "tree_builder"]
+                "stopped_non_finite", "ground", "tree_builder", "first_picture", "last_picture",
+                "pictures_missing"]
 # The summary's figures that measure time: the rest is the same on every run of a build.
 TIMING_KEYS = {"mean_frame_ms", "fps", "frame_time_sd_ms", "detection_share_percent",
                "response_share_percent"}
@@ -83,9 +86,10 @@ def untimed(summary):
 
 
 def run_cli_experiment(cli, out, *args):
-    """`sphys experiment ARGS --json --no-plots --out OUT`: the JSON and the rows' per-frame CSVs
-    by row id."""
-    done = cli("experiment", *args, "--json", "--no-plots", "--out", out, timeout=300)
+    """`sphys experiment ARGS --json --no-plots --no-pictures --out OUT`: the JSON and the rows'
+    per-frame CSVs by row id."""
+    done = cli("experiment", *args, "--json", "--no-plots", "--no-pictures", "--out", out,
+               timeout=300)
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout)
     frames = {}
@@ -452,9 +456,10 @@ def test_experiment_text_is_the_command_lines_report(cli, tmp_path):
                 == [words(line) for line in theirs[table_start:row_lines[0]]])
         for i, paper in zip(row_lines, (PAPER_TABLE_1[0], PAPER_TABLE_1[6])):
             a, b = ours[i].split(), theirs[i].split()
-            assert a[:7] + [a[8]] + a[10:] == b[:7] + [b[8]] + b[10:]
+            assert a[:7] + a[8:10] + a[11:] == b[:7] + b[8:10] + b[11:]
             assert a[:4] == [str(paper[1]), str(paper[2]), "×", str(paper[3])]
-            assert a[4] == f"{paper[4]:.2f}" and a[6] == f"{paper[5]:.2f}" and a[8] == f"{paper[6]:.2f}"
+            assert a[4] == f"{paper[4]:.2f}" and a[6] == f"{paper[5]:.2f}" and a[9] == f"{paper[6]:.2f}"
+            assert a[8] == b[8] == "n/a"
         row_lines = [ours[i] for i in row_lines]
         summary = results[0].summary()
         assert row_lines[0].split()[5] == f"{summary['contacts_per_frame']:.2f}"

@@ -44,12 +44,18 @@ inline Image read_png(const std::filesystem::path& png) {
   return image;
 }
 
-// Runs `sphys view ARGS` under Xvfb.
-inline CommandResult view(std::vector<std::string> args) {
+// Runs `sphys ARGS` under Xvfb.
+inline CommandResult sphys_under_xvfb(std::vector<std::string> args) {
   // Mesa's software renderer keeps allocations past exit, which LeakSanitizer would report.
   setenv("ASAN_OPTIONS", "detect_leaks=0:abort_on_error=1", 1);
-  args.insert(args.begin(), {"-a", "-s", "-screen 0 640x480x24", SPHYS_CLI_PATH, "view"});
+  args.insert(args.begin(), {"-a", "-s", "-screen 0 640x480x24", SPHYS_CLI_PATH});
   return run_command("xvfb-run", args);
+}
+
+// Runs `sphys view ARGS` under Xvfb.
+inline CommandResult view(std::vector<std::string> args) {
+  args.insert(args.begin(), "view");
+  return sphys_under_xvfb(args);
 }
 
 // `sphys view ARGS --screenshot PNG` at width × height, read back.

@@ -16,6 +16,11 @@
 
 namespace sphys::tools {
 
+// The size of the frames `sphys experiment` draws (Figure 2 and --render). The paper does not
+// say its window's size; we presume 640 × 480. unit: pixels
+inline constexpr int kDrawnFrameWidth = 640;
+inline constexpr int kDrawnFrameHeight = 480;
+
 // One experiment: S stacks of N bunnies with sphere-trees of the given depth.
 struct ExperimentRow {
   int depth = 2;       // levels including the root
@@ -55,10 +60,12 @@ struct ExperimentStatistics {
 
 // What one run of one row measured, frame by frame.
 struct FrameSample {
-  double step_ms = 0.0;       // the whole physics step (the frame: no rendering here)
+  double step_ms = 0.0;       // the whole physics step
   double detection_ms = 0.0;  // broad phase, narrow phase and contacts
   double response_ms = 0.0;
   std::uint32_t contacts = 0;
+  // Drawing the frame after the step (`sphys experiment --render`); 0 when it was not drawn.
+  double render_ms = 0.0;
 };
 
 // How far bodies sank into one another over a run and whether they came to rest: what makes an
@@ -117,6 +124,11 @@ struct RowResult {
   float lowest_center_y = 0.0f;          // lowest centre of mass at the end. unit: m
   Plausibility plausibility;
   bool stopped_non_finite = false;
+  // Figure 2: the first and the last frame drawn (file names beside the report), or why they
+  // could not be ("" when they were, or were not asked for).
+  std::string first_picture;
+  std::string last_picture;
+  std::string pictures_missing;
 };
 
 struct RowSummary {
@@ -127,6 +139,13 @@ struct RowSummary {
   double frame_time_sd_ms = 0.0;    // sample standard deviation over frames. unit: ms
   double detection_share = 0.0;     // total detection time / total frame time. unit: %
   double response_share = 0.0;      // unit: %
+  // With every frame drawn (--render): frames per second counting the drawing as the paper's
+  // frames did, and the drawing's share of that frame time (unit: %). NaN when not drawn.
+  double fps_with_drawing = 0.0;
+  double drawing_share = 0.0;
+  // Detection's and response's shares of the drawn frame's time, the paper's basis. unit: %
+  double detection_share_drawn = 0.0;
+  double response_share_drawn = 0.0;
 };
 
 // Figures a run cannot give are NaN: all of them without frames, the sd with fewer than two, FPS
@@ -145,7 +164,8 @@ struct RowSummary {
 // the plots by file name (plot_files), so it belongs in the directory given to write_plots.
 [[nodiscard]] std::string markdown_report(std::span<const RowResult> results,
                                           const std::string& machine, const ExperimentMode& mode);
-// Per-frame CSV of one row: frame (from 1), step_ms, detection_ms, response_ms, contacts.
+// Per-frame CSV of one row: frame (from 1), step_ms, detection_ms, response_ms, contacts,
+// render_ms.
 void write_row_csv(const std::filesystem::path& path, const RowResult& result);
 // The PNGs write_plots draws for a row, by file name: "<id>-frame-time.png", "<id>-contacts.png".
 struct PlotFiles {

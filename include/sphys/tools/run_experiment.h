@@ -7,10 +7,20 @@
 #include <functional>
 #include <optional>
 
+#include "sphys/tools/build_world.h"
 #include "sphys/tools/experiment.h"
 #include "sphys/tools/scene.h"
 
 namespace sphys::tools {
+
+// A frame of a row as the frame callback sees it: the row's scene and world after `frame` steps
+// (0: before the first).
+struct ExperimentFrame {
+  const Scene& scene;
+  const SimulationSetup& setup;
+  int frame = 0;
+  bool last = false;  // no step follows
+};
 
 struct ExperimentOptions {
   int frames = 880;  // the paper's run length
@@ -22,6 +32,10 @@ struct ExperimentOptions {
   std::optional<std::filesystem::path> cache_dir;
   // Called with the fraction of the row simulated (0..1).
   std::function<void(double)> progress;
+  // Called before the first step and after every step: `sphys experiment` draws frames with it
+  // (Figure 2, --render). It returns whether it drew the frame; if so, the time it took after a
+  // step is that frame's render_ms.
+  std::function<bool(const ExperimentFrame&)> on_frame;
 };
 
 // Throws sphys::Error for a frame count below 1.

@@ -21,6 +21,11 @@ std::string row_result_json(const RowResult& result) {
   row["frame_time_sd_ms"] = summary.frame_time_sd_ms;
   row["detection_share_percent"] = summary.detection_share;
   row["response_share_percent"] = summary.response_share;
+  // With every frame drawn (--render); null otherwise.
+  row["fps_with_drawing"] = number_or_null(summary.fps_with_drawing);
+  row["drawing_share_percent"] = number_or_null(summary.drawing_share);
+  row["detection_share_of_drawn_frame_percent"] = number_or_null(summary.detection_share_drawn);
+  row["response_share_of_drawn_frame_percent"] = number_or_null(summary.response_share_drawn);
   row["bodies"] = result.bodies;
   row["bodies_below_plane"] = result.bodies_below_plane;
   row["lowest_center_y_end_m"] = result.lowest_center_y;
@@ -28,6 +33,10 @@ std::string row_result_json(const RowResult& result) {
   row["stopped_non_finite"] = result.stopped_non_finite;
   row["ground"] = result.ground;
   row["tree_builder"] = result.tree_builder;
+  // Figure 2: the first and last frame's PNGs beside the report, or why there are none.
+  row["first_picture"] = result.first_picture;
+  row["last_picture"] = result.last_picture;
+  row["pictures_missing"] = result.pictures_missing;
   return row.dump(2);
 }
 

@@ -83,6 +83,7 @@ Table table1(std::span<const RowResult> results) {
       {"contacts/frame", "ours", "contacts/frame (ours)", true},
       {"FPS", "paper", "FPS (paper)", true},
       {"FPS", "ours", "FPS (ours)", true},
+      {"FPS", "ours, drawn", "FPS with drawing (ours)", true},
       {"frame sd (ms)", "paper", "frame sd ms (paper)", true},
       {"frame sd (ms)", "ours", "frame sd ms (ours)", true},
       {"ours only", "bodies below plane", "bodies below plane", true},
@@ -107,6 +108,7 @@ Table table1(std::span<const RowResult> results) {
         fixed(ours.contacts_per_frame, 2),
         paper_figure(&PaperRow::fps),
         fixed(ours.fps, 2),
+        fixed(ours.fps_with_drawing, 2),
         paper_figure(&PaperRow::frame_time_sd_ms),
         fixed(ours.frame_time_sd_ms, 2),
         of_bodies(result->bodies_below_plane, *result),
@@ -302,6 +304,53 @@ double paper_table_contacts_fps_correlation() {
   return pearson(contacts, fps);
 }
 
+// With every frame drawn (--render): the frame as the paper timed it, physics and drawing, and
+// the §5 shares on that basis. Empty when no row was drawn.
+Table drawing_table(std::span<const RowResult> results) {
+  Table table;
+  table.columns = {
+      {"", "row", "row", false},
+      {"FPS", "physics", "FPS, physics only", true},
+      {"FPS", "drawn", "FPS with drawing", true},
+      {"share of the drawn frame (%)", "drawing", "drawing (% of the drawn frame)", true},
+      {"share of the drawn frame (%)", "detection", "detection (% of the drawn frame)", true},
+      {"share of the drawn frame (%)", "response", "response (% of the drawn frame)", true},
+  };
+  for (const RowResult* result : in_paper_order(results)) {
+    const RowSummary ours = summarize(*result);
+    if (std::isnan(ours.fps_with_drawing)) continue;
+    table.rows.push_back({result->row.id(), fixed(ours.fps, 2), fixed(ours.fps_with_drawing, 2),
+                          fixed(ours.drawing_share, 1), fixed(ours.detection_share_drawn, 1),
+                          fixed(ours.response_share_drawn, 1)});
+  }
+  return table;
+}
+
+// Figure 2 of the paper is (a) the 4 × 50 scene as the bunnies begin to fall and (b) the end of
+// their fall; ours shows every row's first and last frame beside those captions.
+std::string figure2_section(std::span<const RowResult> results) {
+  std::string out;
+  bool any = false;
+  for (const RowResult* result : in_paper_order(results)) {
+    const std::string id = result->row.id();
+    if (!result->pictures_missing.empty()) {
+      out += "| " + id + " | no pictures: " + result->pictures_missing + " | |\n";
+      any = true;
+    } else if (!result->first_picture.empty() && !result->last_picture.empty()) {
+      out += "| " + id + " | ![" + id + ", first frame](" + result->first_picture + ") | ![" + id +
+             ", last frame](" + result->last_picture + ") |\n";
+      any = true;
+    }
+  }
+  if (!any) return "";
+  return "\n## Figure 2\n\nThe paper's Figure 2: \"In (a) an example of a scenario with 4 stacks "
+         "and 50 bunnies per stack (totalizing 200 bunnies) in the beginning of their falling, "
+         "and in (b), in the end of their falling.\" Ours, every row: the frame before the first "
+         "step and the last frame.\n\n| row | (a) the beginning of the fall | (b) the end |\n| "
+         "--- | --- | --- |\n" +
+         out;
+}
+
 std::string plots_section(std::span<const RowResult> results) {
   std::string out;
   for (const RowResult* result : in_paper_order(results)) {
@@ -352,10 +401,18 @@ std::string markdown_report(std::span<const RowResult> results, const std::strin
   out += "Machine: " + machine + "\n\n";
   out += mode_lines(mode) + "\n";
   out +=
-      "Our frames per second count the physics step alone, run headless with no rendering; the "
-      "paper's frames included rendering, so its FPS and frame time figures cover more work than "
-      "ours.\n";
+      "FPS (ours) counts the physics step alone; the paper's frames included rendering, so its "
+      "FPS and frame time figures cover more work. FPS with drawing (ours) counts every frame "
+      "drawn offscreen as well (`sphys experiment --render`, " +
+      std::to_string(kDrawnFrameWidth) + " × " + std::to_string(kDrawnFrameHeight) +
+      " pixels); n/a when the frames were not drawn.\n";
   out += "\n## Table 1\n\n" + markdown_table(table1(results));
+  if (const Table drawn = drawing_table(results); !drawn.rows.empty()) {
+    out +=
+        "\n## Frames drawn\n\nEvery frame drawn after its step, timed with the step: the "
+        "frame time the paper measured.\n\n" +
+        markdown_table(drawn);
+  }
   out += "\n## Statistics (§5)\n\n" + markdown_table(statistics_table(results));
   out +=
       "\nShares are percentages of the frame time, their spread the standard deviation across "
@@ -364,19 +421,20 @@ std::string markdown_report(std::span<const RowResult> results, const std::strin
       "Table 1 gives r = " +
       signed_fixed(paper_table_contacts_fps_correlation()) + ".\n";
   out += "\n## Runs\n\n" + markdown_table(runs_table(results));
+  out += figure2_section(results);
   out += plots_section(results);
   return out;
 }
 
 void write_row_csv(const std::filesystem::path& path, const RowResult& result) {
-  const std::array<std::string, 5> columns = {"frame", "step_ms", "detection_ms", "response_ms",
-                                              "contacts"};
+  const std::array<std::string, 6> columns = {"frame",       "step_ms",  "detection_ms",
+                                              "response_ms", "contacts", "render_ms"};
   std::vector<std::vector<double>> rows;
   rows.reserve(result.frames.size());
   for (std::size_t i = 0; i < result.frames.size(); ++i) {
     const FrameSample& frame = result.frames[i];
     rows.push_back({static_cast<double>(i + 1), frame.step_ms, frame.detection_ms,
-                    frame.response_ms, static_cast<double>(frame.contacts)});
+                    frame.response_ms, static_cast<double>(frame.contacts), frame.render_ms});
   }
   write_csv(path, columns, rows);
 }

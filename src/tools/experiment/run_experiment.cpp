@@ -1,6 +1,7 @@
 #include "sphys/tools/run_experiment.h"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <string>
 
@@ -35,15 +36,26 @@ RowResult run_experiment_row(const ExperimentRow& row, const ExperimentOptions& 
   result.bodies = static_cast<std::uint32_t>(setup.bodies.size());
   result.frames.reserve(static_cast<std::size_t>(options.frames));
   const auto dt = static_cast<float>(scene.time_step);
+  // The frame callback, timed when it drew. unit: ms
+  const auto show = [&](int frame, bool last) {
+    if (!options.on_frame) return 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    if (!options.on_frame({scene, setup, frame, last})) return 0.0;
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
+  show(0, false);
   PlausibilityMeter plausibility;
   for (int frame = 0; frame < options.frames; ++frame) {
     const StepStats& stats = world.step(dt);
     if (stats.non_finite_body) {
       result.stopped_non_finite = true;
+      show(frame, true);
       break;
     }
+    const double render_ms = show(frame + 1, frame + 1 == options.frames);
     result.frames.push_back(
-        {stats.step_ms, stats.detection_ms(), stats.response_ms, stats.contacts});
+        {stats.step_ms, stats.detection_ms(), stats.response_ms, stats.contacts, render_ms});
     plausibility.add(stats);
     if (options.progress) options.progress(static_cast<double>(frame + 1) / options.frames);
   }

@@ -71,7 +71,11 @@ RowSummary summarize(const RowResult& result) {
   std::vector<double> detection_ms;
   std::vector<double> response_ms;
   std::vector<double> contacts;
+  double render_ms = 0.0;
+  bool every_frame_drawn = !result.frames.empty();
   for (const FrameSample& frame : result.frames) {
+    render_ms += frame.render_ms;
+    every_frame_drawn = every_frame_drawn && frame.render_ms > 0.0;
     step_ms.push_back(frame.step_ms);
     detection_ms.push_back(frame.detection_ms);
     response_ms.push_back(frame.response_ms);
@@ -86,6 +90,13 @@ RowSummary summarize(const RowResult& result) {
   const double total_ms = sum(step_ms);
   summary.detection_share = share(sum(detection_ms), total_ms);
   summary.response_share = share(sum(response_ms), total_ms);
+  const double drawn_ms = total_ms + render_ms;
+  summary.fps_with_drawing = every_frame_drawn && drawn_ms > 0.0
+                                 ? 1000.0 * static_cast<double>(result.frames.size()) / drawn_ms
+                                 : kNaN;
+  summary.drawing_share = every_frame_drawn ? share(render_ms, drawn_ms) : kNaN;
+  summary.detection_share_drawn = every_frame_drawn ? share(sum(detection_ms), drawn_ms) : kNaN;
+  summary.response_share_drawn = every_frame_drawn ? share(sum(response_ms), drawn_ms) : kNaN;
   return summary;
 }
 

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -224,16 +225,20 @@ TEST(ExperimentMarkdown, HasTheMachineTheNotesAndBothTables) {
   const std::string md = markdown_report(sample_results(), "Test machine: 2 cores", {});
   EXPECT_THAT(md, StartsWith("# "));
   EXPECT_THAT(md, HasSubstr("\nMachine: Test machine: 2 cores\n"));
-  EXPECT_THAT(md, AllOf(HasSubstr("headless"), HasSubstr("rendering")));
+  EXPECT_THAT(md, AllOf(HasSubstr("physics step alone"), HasSubstr("included rendering")));
   EXPECT_THAT(md, HasSubstr("\n## Table 1\n\n| depth | objects | contacts/frame (paper) |"));
   EXPECT_THAT(md,
               HasSubstr("| bodies below plane | deepest penetration (m) | mean penetration (m) | "
                         "bodies at rest at the end | all at rest from frame | jitter, last 60 "
                         "frames (m/s) | final kinetic energy (J) |\n"));
-  EXPECT_THAT(md, HasSubstr("\n| 2 | 4 × 25 | 4216.81 | 150.00 | 57.47 | 333.33 | 5.89 | 1.41 | "
-                            "0 of 100 | 0.0010 | 0.0004 | 100 of 100 | 2 | 0.0012 | 0.500 |\n"));
-  EXPECT_THAT(md, HasSubstr("\n| 4 | 2 × 3 | - | n/a | - | n/a | - | n/a | 0 of 6 | 0.0000 | "
-                            "0.0000 | 0 of 6 | never | 0.0000 | 0.000 |\n"));
+  // Not drawn: no FPS with drawing, and no "Frames drawn" or Figure 2 section.
+  EXPECT_THAT(md, HasSubstr("\n| 2 | 4 × 25 | 4216.81 | 150.00 | 57.47 | 333.33 | n/a | 5.89 | "
+                            "1.41 | 0 of 100 | 0.0010 | 0.0004 | 100 of 100 | 2 | 0.0012 | 0.500 "
+                            "|\n"));
+  EXPECT_THAT(md, HasSubstr("\n| 4 | 2 × 3 | - | n/a | - | n/a | n/a | - | n/a | 0 of 6 | 0.0000 "
+                            "| 0.0000 | 0 of 6 | never | 0.0000 | 0.000 |\n"));
+  EXPECT_THAT(md, Not(HasSubstr("## Frames drawn")));
+  EXPECT_THAT(md, Not(HasSubstr("## Figure 2")));
   EXPECT_LT(md.find("| 4 × 25 |"), md.find("| 8 × 20 |"));
   EXPECT_THAT(md, HasSubstr("\n## Statistics (§5)\n\n| statistic | paper | ours |\n"));
   EXPECT_THAT(md, HasSubstr("\n| detection share of frame time (%) | 23.00 | n/a |\n"));
@@ -286,14 +291,39 @@ TEST(ExperimentMarkdown, LinksThePlotsWritePlotsDraws) {
   EXPECT_LT(md.find("## Plots"), md.find("d2-4x25-frame-time.png"));
 }
 
+TEST(ExperimentMarkdown, FramesDrawnEveryStepAndFigureTwo) {
+  // Two frames, each drawn: physics 2 + 4 ms, drawing 2 + 4 ms.
+  RowResult drawn = result_for({2, 8, 10}, {{2.0, 0.5, 1.0, 10, 2.0}, {4.0, 1.0, 2.0, 20, 4.0}});
+  drawn.first_picture = "d2-8x10-first.png";
+  drawn.last_picture = "d2-8x10-last.png";
+  RowResult missing = result_for({3, 8, 10}, {{1.0, 0.5, 0.25, 5}});
+  missing.pictures_missing = "cannot start GLFW (is there a display?)";
+  const RowSummary summary = summarize(drawn);
+  EXPECT_DOUBLE_EQ(summary.fps, 1000.0 / 3.0);
+  EXPECT_DOUBLE_EQ(summary.fps_with_drawing, 1000.0 * 2.0 / 12.0);
+  EXPECT_DOUBLE_EQ(summary.drawing_share, 50.0);
+  EXPECT_DOUBLE_EQ(summary.detection_share_drawn, 100.0 * 1.5 / 12.0);
+  EXPECT_DOUBLE_EQ(summary.response_share_drawn, 100.0 * 3.0 / 12.0);
+  EXPECT_TRUE(std::isnan(summarize(missing).fps_with_drawing));
+  EXPECT_TRUE(std::isnan(summarize(missing).drawing_share));
+  const std::string md = markdown_report(std::vector{drawn, missing}, "m", {});
+  EXPECT_THAT(md, HasSubstr("\n## Frames drawn\n"));
+  EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | 333.33 | 166.67 | 50.0 | 12.5 | 25.0 |\n"));
+  EXPECT_THAT(md, Not(HasSubstr("\n| d3-8x10 | 1000.00 |")));
+  EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | ![d2-8x10, first frame](d2-8x10-first.png) | "
+                            "![d2-8x10, last frame](d2-8x10-last.png) |\n"));
+  EXPECT_THAT(md, HasSubstr("\n| d3-8x10 | no pictures: cannot start GLFW (is there a display?) "
+                            "| |\n"));
+}
+
 TEST(ExperimentCsv, WritesOneLinePerFrameNumberedFromOne) {
   const test::TempDir dir;
   const fs::path path = dir.path() / "d2-4x25.csv";
   write_row_csv(path, result_for({2, 4, 25}, {{2.5, 0.25, 1.0, 10}, {3.5, 0.75, 1.5, 20}}));
   EXPECT_EQ(read_whole(path),
-            "frame,step_ms,detection_ms,response_ms,contacts\n"
-            "1,2.5,0.25,1,10\n"
-            "2,3.5,0.75,1.5,20\n");
+            "frame,step_ms,detection_ms,response_ms,contacts,render_ms\n"
+            "1,2.5,0.25,1,10,0\n"
+            "2,3.5,0.75,1.5,20,0\n");
 }
 
 TEST(ExperimentPlots, DrawsTwoPngsPerRowWithFrames) {
