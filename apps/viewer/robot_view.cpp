@@ -116,9 +116,7 @@ std::map<std::string, std::vector<Sphere>> read_spheres(const std::filesystem::p
 }  // namespace
 
 void run_robot_viewer(const RobotViewOptions& options) {
-  if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192) {
-    throw Error("--width and --height must be between 16 and 8192");
-  }
+  check_window_size(options.width, options.height);
   // Everything read and checked before a window opens, so that bad input fails fast.
   const tools::Robot robot = tools::load_robot(options.urdf, options.packages);
   const std::map<std::string, tools::Pose3d> poses = tools::link_poses(robot, options.joints);

@@ -325,9 +325,7 @@ void replay_screenshot(const ViewerOptions& options) {
 }  // namespace
 
 void run_viewer(const ViewerOptions& options) {
-  if (options.width < 16 || options.height < 16 || options.width > 8192 || options.height > 8192) {
-    throw Error("--width and --height must be between 16 and 8192");
-  }
+  check_window_size(options.width, options.height);
   if (options.frames < 0) throw Error("--frames must not be negative");
   if (options.sphere_level < 0) throw Error("--spheres must not be negative");
   if (options.exit_after && *options.exit_after < 1) throw Error("--exit-after must be at least 1");

@@ -159,4 +159,10 @@ void write_png(const std::filesystem::path& path, int width, int height) {
   tools::write_text_file(path, png);
 }
 
+void check_window_size(int width, int height) {
+  if (width < 16 || height < 16 || width > 8192 || height > 8192) {
+    throw Error("--width and --height must be between 16 and 8192");
+  }
+}
+
 }  // namespace sphys::viewer

@@ -71,6 +71,10 @@ class Input {
   std::array<bool, kKeys> pressed_{};
 };
 
+// Throws sphys::Error "--width and --height must be between 16 and 8192" for a window size the
+// viewer does not open.
+void check_window_size(int width, int height);
+
 // Reads the back buffer (`width` × `height`) and writes it as a PNG, whole or not at all.
 // Throws sphys::Error naming the file.
 void write_png(const std::filesystem::path& path, int width, int height);

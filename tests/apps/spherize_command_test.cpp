@@ -706,12 +706,12 @@ TEST(SpherizeCommand, TheSameCommandWritesTheSameBytesTwice) {
 
 // A robot of a box base and one link made of `defective`, spherized: it must succeed, and the
 // spheres must cover the link's surface as it is.
-void expect_defective_link_covered(const test::RobotGeometry& defective) {
-  const test::TempDir dir;
+// A box base and one link, "defect_link", made of `geometry`.
+test::RobotSpec two_link_robot(const test::RobotGeometry& geometry) {
   test::RobotSpec spec;
   spec.name = "defect_robot";
   spec.links = {{"base_link", {test::box_geometry({0.2, 0.2, 0.05}, {0.0, 0.0, 0.025})}, {}},
-                {"defect_link", {defective}, {}}};
+                {"defect_link", {geometry}, {}}};
   spec.joints = {{"joint_1",
                   "revolute",
                   "base_link",
@@ -721,7 +721,12 @@ void expect_defective_link_covered(const test::RobotGeometry& defective) {
                   {0.0, 0.0, 1.0},
                   -1.0,
                   1.0}};
-  const test::TestRobot robot = test::write_test_robot(dir.path(), spec);
+  return spec;
+}
+
+void expect_defective_link_covered(const test::RobotGeometry& defective) {
+  const test::TempDir dir;
+  const test::TestRobot robot = test::write_test_robot(dir.path(), two_link_robot(defective));
   const SpherizeRun run =
       run_spherize(robot, "curobo", dir.path() / "spheres.yml", {"--spheres", "16", "--json"});
   ASSERT_EQ(run.result.exit_code, 0) << run.result.out << run.result.err;
@@ -778,29 +783,15 @@ TEST(SpherizeCommand, AMeshInMillimetresWithoutAScaleIsCoveredAndNoted) {
   // The same export without the scale: a link 346 m across. It is spherized all the same, and a
   // note on standard error points at the units.
   const test::TempDir dir;
-  test::RobotSpec spec;
-  spec.name = "millimetre_robot";
-  spec.links = {
-      {"base_link", {test::box_geometry({0.2, 0.2, 0.05}, {0.0, 0.0, 0.025})}, {}},
-      {"huge_link",
-       {test::mesh_geometry(test::scaled_mesh(test::torus_mesh(0.07, 0.025, 32, 12), 1000.0),
-                            "torus_mm.obj", test::MeshFileType::Obj, test::MeshReference::Relative,
-                            {0.0, 0.0, 0.1})},
-       {}}};
-  spec.joints = {{"joint_1",
-                  "fixed",
-                  "base_link",
-                  "huge_link",
-                  {0.0, 0.0, 0.05},
-                  {0.0, 0.0, 0.0},
-                  {0.0, 0.0, 1.0},
-                  0.0,
-                  0.0}};
-  const test::TestRobot robot = test::write_test_robot(dir.path(), spec);
+  const test::TestRobot robot = test::write_test_robot(
+      dir.path(),
+      two_link_robot(test::mesh_geometry(
+          test::scaled_mesh(test::torus_mesh(0.07, 0.025, 32, 12), 1000.0), "torus_mm.obj",
+          test::MeshFileType::Obj, test::MeshReference::Relative, {0.0, 0.0, 0.1})));
   const SpherizeRun run =
       run_spherize(robot, "curobo", dir.path() / "spheres.yml", {"--spheres", "16"});
   ASSERT_EQ(run.result.exit_code, 0) << run.result.out << run.result.err;
-  EXPECT_THAT(run.result.err, HasSubstr("sphys: note: link \"huge_link\" is "));
+  EXPECT_THAT(run.result.err, HasSubstr("sphys: note: link \"defect_link\" is "));
   EXPECT_THAT(run.result.err, HasSubstr("m across: check the mesh's units"));
   EXPECT_THAT(run.result.err, testing::Not(HasSubstr("base_link")));
   expect_covered(robot, read_curobo(run.output).spheres, "millimetres without a scale");

@@ -113,7 +113,7 @@ struct ProtrusionCover::Impl {
         bounds(mesh.bounds()),
         diagonal(bounds.diagonal().norm()) {
     // A finely meshed part: thin the lattice (it holds every triangle's corners) to about
-    // kCoverSamples, and widen the spacing by as much.
+    // sample_count, and widen the spacing by as much.
     if (samples.points.size() > 2 * sample_count) {
       const std::size_t stride = samples.points.size() / sample_count;
       build::SurfaceSamples kept;
@@ -142,7 +142,6 @@ struct ProtrusionCover::Impl {
     median_depth = depths[depths.size() / 2];
   }
 
-  // Greedy set cover of the samples by the candidates grown to protrusion `bound`.
   // Candidates down the inward normal `n` from surface point `p`: a ladder of depths, then the
   // deepest point along the normal (the medial axis, where a ball of the least protrusion for
   // its reach sits), found by golden-section search between the ladder's rungs around the deepest.
@@ -195,7 +194,8 @@ struct ProtrusionCover::Impl {
     if (depth > deepest) add(t, depth);
   }
 
-  // Stops once more than `limit` balls are chosen.
+  // Greedy set cover of the samples by the candidates grown to protrusion `bound`. Stops once
+  // more than `limit` balls are chosen.
   [[nodiscard]] std::vector<Ball> choose(double bound, std::size_t limit) const {
     if (!(std::isfinite(bound) && bound > 0.0)) {
       throw Error("a protrusion bound must be positive and finite (unit: m)");

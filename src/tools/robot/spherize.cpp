@@ -26,11 +26,20 @@ constexpr double kBoundRange = 1e-5;
 // protrusion (the certificate may grow spheres) exceeds the limit, at most this often.
 constexpr int kLimitTries = 8;
 
-// The report's figures; the protrusion's samples are tree-info's, the others fewer (they are
-// only reported).
+// The report's figures, sampled as tree-info samples a level; links may be open meshes.
 QualityOptions report_quality() {
   QualityOptions options;
   options.require_volume = false;
+  return options;
+}
+
+// The protrusion alone, for meeting a limit: it depends only on the spheres, the mesh and the
+// boundary samples, which are the report's, so the protrusion that met the limit is the one
+// reported; the coverage and volume figures, not needed here, get few samples.
+QualityOptions protrusion_quality() {
+  QualityOptions options = report_quality();
+  options.surface_samples = 1000;
+  options.volume_samples = 1000;
   return options;
 }
 
@@ -84,13 +93,13 @@ std::vector<std::vector<Sphere>> share_budget(const Robot& robot,
   for (const LinkGeometry& link : robot.links) {
     largest = std::max(largest, link.mesh.bounds().diagonal().norm());
   }
+  const auto budget = static_cast<std::size_t>(total);
+  // Each link's count stops once it alone would overrun what the others left.
   const auto fits = [&](double bound) {
     std::size_t spheres = 0;
     for (const ProtrusionCover& cover : covers) {
-      spheres +=
-          cover.count(bound, static_cast<std::size_t>(total) -
-                                 std::min<std::size_t>(spheres, static_cast<std::size_t>(total)));
-      if (spheres > static_cast<std::size_t>(total)) return false;
+      spheres += cover.count(bound, budget - spheres);
+      if (spheres > budget) return false;
     }
     return true;
   };
@@ -118,7 +127,8 @@ std::vector<Sphere> meet_protrusion(const ProtrusionCover& cover, const LinkGeom
   double bound = limit - link.tessellation_error;
   for (int attempt = 0; attempt < kLimitTries && bound > 0.0; ++attempt) {
     std::vector<Sphere> spheres = link_spheres(cover, link, bound);
-    const double protrusion = measure_level(spheres, query, report_quality()).worst_protrusion_m;
+    const double protrusion =
+        measure_level(spheres, query, protrusion_quality()).worst_protrusion_m;
     if (protrusion <= limit) return spheres;
     // The certificate grew some sphere by protrusion - bound; ask for that much less.
     bound -= 1.1 * (protrusion - bound) + 0.05 * bound;
