@@ -13,7 +13,7 @@
 namespace sphys::viewer {
 namespace {
 
-// Two bunnies stacked on the paper's ground, depth-2 trees (built here: no cache).
+// Two bunnies stacked on the preset's exact plane, depth-2 trees (built here: no cache).
 LiveSimulation two_bunnies() {
   static const tools::BuildWorldOptions build{.tree_depth = 2, .cache_dir = {}, .progress = {}};
   return LiveSimulation(tools::preset_scene("stacks:1x2"), build);
@@ -79,7 +79,7 @@ TEST(LiveSimulation, ResetRemovesAddedBodiesAndKeepsTheBudget) {
   EXPECT_EQ(simulation.world().settings().collision.max_sphere_tests, 500u);
   std::vector<Aabb> boxes;
   simulation.bounds(boxes);
-  EXPECT_EQ(boxes.size(), 3u);  // two bunnies and the octree ground
+  EXPECT_EQ(boxes.size(), 2u);  // the two bunnies: the exact plane has no box
   for (const Aabb& box : boxes) EXPECT_FALSE(box.empty());
 }
 

@@ -268,7 +268,7 @@ def test_simulation_equals_the_command_line_bit_for_bit(simulate_cli, settings):
 
 
 def test_simulation_depth_equals_the_command_lines(cli, tmp_path):
-    frames = 12
+    frames = 40  # the lower bunny meets the plane at about frame 20
     done = cli("simulate", "stacks:1x2", "--frames", frames, "--depth", 2, "--out", tmp_path,
                "--json")
     assert done.returncode == 0, done.stderr
@@ -310,14 +310,14 @@ def test_simulation_members():
     assert sim.frame == 0 and sim.time == 0.0
     ids = sim.body_ids
     assert len(ids) == 2 and all(isinstance(i, sphys.BodyId) for i in ids)
-    # The world holds the scene's bodies and the octree ground (a static body).
-    assert len(sim.world) == 3 and all(sim.world.alive(i) for i in ids)
+    # The world holds the scene's bodies; the preset's exact plane is no body.
+    assert len(sim.world) == 2 and all(sim.world.alive(i) for i in ids)
     np.testing.assert_array_equal(sim.poses(), sim.world.poses(ids))
     positions = [b["position"] for b in scene.to_dict()["bodies"]]
     np.testing.assert_allclose(sim.poses()[:, :3], positions, atol=1e-6)
     assert sim.scene.to_json() == scene.to_json()
     stats = sim.step(3)
-    assert isinstance(stats, sphys.StepStats) and stats.bodies == 3
+    assert isinstance(stats, sphys.StepStats) and stats.bodies == 2
     assert sim.frame == 3 and sim.time == pytest.approx(3 * scene.time_step)
     assert sim.summary()["frames"] == 3
     with pytest.raises(sphys.Error, match="frames"):

@@ -1,7 +1,8 @@
 #pragma once
 
 // Built-in scenes. "stacks:SxN" is the paper's experiment (§5) as the benchmark specification
-// fixes it: S stacks of N bunnies over the paper's octree ground (see docs/experiment.md).
+// fixes it: S stacks of N bunnies, over the exact plane (the experiment itself keeps the paper's
+// octree ground; see docs/experiment.md).
 
 #include <cstdint>
 #include <string>
@@ -36,8 +37,9 @@ inline constexpr std::uint64_t kStacksSeed = 2008;
 
 // True when `text` names a preset ("stacks:..."), whether or not it is well formed.
 [[nodiscard]] bool is_preset(std::string_view text);
-// The scene of a preset, e.g. "stacks:4x50" (tree depth 3 unless the caller changes it), its yaw
-// angles drawn from `seed`. Throws sphys::Error naming the preset and listing the valid forms.
+// The scene of a preset, e.g. "stacks:4x50" (tree depth 3 unless the caller changes it, the exact
+// plane y = 0 as its ground), its yaw angles drawn from `seed`. Throws sphys::Error naming the
+// preset and listing the valid forms.
 [[nodiscard]] Scene preset_scene(std::string_view text, std::uint64_t seed = kStacksSeed);
 // A preset name, else a scene file.
 [[nodiscard]] Scene load_scene(std::string_view preset_or_file);

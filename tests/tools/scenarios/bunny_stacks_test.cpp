@@ -72,14 +72,19 @@ struct Grid {
   int rows;
 };
 
+// The experiment's scene keeps the paper's octree ground; the preset stands on the exact plane, off
+// which nothing can slide.
+constexpr GroundSpec::Kind kPaperGround = GroundSpec::Kind::kOctreeBox;
+constexpr GroundSpec::Kind kPresetGround = GroundSpec::Kind::kPlane;
+
 // Checks every body of an S x N stacks scene against the specification: body b = s·N + i sits at
 // x = (col − (cols − 1)/2)·1.5, z = (row − (rows − 1)/2)·1.5, y = 1 + 1.2·i, turned about +y by
 // 2π·u with u the b-th unit draw of SplitMix64(2008).
-void expect_stacks_layout(const Scene& scene, int stacks, int per_stack, Grid grid,
-                          int tree_depth) {
+void expect_stacks_layout(const Scene& scene, int stacks, int per_stack, Grid grid, int tree_depth,
+                          GroundSpec::Kind ground) {
   ASSERT_EQ(scene.bodies.size(), static_cast<std::size_t>(stacks * per_stack));
   EXPECT_EQ(scene.name, "stacks:" + std::to_string(stacks) + "x" + std::to_string(per_stack));
-  EXPECT_EQ(scene.ground.kind, GroundSpec::Kind::kOctreeBox);
+  EXPECT_EQ(scene.ground.kind, ground);
   EXPECT_EQ(scene.ground.height, 0.0);
   EXPECT_EQ(scene.gravity, Vec3(0.0f, -9.81f, 0.0f));
   EXPECT_EQ(scene.time_step, 1.0 / 60.0);
@@ -124,7 +129,7 @@ void expect_stacks_layout(const Scene& scene, int stacks, int per_stack, Grid gr
 
 TEST(BunnyStacks, FourStacksOfFiftyFollowTheSpecification) {
   const Scene scene = preset_scene("stacks:4x50");
-  expect_stacks_layout(scene, 4, 50, {.cols = 2, .rows = 2}, 3);
+  expect_stacks_layout(scene, 4, 50, {.cols = 2, .rows = 2}, 3, kPresetGround);
   if (scene.bodies.size() != 200) return;
 
   // A few bodies written out in full. The quaternions are cos(π·u), sin(π·u) of the first two
@@ -145,7 +150,7 @@ TEST(BunnyStacks, FourStacksOfFiftyFollowTheSpecification) {
 
 TEST(BunnyStacks, EightStacksOfTenFillThreeByThreeGrid) {
   const Scene scene = preset_scene("stacks:8x10");
-  expect_stacks_layout(scene, 8, 10, {.cols = 3, .rows = 3}, 3);
+  expect_stacks_layout(scene, 8, 10, {.cols = 3, .rows = 3}, 3, kPresetGround);
   if (scene.bodies.size() != 80) return;
   EXPECT_EQ(scene.bodies[0].position, Vec3(-1.5f, 1.0f, -1.5f));
   EXPECT_EQ(scene.bodies[40].position, Vec3(0.0f, 1.0f, 0.0f));  // stack 4: the centre
@@ -156,15 +161,15 @@ TEST(BunnyStacks, EightStacksOfTenFillThreeByThreeGrid) {
 
 TEST(BunnyStacks, ThreeStacksLeaveTheLastCellOfTheGridEmpty) {
   const Scene scene = preset_scene("stacks:3x2");
-  expect_stacks_layout(scene, 3, 2, {.cols = 2, .rows = 2}, 3);
+  expect_stacks_layout(scene, 3, 2, {.cols = 2, .rows = 2}, 3, kPresetGround);
   if (scene.bodies.size() != 6) return;
   EXPECT_EQ(scene.bodies[4].position, Vec3(-0.75f, 1.0f, 0.75f));
   EXPECT_FLOAT_EQ(scene.bodies[5].position.y(), 2.2f);
 }
 
 TEST(BunnyStacks, TreeDepthIsTheCallersChoice) {
-  expect_stacks_layout(bunny_stacks_scene(1, 3, 2), 1, 3, {.cols = 1, .rows = 1}, 2);
-  expect_stacks_layout(bunny_stacks_scene(2, 1, 6), 2, 1, {.cols = 2, .rows = 1}, 6);
+  expect_stacks_layout(bunny_stacks_scene(1, 3, 2), 1, 3, {.cols = 1, .rows = 1}, 2, kPaperGround);
+  expect_stacks_layout(bunny_stacks_scene(2, 1, 6), 2, 1, {.cols = 2, .rows = 1}, 6, kPaperGround);
   // A single stack stands on the origin.
   EXPECT_EQ(bunny_stacks_scene(1, 1, 1).bodies.at(0).position, Vec3(0.0f, 1.0f, 0.0f));
 }
@@ -178,7 +183,7 @@ TEST(BunnyStacks, IsPresetLooksOnlyAtThePrefix) {
 }
 
 TEST(BunnyStacks, LoadSceneTakesPresetsAndFiles) {
-  expect_stacks_layout(load_scene("stacks:3x2"), 3, 2, {.cols = 2, .rows = 2}, 3);
+  expect_stacks_layout(load_scene("stacks:3x2"), 3, 2, {.cols = 2, .rows = 2}, 3, kPresetGround);
 
   const test::TempDir dir;
   const auto file = dir.write("two.json", R"({"format": "sphys-scene", "version": 1,
