@@ -3,10 +3,12 @@
 // Thin names over Eigen for the runtime. The runtime works in float (it is read every step);
 // construction and mass properties work in double (see sphys/tools).
 
+#include <cmath>
 #include <limits>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 namespace sphys {
 
@@ -23,6 +25,21 @@ struct Transform {
     return rotation * body_point + translation;
   }
 };
+
+// The inverse of a symmetric positive semi-definite 3×3 (an inertia tensor, or a sum of inverse
+// inertias), or zero where it has none (a point mass cannot be turned). The matrix is first
+// scaled by a power of two to entries near 1: in float the determinant of a 1 km, 10⁹ kg body's
+// inertia (about 1e14 kg·m², cubed 1e42) overflows, and a 1 mm, 1 mg body's underflows, where the
+// inverse itself fits. Scaling by a power of two is exact, so wherever the plain float inverse
+// neither overflows nor underflows this is that inverse, bit for bit.
+[[nodiscard]] inline Mat3 inverse_or_zero(const Mat3& matrix) {
+  const float largest = matrix.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0f) || !std::isfinite(largest)) return Mat3::Zero();
+  const float scale = std::ldexp(1.0f, -std::ilogb(largest));
+  const Mat3 scaled = matrix * scale;
+  if (!(scaled.determinant() > 0.0f)) return Mat3::Zero();
+  return scaled.inverse() * scale;
+}
 
 // Axis-aligned bounding box. A default-constructed box is empty (min > max) so that the first
 // extend() sets it.

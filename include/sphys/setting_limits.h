@@ -18,6 +18,10 @@ inline constexpr std::uint32_t kMaxSubsteps = 64;
 inline constexpr std::uint32_t kMaxIterations = 1000;
 // Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
 inline constexpr std::uint32_t kMaxPaperPasses = 1000;
+// Largest magnitude of each component of gravity (WorldSettings::gravity), about 100 g: beyond
+// any planet's, and small enough that a body falling freely for the longest run a scene may ask
+// for (10⁷ steps of 1 s) stays finite in single precision. unit: m/s²
+inline constexpr double kMaxGravity = 1000.0;
 // More threads than any machine has is a mistake in the settings, not a wish
 // (WorldSettings::threads).
 inline constexpr std::uint32_t kMaxWorldThreads = 1024;

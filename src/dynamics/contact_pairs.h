@@ -75,8 +75,7 @@ void gather_rolling_pairs(std::vector<Constraint>& constraints,
     const Constraint& c = constraints[first];
     RollingPair pair{.a = c.a, .b = c.b, .a_moves = c.a_moves, .b_moves = c.b_moves};
     const Mat3 sum = inverse_inertia[c.a] + inverse_inertia[c.b];
-    // A body with no inverse inertia at all (a point mass) cannot be turned.
-    if (sum.determinant() > 0.0f) pair.mass = sum.inverse();
+    pair.mass = inverse_or_zero(sum);
     std::size_t end = first;
     for (; end < constraints.size() && same_bodies(constraints[end], c); ++end) {
       constraints[end].pair = static_cast<std::uint32_t>(pairs.size());

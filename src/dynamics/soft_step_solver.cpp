@@ -130,8 +130,7 @@ void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& mat
   // Rolling resistance stops the bodies' relative turning: its mass is the inverse of the sum of
   // their inverse inertias. A pair with no inverse inertia at all (point masses) cannot turn.
   const Mat3 sum = inverse_inertia_[first.a] + inverse_inertia_[first.b];
-  put(sum.determinant() > 0.0f ? Mat3(sum.inverse()) : Mat3(Mat3::Zero()), lane,
-      block.rolling_mass);
+  put(inverse_or_zero(sum), lane, block.rolling_mass);
   for (std::uint32_t i = 0; i < manifold.count; ++i) {
     const Constraint& c = constraints_[manifold.first + i];
     auto& p = block.points[i];

@@ -92,7 +92,7 @@ const auto kTable = std::to_array<Setting>({
         .field = "gravity",
         .kind = SettingKind::kVector3,
         .unit = "m/s²",
-        .range = kAnyFinite,
+        .range = between(-kMaxGravity, kMaxGravity),
         .doc = "Acceleration of gravity, y up.",
     }),
     scalar<Top<&W::response>>({
@@ -395,7 +395,8 @@ std::string requirement(const Setting& setting) {
   const SettingRange& range = setting.range;
   if (setting.kind == SettingKind::kEnum) return "one of " + range_text(setting);
   if (range.has_min() && range.has_max()) {
-    return "between " + number_text(range.min) + " and " + number_text(range.max);
+    return "between " + number_text(range.min) + " and " + number_text(range.max) +
+           (setting.kind == SettingKind::kVector3 ? " in each component" : "");
   }
   std::string text;
   if (range.has_min()) {
@@ -431,7 +432,11 @@ std::string vector_text(const Vec3& v) {
 
 void check_setting(const Setting& setting, const WorldSettings& settings) {
   if (setting.kind == SettingKind::kVector3) {
-    if (setting.get_vector(settings).allFinite()) return;
+    const Vec3 value = setting.get_vector(settings);
+    const auto in_range = [&](float component) {
+      return std::isfinite(component) && setting.range.contains(component);
+    };
+    if (in_range(value.x()) && in_range(value.y()) && in_range(value.z())) return;
   } else if (setting.kind == SettingKind::kBool) {
     return;
   } else {
@@ -519,14 +524,14 @@ std::string range_text(const Setting& setting) {
       return text;
     }
     case SettingKind::kVector3:
-      return "finite";
     case SettingKind::kInteger:
     case SettingKind::kNumber:
       break;
   }
   const SettingRange& range = setting.range;
   if (range.has_min() && range.has_max()) {
-    return number_text(range.min) + " to " + number_text(range.max);
+    return number_text(range.min) + " to " + number_text(range.max) +
+           (setting.kind == SettingKind::kVector3 ? " each" : "");
   }
   std::string text = "finite";
   if (range.has_min()) {

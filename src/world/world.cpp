@@ -120,7 +120,7 @@ BodyId World::add_body(const BodyDesc& desc) {
     body.inverse_mass = 1.0f / desc.mass;
     // Symmetrised so that rounding in the caller's tensor cannot make the inverse lopsided.
     body.inertia_body = 0.5f * (desc.inertia + desc.inertia.transpose());
-    body.inverse_inertia_body = body.inertia_body.inverse();
+    body.inverse_inertia_body = inverse_or_zero(body.inertia_body);
   }
   const std::uint32_t slot = store_->add(body, tree_extent(*desc.tree));
   try {

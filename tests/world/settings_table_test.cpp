@@ -85,10 +85,27 @@ TEST(SettingsTable, ValidationTakesEveryBoundAndRefusesWhatLiesBeyond) {
         refused(settings);
         break;
       case SettingKind::kVector3:
-        setting.set_vector(settings, Vec3(1.0f, -2.0f, 3.0f));
-        EXPECT_NO_THROW(check_world_settings(settings));
-        setting.set_vector(settings, Vec3(0.0f, std::numeric_limits<float>::infinity(), 0.0f));
-        refused(settings);
+        // Every component is held to the range on its own.
+        ASSERT_TRUE(setting.range.has_min() && setting.range.has_max());
+        for (int k = 0; k < 3; ++k) {
+          for (const Edge& edge : edges(setting)) {
+            SCOPED_TRACE("component " + std::to_string(k) + " at " + std::to_string(edge.at));
+            Vec3 value(1.0f, -2.0f, 3.0f);
+            value[k] = static_cast<float>(edge.at);
+            setting.set_vector(settings, value);
+            EXPECT_NO_THROW(check_world_settings(settings));
+            value[k] = static_cast<float>(edge.beyond);
+            setting.set_vector(settings, value);
+            refused(settings);
+          }
+          Vec3 value = Vec3::Zero();
+          value[k] = std::numeric_limits<float>::infinity();
+          setting.set_vector(settings, value);
+          refused(settings);
+          value[k] = std::numeric_limits<float>::quiet_NaN();
+          setting.set_vector(settings, value);
+          refused(settings);
+        }
         break;
       case SettingKind::kBool:
         setting.set(settings, 0.0);
@@ -117,6 +134,8 @@ TEST(SettingsTable, MessagesNameTheFieldTheRangeTheValueAndItsUnit) {
             "substep_travel must be positive and finite, got 0 bounding radii");
   EXPECT_EQ(message([](WorldSettings& s) { s.ground_restitution = 1.5f; }),
             "ground_restitution must be between 0 and 1, got 1.5");
+  EXPECT_EQ(message([](WorldSettings& s) { s.gravity = Vec3(0.0f, -3e38f, 0.0f); }),
+            "gravity must be between -1000 and 1000 in each component, got [0, -3e+38, 0] m/s²");
 }
 
 }  // namespace

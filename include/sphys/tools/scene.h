@@ -25,6 +25,11 @@ struct TreeSpec {
   int depth = 3;      // levels including the root, 1..6
 };
 
+// A body's mass, given or made from its density and volume: from a 1 mg grain to a 10⁹ kg
+// building (docs/scenes.md, "Values"). unit: kg
+inline constexpr double kMinBodyMass = 1e-6;
+inline constexpr double kMaxBodyMass = 1e9;
+
 struct BodySpec {
   // "bunny" (the default model) or a mesh file (relative paths are relative to the scene file).
   std::string mesh = "bunny";

@@ -53,7 +53,7 @@ struct PhysicalRange {
 constexpr PhysicalRange kTimeStepRange{1e-6, 1.0, "s"};
 constexpr PhysicalRange kBodySizeRange{1e-3, 1e3, "m"};
 constexpr PhysicalRange kDensityRange{1e-3, 1e6, "kg/m³"};
-constexpr PhysicalRange kMassRange{1e-6, 1e9, "kg"};
+constexpr PhysicalRange kMassRange{kMinBodyMass, kMaxBodyMass, "kg"};
 constexpr PhysicalRange kGroundSizeRange{1e-2, 1e5, "m"};
 constexpr PhysicalRange kGroundThicknessRange{1e-3, 1e4, "m"};
 // Coordinates beyond this lose centimetres in single precision. unit: m
@@ -787,9 +787,12 @@ double read_setting_number(const Node& node, const SettingRange& range) {
 
 void read_setting(const Node& node, const Setting& setting, WorldSettings& settings) {
   switch (setting.kind) {
-    case SettingKind::kVector3:
-      setting.set_vector(settings, read_vec3(node));
+    case SettingKind::kVector3: {
+      const Vec3 value = read_vec3(node);
+      for (std::size_t k = 0; k < 3; ++k) (void)read_setting_number(node.element(k), setting.range);
+      setting.set_vector(settings, value);
       return;
+    }
     case SettingKind::kBool:
       setting.set(settings, read_bool(node) ? 1.0 : 0.0);
       return;

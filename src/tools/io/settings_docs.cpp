@@ -47,6 +47,18 @@ Json whole_numbers_as_integers(Json value) {
   return value;
 }
 
+// The bounds of a number (or of each component of a vector) as JSON Schema keywords.
+Json range_schema(const SettingRange& range) {
+  Json out = Json::object();
+  if (range.has_min()) {
+    out[range.min_inclusive ? "minimum" : "exclusiveMinimum"] = number_json(range.min);
+  }
+  if (range.has_max()) {
+    out[range.max_inclusive ? "maximum" : "exclusiveMaximum"] = number_json(range.max);
+  }
+  return out;
+}
+
 Json setting_schema(const Setting& setting) {
   Json out = Json::object();
   std::string description(setting.doc);
@@ -55,6 +67,7 @@ Json setting_schema(const Setting& setting) {
   switch (setting.kind) {
     case SettingKind::kVector3:
       out["$ref"] = "#/$defs/vector";
+      if (const Json bounds = range_schema(setting.range); !bounds.empty()) out["items"] = bounds;
       break;
     case SettingKind::kBool:
       out["type"] = "boolean";
@@ -66,13 +79,7 @@ Json setting_schema(const Setting& setting) {
     case SettingKind::kInteger:
     case SettingKind::kNumber: {
       out["type"] = setting.kind == SettingKind::kInteger ? "integer" : "number";
-      const SettingRange& range = setting.range;
-      if (range.has_min()) {
-        out[range.min_inclusive ? "minimum" : "exclusiveMinimum"] = number_json(range.min);
-      }
-      if (range.has_max()) {
-        out[range.max_inclusive ? "maximum" : "exclusiveMaximum"] = number_json(range.max);
-      }
+      out.update(range_schema(setting.range));
       break;
     }
   }
@@ -185,19 +192,18 @@ std::string allowed_text(const Setting& setting) {
   switch (setting.kind) {
     case SettingKind::kBool:
       break;
-    case SettingKind::kVector3:
-      values = "finite";
-      break;
     case SettingKind::kEnum:
       for (std::size_t i = 0; i < setting.choices.size(); ++i) {
         if (i > 0) values += i + 1 == setting.choices.size() ? " or " : ", ";
         values += code("\"" + std::string(setting.choices[i]) + "\"");
       }
       break;
+    case SettingKind::kVector3:
     case SettingKind::kInteger:
     case SettingKind::kNumber:
       if (range.has_min() && range.has_max()) {
         values = code(number_text(range.min)) + " to " + code(number_text(range.max));
+        if (setting.kind == SettingKind::kVector3) values += " each";
       } else if (range.has_min()) {
         values = code((range.min_inclusive ? ">= " : "> ") + number_text(range.min));
       } else if (range.has_max()) {

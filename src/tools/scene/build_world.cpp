@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <tuple>
@@ -151,6 +152,14 @@ SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options
       const BodyShape& shape = setup.shapes[found->second];
       const MassProperties& unit = unit_density[found->second];
       const double mass = body.mass.value_or(body.density * unit.volume);
+      if (mass < kMinBodyMass || mass > kMaxBodyMass) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "density %.3g kg/m³ × volume %.3g m³ gives a mass of %.3g kg; it must be "
+                      "between %g and %g kg (give a mass, or another density or size)",
+                      body.density, unit.volume, mass, kMinBodyMass, kMaxBodyMass);
+        throw Error(text);
+      }
 
       BodyDesc desc;
       desc.tree = shape.tree;

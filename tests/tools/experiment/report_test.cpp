@@ -276,6 +276,18 @@ TEST(ExperimentMarkdown, ReportsEachRunsBuilderAndEndState) {
   EXPECT_THAT(md,
               HasSubstr("\n| d4-2x3 | combined, branching 8 | octree of a 16 m box, 5 levels | 0 | "
                         "yes | 0.0000 | yes |\n"));
+  // d3-8x20 lost bunnies over the octree ground's edge: the report says why.
+  EXPECT_THAT(md, HasSubstr("\nThe bunnies below the plane slid off the octree ground's edge"));
+}
+
+TEST(ExperimentMarkdown, SaysNothingOfAnEdgeWhenNoBunnyFellOffOne) {
+  std::vector<RowResult> results = sample_results();
+  // The same loss on the exact plane (which has no edge), and none on the octree.
+  results[1].ground = "exact plane";
+  EXPECT_THAT(markdown_report(results, "m", {}), Not(HasSubstr("octree ground's edge")));
+  results[1].ground = "octree of a 16 m box, 5 levels";
+  results[1].bodies_below_plane = 0;
+  EXPECT_THAT(markdown_report(results, "m", {}), Not(HasSubstr("octree ground's edge")));
 }
 
 TEST(ExperimentMarkdown, LinksThePlotsWritePlotsDraws) {

@@ -441,7 +441,7 @@ class RandomScene {
   Scene next() {
     Scene scene;
     scene.name = "s.json";
-    scene.gravity = any_vec3();
+    scene.gravity = vec3_within(static_cast<float>(kMaxGravity));
     scene.time_step = in_range(1e-6, 1.0);
     scene.frames = std::uniform_int_distribution<int>(1, 10'000'000)(rng_);
     scene.paper_passes = std::uniform_int_distribution<int>(1, 1000)(rng_);
@@ -553,7 +553,6 @@ class RandomScene {
       if (value <= 1.0f) return value;
     }
   }
-  Vec3 any_vec3() { return {any_float(), any_float(), any_float()}; }
   // Any double in [lo, hi] (0 < lo), every exponent between alike.
   double in_range(double lo, double hi) {
     const double u = std::uniform_real_distribution<double>()(rng_);
@@ -675,6 +674,10 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
        "must be between 1e-06 and 1 s, got 2"},
       // Figures that would overflow or vanish in the simulation's products are refused here,
       // named, rather than failing later: each just past its limit.
+      {scene_text(R"("gravity": [0, -3e38, 0], "bodies": [])"), "/gravity/1",
+       "must be between -1000 and 1000, got -3e+38"},
+      {scene_text(R"("gravity": [1000.5, 0, 0], "bodies": [])"), "/gravity/0",
+       "must be between -1000 and 1000, got 1000.5"},
       {scene_text(R"("time_step": 1e-320, "bodies": [])"), "/time_step",
        "must be between 1e-06 and 1 s, got 1e-320"},
       {scene_text(R"("bodies": [{"density": 3.4e38}])"), "/bodies/0/density",
