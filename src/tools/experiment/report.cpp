@@ -301,9 +301,8 @@ std::string below_plane_note(std::span<const RowResult> results) {
   });
   if (!fell_off) return "";
   return "\nThe bunnies below the plane slid off the octree ground's edge and fell: the paper "
-         "gives "
-         "its plane's structure but not its size, paper mode has no friction to stop a bunny "
-         "that lands sliding, and no size of the paper's octree keeps every bunny on it "
+         "gives its plane's structure but not its size, paper mode has no friction to stop a "
+         "bunny that lands sliding, and no size of the paper's octree keeps every bunny on it "
          "(docs/experiment.md, \"The ground\", has the sizes tried). Figure 2's last frames "
          "show those that stayed; `--ground plane` keeps every bunny above the plane.\n";
 }

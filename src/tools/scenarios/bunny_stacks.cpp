@@ -87,8 +87,8 @@ Scene preset_scene(std::string_view text, std::uint64_t seed) {
       const int per_stack = parse_count(layout.substr(x + 1));
       if (stacks > 0 && per_stack > 0) {
         Scene scene = bunny_stacks_scene(stacks, per_stack, kPresetTreeDepth, seed);
-        // The exact plane, not the experiment's 16 m octree: bunnies slide off any octree ground
-        // the paper's response allows (docs/experiment.md, "The ground"), and nothing may fall
+        // The exact plane, not the experiment's 16 m octree: in paper mode bunnies slid off every
+        // size of octree ground tried (docs/experiment.md, "The ground"), and nothing may fall
         // off the world in a preset. `--ground octree` gives the paper's ground back.
         scene.ground.kind = GroundSpec::Kind::kPlane;
         return scene;
