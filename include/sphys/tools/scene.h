@@ -25,6 +25,11 @@ struct TreeSpec {
   int depth = 3;      // levels including the root, 1..6
 };
 
+// Most bodies a scene may hold, in a file or a preset: a million bunnies is twenty times the
+// largest heap sphys is measured on, and the cap keeps a small file (3 bytes a body, "{},") from
+// asking for gigabytes before anything is simulated. unit: bodies
+inline constexpr std::size_t kMaxSceneBodies = 1'000'000;
+
 // A body's mass, given or made from its density and volume: from a 1 mg grain to a 10⁹ kg
 // building (docs/scenes.md, "Values"). unit: kg
 inline constexpr double kMinBodyMass = 1e-6;

@@ -286,6 +286,12 @@ class DocumentBuilder final : public nlohmann::json_sax<Json> {
     }
     const Container& parent = open_.back();
     if (parent.value->is_array()) {
+      // Counted as they are read, so that a file of millions of bodies stops here, at once.
+      if (parent.pointer == "/bodies" && parent.value->size() == kMaxSceneBodies) {
+        throw Error::at_json_path(name_, parent.pointer,
+                                  "more than " + std::to_string(kMaxSceneBodies) +
+                                      " bodies; a scene holds at most that many");
+      }
       const std::string pointer = parent.pointer + "/" + std::to_string(parent.value->size());
       parent.value->push_back(std::move(value));
       return {&parent.value->back(), pointer};

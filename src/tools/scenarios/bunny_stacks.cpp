@@ -11,7 +11,6 @@ namespace sphys::tools {
 namespace {
 
 constexpr std::string_view kStacksPrefix = "stacks:";
-constexpr int kMaxBodies = 1'000'000;
 constexpr double kStackSpacing = 1.5;  // between neighbouring stacks' axes. unit: m
 constexpr double kFirstHeight = 1.0;   // centre of mass of the lowest bunny. unit: m
 constexpr double kLevelSpacing = 1.2;  // between bunnies of a stack. unit: m
@@ -38,9 +37,10 @@ std::uint64_t SplitMix64::next() {
 double SplitMix64::next_unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
 Scene bunny_stacks_scene(int stacks, int per_stack, int tree_depth, std::uint64_t seed) {
-  if (stacks <= 0 || per_stack <= 0 || static_cast<long long>(stacks) * per_stack > kMaxBodies) {
+  if (stacks <= 0 || per_stack <= 0 ||
+      static_cast<long long>(stacks) * per_stack > static_cast<long long>(kMaxSceneBodies)) {
     throw Error("stacks: need at least 1 stack of at least 1 bunny and at most " +
-                std::to_string(kMaxBodies) + " bunnies, got " + std::to_string(stacks) + "x" +
+                std::to_string(kMaxSceneBodies) + " bunnies, got " + std::to_string(stacks) + "x" +
                 std::to_string(per_stack));
   }
   if (tree_depth < 1 || tree_depth > 6) {

@@ -897,6 +897,21 @@ TEST(SceneFile, NestingIsBoundedAsContainersOpen) {
               StartsWith("scene.json: expected a JSON object at the top level"));
 }
 
+// "{}," is a body: a 30 MB file of 10^7 of them took 4.2 GB and minutes before this bound. The
+// millionth body is read, the next is refused as it opens, before the rest of the file is parsed.
+std::string bodies_text(std::size_t count, std::string_view tail) {
+  std::string text = R"({"format": "sphys-scene", "version": 1, "bodies": [)";
+  for (std::size_t i = 0; i < count; ++i) text += i == 0 ? "{}" : ",{}";
+  return text + std::string(tail);
+}
+
+TEST(SceneFile, BodiesAreBoundedAsTheyAreRead) {
+  EXPECT_EQ(parse_error(bodies_text(kMaxSceneBodies + 1, "")),
+            "scene.json: /bodies: more than 1000000 bodies; a scene holds at most that many");
+  EXPECT_EQ(parse_scene(bodies_text(kMaxSceneBodies, "]}"), "scene.json").bodies.size(),
+            kMaxSceneBodies);
+}
+
 TEST_F(SceneFileOnDisk, RelativePathsResolveAgainstTheScenesFolder) {
   const std::string text =
       scene_text(R"("bodies": [{"mesh": "meshes/box.obj", "sphere_tree": "trees/bunny.sph"}])");
