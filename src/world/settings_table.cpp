@@ -74,7 +74,6 @@ Setting vector(Setting setting) {
 constexpr SettingRange between(double low, double high) { return {low, high, true, true}; }
 constexpr SettingRange at_least(double low) { return {.min = low}; }
 constexpr SettingRange above(double low) { return {.min = low, .min_inclusive = false}; }
-constexpr SettingRange kAnyFinite{};
 
 constexpr std::array<std::string_view, 2> kResponseChoices = {"paper", "plausible"};
 constexpr std::array<std::string_view, 2> kContactChoices = {"all", "reduced"};
