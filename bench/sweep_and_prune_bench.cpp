@@ -1,4 +1,5 @@
-// Broad phase: one step of Sweep & Prune against brute force, on boxes filling a cube.
+// Broad phase: one step of Sweep & Prune against brute force, on boxes filling a cube and on boxes
+// spread over a floor.
 // Run: sphys-bench --benchmark_filter=BroadPhase
 
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "sphys/cell_sweep_and_prune.h"
 #include "sphys/math.h"
 #include "sphys/sweep_and_prune.h"
 
@@ -16,13 +18,17 @@ namespace {
 using sphys::Aabb;
 using sphys::Vec3;
 
-// Boxes about 1 m wide on a jittered 1 m lattice filling a cube, so that each overlaps a few
-// neighbours, each drifting at a constant velocity and bouncing off the cube's walls.
-constexpr float kSpacing = 1.0f;      // unit: m
-constexpr float kJitter = 0.2f;       // largest offset from the lattice point. unit: m
-constexpr float kMinHalf = 0.4f;      // unit: m
-constexpr float kMaxHalf = 0.6f;      // unit: m
-constexpr float kStepLength = 0.02f;  // distance moved per step: 1.2 m/s at 60 Hz. unit: m
+// Boxes about 1 m wide placed at random, each drifting at a constant velocity and bouncing off
+// the walls: the regime drifting boxes settle into, so that every size is timed in the same one.
+// Cube: one box per cubic metre filling a cube, moving in 3D. Floor: one box per 1.15 m square,
+// every box standing on y = 0 and moving in x and z only, as bodies spread over the ground. Each
+// box overlaps about 3 others on the floor and 7 in the cube.
+enum class Layout { kCube, kFloor };
+constexpr float kCubeSpacing = 1.0f;    // the cube's volume per box is its cube. unit: m
+constexpr float kFloorSpacing = 1.15f;  // the floor's area per box is its square. unit: m
+constexpr float kMinHalf = 0.4f;        // unit: m
+constexpr float kMaxHalf = 0.6f;        // unit: m
+constexpr float kStepLength = 0.02f;    // distance moved per step: 1.2 m/s at 60 Hz. unit: m
 
 struct Scene {
   std::vector<Vec3> centers;
@@ -30,22 +36,26 @@ struct Scene {
   std::vector<Vec3> steps;
   float side = 0.0f;  // unit: m
 
-  explicit Scene(int count) {
-    const int per_axis = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(count))));
-    side = static_cast<float>(per_axis) * kSpacing;
+  Scene(Layout layout, int count) {
+    const bool floor = layout == Layout::kFloor;
+    const auto n = static_cast<double>(count);
+    side = floor ? static_cast<float>(std::sqrt(n)) * kFloorSpacing
+                 : static_cast<float>(std::cbrt(n)) * kCubeSpacing;
     std::mt19937 rng(42);
-    std::uniform_real_distribution<float> jitter(-kJitter, kJitter);
+    std::uniform_real_distribution<float> place(0.0f, side);
     std::uniform_real_distribution<float> half(kMinHalf, kMaxHalf);
     std::normal_distribution<float> direction(0.0f, 1.0f);
     for (int i = 0; i < count; ++i) {
-      const Vec3 lattice(static_cast<float>(i % per_axis),
-                         static_cast<float>(i / per_axis % per_axis),
-                         static_cast<float>(i / per_axis / per_axis));
-      centers.push_back((lattice.array() + 0.5f) * kSpacing +
-                        Vec3(jitter(rng), jitter(rng), jitter(rng)).array());
-      halves.emplace_back(half(rng), half(rng), half(rng));
-      steps.push_back(Vec3(direction(rng), direction(rng), direction(rng)).normalized() *
-                      kStepLength);
+      const Vec3 half_size(half(rng), half(rng), half(rng));
+      halves.push_back(half_size);
+      if (floor) {
+        centers.emplace_back(place(rng), half_size.y(), place(rng));
+        steps.push_back(Vec3(direction(rng), 0.0f, direction(rng)).normalized() * kStepLength);
+      } else {
+        centers.emplace_back(place(rng), place(rng), place(rng));
+        steps.push_back(Vec3(direction(rng), direction(rng), direction(rng)).normalized() *
+                        kStepLength);
+      }
     }
   }
 
@@ -73,9 +83,10 @@ void set_counters(benchmark::State& state, std::size_t boxes) {
 }
 
 // One step: every box moves (set_box) and update() re-sorts and updates the pairs.
-void BM_BroadPhaseSweepAndPrune(benchmark::State& state) {
-  Scene scene(static_cast<int>(state.range(0)));
-  sphys::SweepAndPrune sap;
+template <class BroadPhase, Layout kLayout>
+void BM_BroadPhase(benchmark::State& state) {
+  Scene scene(kLayout, static_cast<int>(state.range(0)));
+  BroadPhase sap;
   for (std::size_t i = 0; i < scene.size(); ++i) sap.add(scene.box(i), sphys::ProxyKind::kDynamic);
   sap.update();
   // Warm up to steady state: the buffers at their size, the scene in its bouncing regime.
@@ -104,16 +115,26 @@ void BM_BroadPhaseSweepAndPrune(benchmark::State& state) {
   state.counters["swaps_per_box"] = static_cast<double>(swaps) / box_steps;
   state.counters["pairs_per_box"] = static_cast<double>(pairs) / box_steps;
 }
-BENCHMARK(BM_BroadPhaseSweepAndPrune)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->Arg(100000)
-    ->Unit(benchmark::kMicrosecond);
+// Each broad phase on each layout at 1,000, 10,000 and 100,000 boxes.
+#define SPHYS_BROAD_PHASE_BENCHMARK(name, type, layout) \
+  BENCHMARK(BM_BroadPhase<type, layout>)                \
+      ->Name(name)                                      \
+      ->Arg(1000)                                       \
+      ->Arg(10000)                                      \
+      ->Arg(100000)                                     \
+      ->Unit(benchmark::kMicrosecond)
+SPHYS_BROAD_PHASE_BENCHMARK("BM_BroadPhaseSweepAndPrune/cube", sphys::SweepAndPrune, Layout::kCube);
+SPHYS_BROAD_PHASE_BENCHMARK("BM_BroadPhaseSweepAndPrune/floor", sphys::SweepAndPrune,
+                            Layout::kFloor);
+SPHYS_BROAD_PHASE_BENCHMARK("BM_BroadPhaseCellSweepAndPrune/cube", sphys::CellSweepAndPrune,
+                            Layout::kCube);
+SPHYS_BROAD_PHASE_BENCHMARK("BM_BroadPhaseCellSweepAndPrune/floor", sphys::CellSweepAndPrune,
+                            Layout::kFloor);
 
 // The same step by testing every pair of boxes. 100k boxes (5e9 tests, seconds a step) is left
 // out.
 void BM_BroadPhaseBruteForce(benchmark::State& state) {
-  Scene scene(static_cast<int>(state.range(0)));
+  Scene scene(Layout::kCube, static_cast<int>(state.range(0)));
   std::vector<Aabb> boxes(scene.size());
   std::vector<sphys::ProxyPair> pairs;
   for (auto _ : state) {

@@ -9,9 +9,11 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <variant>
 #include <vector>
 
 #include "sphys/body_store.h"
+#include "sphys/cell_sweep_and_prune.h"
 #include "sphys/contact.h"
 #include "sphys/parallel.h"
 #include "sphys/setting_limits.h"
@@ -20,6 +22,12 @@
 #include "sphys/tree_descent.h"
 
 namespace sphys {
+
+// Which broad phase a detector runs. Both list the same pairs in the same order.
+enum class BroadPhaseKind : std::uint8_t {
+  kSweepAndPrune,  // one Sweep & Prune over every body (the paper's, §3.1)
+  kCells,          // Sweep & Prune per cell of a coarse grid (CellSweepAndPrune)
+};
 
 struct CollisionSettings {
   // Levels of every sphere-tree used, the root included; 0 uses them all (a depth-3 tree used as
@@ -54,6 +62,8 @@ struct CollisionSettings {
   // The deepest and mean penetration of the leaf pairs in CollisionStats: a pass over every leaf
   // pair, so only on request.
   bool measure_penetration = false;
+  // Fixed when the detector is made (set_settings() keeps it).
+  BroadPhaseKind broad_phase = BroadPhaseKind::kSweepAndPrune;
 };
 
 // What a contact carries from one narrow phase to the next for warm starting, matched by its leaf
@@ -121,7 +131,12 @@ class CollisionDetector {
   // `displacement` and any of its points by up to `turn_reach` more from turning. unit: m
   void set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach);
   [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
-  void set_settings(const CollisionSettings& settings) { settings_ = settings; }
+  // The broad phase stays the one the detector was made with.
+  void set_settings(const CollisionSettings& settings) {
+    const BroadPhaseKind kept = settings_.broad_phase;
+    settings_ = settings;
+    settings_.broad_phase = kept;
+  }
   // The threads the narrow phase and the contacts run on (none: the caller's thread). The
   // contacts and figures do not depend on them. A time-critical budget is spent pair after pair
   // in order, so with one the narrow phase runs on the caller's thread. `parallel` must outlive
@@ -246,7 +261,7 @@ class CollisionDetector {
   const BodyStore* store_ = nullptr;
   std::vector<Body> bodies_;  // per slot of the store
   std::vector<std::uint32_t> body_of_proxy_;
-  SweepAndPrune broad_phase_;
+  std::variant<SweepAndPrune, CellSweepAndPrune> broad_phase_;
   // Records of the candidate pairs, in the order of broad_phase_.pairs(), and of the last
   // update's (swapped, to carry them over); the ground plane's per body.
   std::vector<PairRecord> records_;

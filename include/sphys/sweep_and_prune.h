@@ -10,24 +10,10 @@
 #include <span>
 #include <vector>
 
+#include "sphys/broad_phase.h"
 #include "sphys/math.h"
 
 namespace sphys {
-
-// A handle to a box of the broad phase. Ids of removed proxies are given out again.
-using ProxyId = std::uint32_t;
-
-// Two proxies whose boxes overlap, a < b.
-struct ProxyPair {
-  ProxyId a = 0;
-  ProxyId b = 0;
-
-  friend bool operator==(const ProxyPair&, const ProxyPair&) = default;
-  friend auto operator<=>(const ProxyPair&, const ProxyPair&) = default;
-};
-
-// Static proxies (the ground, walls) are never paired with each other, only with dynamic ones.
-enum class ProxyKind : std::uint8_t { kDynamic, kStatic };
 
 // The set of overlapping pairs of a changing set of boxes, kept up to date from one call of
 // update() to the next. Boxes overlap as Aabb::overlaps says: closed intervals, so boxes that
@@ -62,6 +48,10 @@ class SweepAndPrune {
 
   // The overlapping pairs as of the last update(), sorted by (a, b). Valid until the next update().
   [[nodiscard]] std::span<const ProxyPair> pairs() const { return pairs_; }
+  // The pairs the last update() brought into pairs() and those it took out (pairs of removed
+  // proxies included), each sorted by (a, b). Valid until the next update().
+  [[nodiscard]] std::span<const ProxyPair> pairs_entered() const { return entered_; }
+  [[nodiscard]] std::span<const ProxyPair> pairs_left() const { return left_; }
   // Proxies added and not removed (counting those waiting for the next update()).
   [[nodiscard]] std::size_t size() const { return live_count_; }
   // Endpoint swaps the insertion sort made in the last update(), over all three axes: the measure
@@ -69,24 +59,6 @@ class SweepAndPrune {
   [[nodiscard]] std::uint64_t swaps_last_update() const { return swaps_last_update_; }
 
  private:
-  // Open-addressing hash set of pair keys (linear probing, backward-shift deletion: no
-  // tombstones). Grows when half full; never shrinks, so steady state allocates nothing.
-  class PairSet {
-   public:
-    bool insert(std::uint64_t key);  // true when the key was absent
-    bool erase(std::uint64_t key);   // true when the key was present
-    [[nodiscard]] bool contains(std::uint64_t key) const;
-    void clear();
-
-   private:
-    [[nodiscard]] std::size_t home(std::uint64_t key) const;
-    void grow();
-
-    std::vector<std::uint64_t> slots_;  // kEmptySlot or a key; size a power of two
-    std::size_t size_ = 0;
-    int shift_ = 64;  // 64 - log2(slots_.size())
-  };
-
   void store(ProxyId id, const Aabb& box);
   void rebuild();
   void sort_axis(int axis);
@@ -113,8 +85,10 @@ class SweepAndPrune {
   // Per axis: the endpoints of the boxes taking part, sorted (see the key layout in the source).
   std::array<std::vector<std::uint64_t>, 3> endpoints_;
 
-  PairSet pair_set_;
+  PairCounts pair_set_;                 // the keys of pairs_ (and of changes during an update())
   std::vector<ProxyPair> pairs_;        // sorted; what pairs() shows
+  std::vector<ProxyPair> entered_;      // sorted; what pairs_entered() shows
+  std::vector<ProxyPair> left_;         // sorted; what pairs_left() shows
   std::vector<ProxyPair> merged_;       // the next pairs_, built by merge_changes()
   std::vector<std::uint64_t> added_;    // keys that entered pair_set_ in this update()
   std::vector<std::uint64_t> removed_;  // keys that left pair_set_ in this update()

@@ -54,8 +54,6 @@ float pose_change(const Transform& from, const Transform& to, float extent) {
   return (to.translation - from.translation).norm() + angle * extent;
 }
 
-std::uint64_t proxy_key(const ProxyPair& pair) { return (std::uint64_t{pair.a} << 32) | pair.b; }
-
 // Jobs per run of the narrow phase: enough work per run to outweigh handing it to a thread, and
 // runs enough to share among threads.
 constexpr std::size_t kPairsPerChunk = 64;
@@ -86,7 +84,9 @@ struct CollisionDetector::NarrowChunk {
   std::uint32_t penetrating_contacts = 0;
 };
 
-CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {}
+CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {
+  if (settings.broad_phase == BroadPhaseKind::kCells) broad_phase_.emplace<CellSweepAndPrune>();
+}
 CollisionDetector::~CollisionDetector() = default;
 CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
 CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
@@ -101,8 +101,10 @@ void CollisionDetector::add_body(std::uint32_t slot, std::shared_ptr<const Spher
   Body& body = bodies_[slot];
   body = Body{};
   body.tree = std::move(tree);
-  body.proxy = broad_phase_.add(broad_phase_box(slot),
-                                store_->is_static(slot) ? ProxyKind::kStatic : ProxyKind::kDynamic);
+  const ProxyKind kind = store_->is_static(slot) ? ProxyKind::kStatic : ProxyKind::kDynamic;
+  const Aabb box = broad_phase_box(slot);
+  body.proxy =
+      std::visit([&](auto& broad_phase) { return broad_phase.add(box, kind); }, broad_phase_);
   if (body_of_proxy_.size() <= body.proxy) body_of_proxy_.resize(body.proxy + 1);
   body_of_proxy_[body.proxy] = slot;
   ground_records_[slot] = PairRecord{};
@@ -110,7 +112,7 @@ void CollisionDetector::add_body(std::uint32_t slot, std::shared_ptr<const Spher
 
 void CollisionDetector::remove_body(std::uint32_t slot) {
   Body& body = bodies_[slot];
-  broad_phase_.remove(body.proxy);
+  std::visit([&](auto& broad_phase) { broad_phase.remove(body.proxy); }, broad_phase_);
   // The broad phase drops its pairs at the next update; until then they must not be reused.
   for (PairRecord& record : records_) {
     if (record.proxies.a == body.proxy || record.proxies.b == body.proxy) {
@@ -166,25 +168,27 @@ float CollisionDetector::plane_margin(const Body& body) const {
 }
 
 Aabb CollisionDetector::bounds(std::uint32_t slot) const {
-  return broad_phase_.box(bodies_[slot].proxy);
+  return std::visit([&](const auto& broad_phase) { return broad_phase.box(bodies_[slot].proxy); },
+                    broad_phase_);
 }
 
 // The records follow the broad phase's pairs, both sorted by proxies: a pair still listed keeps
 // its record, a new pair gets an empty one, and the records of pairs gone are dropped.
 void CollisionDetector::carry_records_over() {
   old_records_.swap(records_);
-  const std::span<const ProxyPair> pairs = broad_phase_.pairs();
+  const std::span<const ProxyPair> pairs =
+      std::visit([](const auto& broad_phase) { return broad_phase.pairs(); }, broad_phase_);
   resize_buffer(records_, pairs.size());
   std::size_t old = 0;
   const auto drop = [&](const PairRecord& record) {
     if (links_dynamic_bodies(record)) ++stats_.parted_pairs;
   };
   for (std::size_t p = 0; p < pairs.size(); ++p) {
-    const std::uint64_t key = proxy_key(pairs[p]);
-    while (old < old_records_.size() && proxy_key(old_records_[old].proxies) < key) {
+    const std::uint64_t key = pair_key(pairs[p]);
+    while (old < old_records_.size() && pair_key(old_records_[old].proxies) < key) {
       drop(old_records_[old++]);
     }
-    if (old < old_records_.size() && proxy_key(old_records_[old].proxies) == key) {
+    if (old < old_records_.size() && pair_key(old_records_[old].proxies) == key) {
       records_[p] = old_records_[old++];
     } else {
       records_[p] = PairRecord{};
@@ -201,13 +205,18 @@ bool CollisionDetector::links_dynamic_bodies(const PairRecord& record) const {
 
 const CollisionStats& CollisionDetector::detect() {
   stats_ = {};
-  stats_.bodies = static_cast<std::uint32_t>(broad_phase_.size());
+  stats_.bodies = static_cast<std::uint32_t>(
+      std::visit([](const auto& broad_phase) { return broad_phase.size(); }, broad_phase_));
 
   const StepClock::time_point broad_start = StepClock::now();
-  for (const std::uint32_t slot : store_->awake()) {
-    broad_phase_.set_box(bodies_[slot].proxy, broad_phase_box(slot));
-  }
-  broad_phase_.update();
+  std::visit(
+      [&](auto& broad_phase) {
+        for (const std::uint32_t slot : store_->awake()) {
+          broad_phase.set_box(bodies_[slot].proxy, broad_phase_box(slot));
+        }
+        broad_phase.update();
+      },
+      broad_phase_);
   carry_records_over();
   stats_.candidate_pairs = static_cast<std::uint32_t>(records_.size());
   stats_.broad_phase_ms = elapsed_ms(broad_start);

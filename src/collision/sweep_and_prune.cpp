@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cassert>
+#include <iterator>
 #include <limits>
 
 #include "sphys/error.h"
@@ -19,7 +20,6 @@ namespace {
 // function of the boxes alone, whatever the history.
 constexpr std::uint64_t kMaxBit = std::uint64_t{1} << 31;
 constexpr std::uint64_t kIdMask = kMaxBit - 1;
-constexpr std::size_t kMaxProxies = std::size_t{1} << 31;
 
 // Flags per id.
 constexpr std::uint8_t kAlive = 1;    // added and not removed
@@ -30,8 +30,6 @@ constexpr std::uint8_t kStatic = 4;
 // and a brute-force search for the new pairs); more rebuild everything (O(n log n) sort and one
 // sweep), which is what a scene's first update() does.
 constexpr std::size_t kMaxIncrementalAdds = 64;
-
-constexpr std::uint64_t kEmptySlot = ~std::uint64_t{0};  // no pair key has both halves all ones
 
 // The two axes other than `axis`.
 constexpr int kOtherAxis[3][2] = {{1, 2}, {2, 0}, {0, 1}};
@@ -52,14 +50,6 @@ std::uint64_t endpoint_key(float value, std::uint64_t kind_and_id) {
 ProxyId endpoint_id(std::uint64_t key) { return static_cast<ProxyId>(key & kIdMask); }
 bool is_max(std::uint64_t key) { return (key & kMaxBit) != 0; }
 
-std::uint64_t pair_key(ProxyId a, ProxyId b) {
-  return a < b ? std::uint64_t{a} << 32 | b : std::uint64_t{b} << 32 | a;
-}
-std::uint64_t pair_key(const ProxyPair& pair) { return std::uint64_t{pair.a} << 32 | pair.b; }
-ProxyPair pair_of(std::uint64_t key) {
-  return {static_cast<ProxyId>(key >> 32), static_cast<ProxyId>(key & 0xffffffffu)};
-}
-
 // Closed-interval overlap of two boxes on two axes (the third is the one being swept).
 bool overlap_on(const std::array<float, 6>& p, const std::array<float, 6>& q, int u, int v) {
   return p[u] <= q[u + 3] && q[u] <= p[u + 3] && p[v] <= q[v + 3] && q[v] <= p[v + 3];
@@ -76,17 +66,9 @@ std::array<float, 6> to_bounds(const Aabb& box) {
 }  // namespace
 
 ProxyId SweepAndPrune::add(const Aabb& box, ProxyKind kind) {
-  if (!box.min.allFinite() || !box.max.allFinite()) {
-    throw Error("broad phase: a box must have finite coordinates");
-  }
-  if (box.empty()) throw Error("broad phase: a box must have min <= max on every axis");
-  ProxyId id = 0;
-  if (!free_ids_.empty()) {
-    id = free_ids_.back();
-    free_ids_.pop_back();
-  } else {
-    if (bounds_.size() == kMaxProxies) throw Error("broad phase: more than 2^31 proxies");
-    id = static_cast<ProxyId>(bounds_.size());
+  check_proxy_box(box);
+  const ProxyId id = take_proxy_id(free_ids_, bounds_.size());
+  if (id == bounds_.size()) {
     bounds_.emplace_back();
     for (auto& intervals : intervals_) intervals.emplace_back();
     flags_.push_back(0);
@@ -123,6 +105,8 @@ Aabb SweepAndPrune::box(ProxyId id) const {
 
 void SweepAndPrune::update() {
   swaps_last_update_ = 0;
+  entered_.clear();
+  left_.clear();
   if (waiting_.size() > kMaxIncrementalAdds) {
     rebuild();
   } else {
@@ -246,28 +230,10 @@ void SweepAndPrune::integrate_added() {
 // touched in this update() are looked up; the rest are copied, so the cost is O(m + k log k) for
 // k changes, and nothing at all when nothing changed.
 void SweepAndPrune::merge_changes() {
-  if (added_.empty() && removed_.empty()) return;
+  added_.insert(added_.end(), removed_.begin(), removed_.end());
   std::sort(added_.begin(), added_.end());
   added_.erase(std::unique(added_.begin(), added_.end()), added_.end());
-  std::sort(removed_.begin(), removed_.end());
-  removed_.erase(std::unique(removed_.begin(), removed_.end()), removed_.end());
-
-  merged_.clear();
-  std::size_t old_i = 0;
-  std::size_t added_i = 0;
-  std::size_t removed_i = 0;
-  while (old_i < pairs_.size() || added_i < added_.size()) {
-    const std::uint64_t from_old = old_i < pairs_.size() ? pair_key(pairs_[old_i]) : kEmptySlot;
-    const std::uint64_t from_added = added_i < added_.size() ? added_[added_i] : kEmptySlot;
-    const std::uint64_t key = std::min(from_old, from_added);
-    if (from_old == key) ++old_i;
-    if (from_added == key) ++added_i;
-    while (removed_i < removed_.size() && removed_[removed_i] < key) ++removed_i;
-    const bool touched =
-        from_added == key || (removed_i < removed_.size() && removed_[removed_i] == key);
-    if (!touched || pair_set_.contains(key)) merged_.push_back(pair_of(key));
-  }
-  pairs_.swap(merged_);
+  merge_touched_pairs(pairs_, added_, pair_set_, merged_, entered_, left_);
   added_.clear();
   removed_.clear();
 }
@@ -341,85 +307,18 @@ void SweepAndPrune::rebuild() {
 
   std::sort(added_.begin(), added_.end());
   pair_set_.clear();
-  pairs_.clear();
+  merged_.clear();
   for (const std::uint64_t key : added_) {
     pair_set_.insert(key);
-    pairs_.push_back(pair_of(key));
+    merged_.push_back(pair_of(key));
   }
+  std::set_difference(merged_.begin(), merged_.end(), pairs_.begin(), pairs_.end(),
+                      std::back_inserter(entered_));
+  std::set_difference(pairs_.begin(), pairs_.end(), merged_.begin(), merged_.end(),
+                      std::back_inserter(left_));
+  pairs_.swap(merged_);
   added_.clear();
   removed_.clear();
-}
-
-bool SweepAndPrune::PairSet::insert(std::uint64_t key) {
-  if ((size_ + 1) * 2 > slots_.size()) grow();
-  const std::size_t mask = slots_.size() - 1;
-  for (std::size_t i = home(key);; i = (i + 1) & mask) {
-    if (slots_[i] == key) return false;
-    if (slots_[i] == kEmptySlot) {
-      slots_[i] = key;
-      ++size_;
-      return true;
-    }
-  }
-}
-
-bool SweepAndPrune::PairSet::contains(std::uint64_t key) const {
-  if (slots_.empty()) return false;
-  const std::size_t mask = slots_.size() - 1;
-  for (std::size_t i = home(key);; i = (i + 1) & mask) {
-    if (slots_[i] == key) return true;
-    if (slots_[i] == kEmptySlot) return false;
-  }
-}
-
-// Backward-shift deletion (Knuth, TAOCP vol. 3, §6.4, Algorithm R): the entries after the hole
-// that could not be found past it move back into it, so no tombstones accumulate.
-bool SweepAndPrune::PairSet::erase(std::uint64_t key) {
-  if (slots_.empty()) return false;
-  const std::size_t mask = slots_.size() - 1;
-  std::size_t hole = home(key);
-  while (slots_[hole] != key) {
-    if (slots_[hole] == kEmptySlot) return false;
-    hole = (hole + 1) & mask;
-  }
-  for (std::size_t j = (hole + 1) & mask; slots_[j] != kEmptySlot; j = (j + 1) & mask) {
-    const std::size_t h = home(slots_[j]);
-    // The entry at j was probed from h through j; it must move if the hole lies on that path.
-    if (((hole - h) & mask) < ((j - h) & mask)) {
-      slots_[hole] = slots_[j];
-      hole = j;
-    }
-  }
-  slots_[hole] = kEmptySlot;
-  --size_;
-  return true;
-}
-
-void SweepAndPrune::PairSet::clear() {
-  std::fill(slots_.begin(), slots_.end(), kEmptySlot);
-  size_ = 0;
-}
-
-// Fibonacci hashing (Knuth, TAOCP vol. 3, §6.4): the top bits of key * 2^64 / golden ratio spread
-// the packed id pairs, whose low and high halves are small and correlated, over the table.
-std::size_t SweepAndPrune::PairSet::home(std::uint64_t key) const {
-  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
-}
-
-void SweepAndPrune::PairSet::grow() {
-  const std::size_t capacity = std::max<std::size_t>(64, slots_.size() * 2);
-  std::vector<std::uint64_t> old(capacity, kEmptySlot);
-  old.swap(slots_);
-  shift_ = 64 - std::countr_zero(capacity);
-  size_ = 0;
-  const std::size_t mask = capacity - 1;
-  for (const std::uint64_t key : old) {
-    if (key == kEmptySlot) continue;
-    std::size_t i = home(key);
-    while (slots_[i] != kEmptySlot) i = (i + 1) & mask;
-    slots_[i] = key;
-    ++size_;
-  }
 }
 
 }  // namespace sphys

@@ -39,6 +39,9 @@ CollisionSettings collision_settings(const WorldSettings& settings) {
   // Paper mode makes every overlapping leaf pair a contact afresh, as published.
   collision.reuse_distance = plausible ? settings.solver.reuse_distance : 0.0f;
   collision.measure_penetration = settings.plausibility_figures;
+  // The same pairs either way: the paper's one Sweep & Prune for its mode, the cells (flat cost
+  // per body as piles spread) for the plausible one.
+  collision.broad_phase = plausible ? BroadPhaseKind::kCells : BroadPhaseKind::kSweepAndPrune;
   return collision;
 }
 
