@@ -85,7 +85,9 @@ class CellSweepAndPrune {
     // By the cell's own ids: the proxy, with kLeftBit set once it left the cell (the id stays
     // readable until the cell's next update has listed the pairs it left).
     std::vector<ProxyId> proxy_of_local;
-    bool listed = false;  // in cell_of_key_ (an empty cell stays a while)
+    // No box reached it after an update(), yet it stays in cell_of_key_ a while: counted in
+    // empty_cells_.
+    bool empty = false;
   };
   static constexpr ProxyId kLeftBit = ProxyId{1} << 31;
 

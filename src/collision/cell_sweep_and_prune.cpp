@@ -64,8 +64,8 @@ void CellSweepAndPrune::remove(ProxyId id) {
 }
 
 void CellSweepAndPrune::set_box(ProxyId id, const Aabb& box) {
+  assert(id < proxies_.size() && proxies_[id].alive);
   Proxy& proxy = proxies_[id];
-  assert(id < proxies_.size() && proxy.alive);
   assert(box.min.allFinite() && box.max.allFinite() && !box.empty());
   boxes_[id] = box;
   if (!proxy.queued) {
@@ -226,7 +226,11 @@ void CellSweepAndPrune::enter_cell(ProxyId id, const std::array<std::int32_t, 3>
 std::uint32_t CellSweepAndPrune::cell_at(const std::array<std::int32_t, 3>& coords) {
   const auto [it, made] = cell_of_key_.try_emplace(cell_key(coords), 0);
   if (!made) {
-    if (cells_[it->second].sweep.size() == 0) --empty_cells_;
+    Cell& cell = cells_[it->second];
+    if (cell.empty) {
+      cell.empty = false;
+      --empty_cells_;
+    }
     return it->second;
   }
   if (free_cells_.empty()) {
@@ -238,7 +242,6 @@ std::uint32_t CellSweepAndPrune::cell_at(const std::array<std::int32_t, 3>& coor
     free_cells_.pop_back();
   }
   cells_[it->second].coords = coords;
-  cells_[it->second].listed = true;
   return it->second;
 }
 
@@ -297,14 +300,18 @@ void CellSweepAndPrune::update_wide() {
 // 64), all empty cells are freed for reuse, in index order.
 void CellSweepAndPrune::release_empty_cells() {
   for (const std::uint32_t index : changed_cells_) {
-    if (cells_[index].sweep.size() == 0) ++empty_cells_;
+    Cell& cell = cells_[index];
+    if (cell.sweep.size() == 0 && !cell.empty) {
+      cell.empty = true;
+      ++empty_cells_;
+    }
   }
   changed_cells_.clear();
   if (empty_cells_ <= std::max<std::size_t>(64, cell_of_key_.size() - empty_cells_)) return;
   for (std::uint32_t index = 0; index < cells_.size(); ++index) {
     Cell& cell = cells_[index];
-    if (!cell.listed || cell.sweep.size() != 0) continue;
-    cell.listed = false;
+    if (!cell.empty) continue;
+    cell.empty = false;
     cell_of_key_.erase(cell_key(cell.coords));
     free_cells_.push_back(index);
   }

@@ -6,8 +6,6 @@
 #include <iterator>
 #include <limits>
 
-#include "sphys/error.h"
-
 namespace sphys {
 namespace {
 

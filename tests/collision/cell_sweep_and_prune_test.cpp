@@ -68,6 +68,26 @@ TEST(CellSweepAndPrune, APairSharingSeveralCellsIsListedOnce) {
   EXPECT_EQ(sap.cell_count(), 1u);
 }
 
+// Cells are counted while boxes reach them: an emptied cell is not, nor is a cell one box leaves
+// while another enters it in the same update counted as emptied.
+TEST(CellSweepAndPrune, CountsTheCellsBoxesReach) {
+  CellSweepAndPrune sap(2.0f);
+  const ProxyId p = sap.add(box_at(1, 1, 1), ProxyKind::kDynamic);
+  const ProxyId x = sap.add(box_at(11, 1, 1), ProxyKind::kDynamic);
+  sap.update();
+  EXPECT_EQ(sap.cell_count(), 2u);
+  sap.set_box(p, box_at(5, 1, 1));  // leaves its cell for a new one
+  sap.update();
+  EXPECT_EQ(sap.cell_count(), 2u);
+  sap.remove(x);
+  sap.add(box_at(11, 1, 1), ProxyKind::kDynamic);  // into the cell x leaves
+  sap.update();
+  EXPECT_EQ(sap.cell_count(), 2u);
+  sap.set_box(p, box_at(1, 1, 1));  // back into the emptied cell
+  sap.update();
+  EXPECT_EQ(sap.cell_count(), 2u);
+}
+
 // A box reaching more than kMaxCellsPerBox cells is tested against all the others, statics
 // excepted, and turns back into a celled box when it shrinks.
 TEST(CellSweepAndPrune, WideBoxesPairWithEveryOverlappingBox) {
