@@ -20,9 +20,9 @@ void build_bunny_tree(benchmark::State& state, BuildMethod method) {
 }
 
 void register_all() {
-  for (BuildMethod method :
-       {BuildMethod::Octree, BuildMethod::Grid, BuildMethod::Spawn, BuildMethod::Hubbard,
-        BuildMethod::Merge, BuildMethod::Burst, BuildMethod::Expand, BuildMethod::Combined}) {
+  for (BuildMethod method : {BuildMethod::Octree, BuildMethod::Grid, BuildMethod::Spawn,
+                             BuildMethod::Hubbard, BuildMethod::Merge, BuildMethod::Burst,
+                             BuildMethod::Expand, BuildMethod::Combined, BuildMethod::Tight}) {
     benchmark::RegisterBenchmark(("build_bunny_tree/" + std::string(method_name(method))).c_str(),
                                  build_bunny_tree, method)
         ->Arg(2)

@@ -66,7 +66,7 @@ void add_build_tree_command(CLI::App& app) {
   cmd->add_option("--triangles", options->triangles,
                   "Decimate to this many triangles first (bunny: 2000 by default; 0 keeps all)");
   cmd->add_option("--method", options->method,
-                  "octree, grid, spawn, hubbard, merge, burst, expand or combined")
+                  "octree, grid, spawn, hubbard, merge, burst, expand, combined or tight")
       ->capture_default_str();
   cmd->add_option("--branching", options->branching, "Children per node, 2..8")
       ->capture_default_str();

@@ -145,7 +145,7 @@ void bind_tree(py::module_& m) {
       "build_methods",
       [] {
         std::vector<std::string> names;
-        for (int i = 0; i <= static_cast<int>(tools::BuildMethod::Combined); ++i) {
+        for (int i = 0; i <= static_cast<int>(tools::BuildMethod::Tight); ++i) {
           names.emplace_back(tools::method_name(static_cast<tools::BuildMethod>(i)));
         }
         return names;

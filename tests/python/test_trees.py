@@ -9,7 +9,7 @@ import pytest
 
 import sphys
 
-METHODS = ["octree", "grid", "spawn", "hubbard", "merge", "burst", "expand", "combined"]
+METHODS = ["octree", "grid", "spawn", "hubbard", "merge", "burst", "expand", "combined", "tight"]
 QUICK = dict(surface_samples=2000, volume_samples=5000, boundary_samples=50)
 
 

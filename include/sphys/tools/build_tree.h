@@ -21,6 +21,7 @@ enum class BuildMethod {
   Burst,     // adaptive medial axis, reduced by bursting (Bradshaw §4.3)
   Expand,    // adaptive medial axis, reduced by expanding and selecting (Bradshaw §4.4)
   Combined,  // per node, the best of Merge, Burst and Expand (Bradshaw §4.5)
+  Tight,     // Merge, then the outside volume shrunk under the coverage and protrusion (ours)
 };
 
 [[nodiscard]] std::string_view method_name(BuildMethod method);

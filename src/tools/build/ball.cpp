@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -87,6 +89,20 @@ Ball min_enclosing_ball(std::span<const Vec3d> points, std::uint64_t seed) {
     ball.radius = std::max(ball.radius, (p - ball.center).norm());
   }
   return ball;
+}
+
+std::vector<Vec3d> evenly_spread_directions(std::size_t count) {
+  const double golden_angle = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  const double n = static_cast<double>(count);
+  std::vector<Vec3d> directions(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double kd = static_cast<double>(k);
+    const double z = 1.0 - (2.0 * kd + 1.0) / n;
+    const double ring = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = golden_angle * kd;
+    directions[k] = Vec3d(ring * std::cos(phi), ring * std::sin(phi), z);
+  }
+  return directions;
 }
 
 }  // namespace sphys::tools::build

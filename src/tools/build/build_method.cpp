@@ -11,7 +11,7 @@
 namespace sphys::tools {
 namespace {
 
-constexpr std::array<std::pair<BuildMethod, std::string_view>, 8> kMethodNames{{
+constexpr std::array<std::pair<BuildMethod, std::string_view>, 9> kMethodNames{{
     {BuildMethod::Octree, "octree"},
     {BuildMethod::Grid, "grid"},
     {BuildMethod::Spawn, "spawn"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<BuildMethod, std::string_view>, 8> kMethodNames{{
     {BuildMethod::Burst, "burst"},
     {BuildMethod::Expand, "expand"},
     {BuildMethod::Combined, "combined"},
+    {BuildMethod::Tight, "tight"},
 }};
 
 }  // namespace

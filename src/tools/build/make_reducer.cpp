@@ -1,5 +1,7 @@
 // The point-set reducers: one class, the method choosing how the representatives are reduced;
 // every result then goes through the same refinement.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <numeric>
@@ -17,6 +19,15 @@ namespace {
 constexpr std::size_t kRegionPoints = 1000;
 // The coarse sampling of the whole surface that surrounds every node's medial axis.
 constexpr std::size_t kContextPoints = 400;
+// The Tight method's lattice of the whole mesh: this many points (each costs a distance query)
+// over the mesh's box grown on every side by kLatticeMargin of its diagonal, where the
+// reductions' balls at 8 per node poke out by about 0.1. A node's lattice is refined from it
+// until its balls' mean radius spans kLatticeSpacingsPerRadius spacings (at most kMaxRefinement
+// times finer): fewer, and the count of a ball's points moves in steps too coarse to steer by.
+constexpr std::size_t kLatticePoints = 80000;
+constexpr double kLatticeMargin = 0.15;
+constexpr double kLatticeSpacingsPerRadius = 12.0;
+constexpr int kMaxRefinement = 4;
 
 class PointSetReducer final : public Reducer {
  public:
@@ -65,10 +76,41 @@ class PointSetReducer final : public Reducer {
                       expand_clusters(region, axis(region, true), measure_, max_balls));
       case BuildMethod::Combined:
         return combined(samples, region, max_balls);
+      case BuildMethod::Tight: {
+        Cover start = finish(samples, region, merged(region, axis(region, true), max_balls));
+        const ExteriorLattice lattice = node_lattice(samples, start);
+        return shrink_outside_volume(context_, lattice, samples, std::move(start));
+      }
       case BuildMethod::Octree:
         break;
     }
     throw Error("the Octree method has no point-set reducer");
+  }
+
+  // A lattice over the node fine enough to count the volume of its cover's balls, over the box of
+  // the node's samples grown by the largest diameter (a ball outside it counts as poking out too
+  // far). The lattice of the whole mesh is built on first use (only the Tight method counts
+  // volume); the nodes' are interpolated from it.
+  ExteriorLattice node_lattice(std::span<const std::uint32_t> samples, const Cover& cover) const {
+    if (!mesh_lattice_) {
+      const double diagonal = context_.mesh.bounds().diagonal().norm();
+      mesh_lattice_ = std::make_unique<ExteriorLattice>(context_.query, kLatticePoints,
+                                                        kLatticeMargin * diagonal);
+    }
+    double mean_radius = 0.0;
+    double max_radius = 0.0;
+    for (const Ball& ball : cover.balls) {
+      mean_radius += ball.radius;
+      max_radius = std::max(max_radius, ball.radius);
+    }
+    mean_radius /= static_cast<double>(std::max<std::size_t>(cover.balls.size(), 1));
+    const double wanted = kLatticeSpacingsPerRadius * mesh_lattice_->spacing() / mean_radius;
+    const double factor = std::clamp(std::ceil(wanted), 1.0, double{kMaxRefinement});
+    Box3d region;
+    for (const std::uint32_t s : samples) region.extend(context_.samples.points[s]);
+    const Vec3d grow = Vec3d::Constant(2.0 * max_radius);
+    return mesh_lattice_->refined(static_cast<int>(factor),
+                                  Box3d(region.min() - grow, region.max() + grow));
   }
 
   MedialAxis axis(const Region& region, bool adaptive) const {
@@ -113,6 +155,7 @@ class PointSetReducer final : public Reducer {
   BuildContext context_;
   ErrorMeasure measure_;
   std::vector<Vec3d> context_points_;
+  mutable std::unique_ptr<ExteriorLattice> mesh_lattice_;
 };
 
 }  // namespace

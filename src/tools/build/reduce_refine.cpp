@@ -15,9 +15,6 @@ namespace {
 // Rounds of re-centring and reassignment: the error stops improving noticeably after three.
 constexpr int kRefineRounds = 3;
 
-// Makes sure a point at distance `radius` passes Ball::contains despite rounding.
-double padded(double radius) { return radius * (1.0 + 1e-12) + 1e-15; }
-
 }  // namespace
 
 Cover refine_cover(const BuildContext& context, const ErrorMeasure& measure,
@@ -89,7 +86,7 @@ Cover refine_cover(const BuildContext& context, const ErrorMeasure& measure,
     for (const std::uint32_t s : cover.samples[k]) {
       ball.radius = std::max(ball.radius, (context.samples.points[s] - ball.center).norm());
     }
-    ball.radius = padded(ball.radius);
+    ball.radius = padded_radius(ball.radius);
     cover.balls.push_back(ball);
   }
   std::erase_if(cover.samples, [](const std::vector<std::uint32_t>& s) { return s.empty(); });

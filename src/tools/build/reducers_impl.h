@@ -9,6 +9,7 @@
 
 #include "ball.h"
 #include "error_measure.h"
+#include "exterior_lattice.h"
 #include "medial_axis.h"
 #include "reducer.h"
 
@@ -80,6 +81,14 @@ struct Cluster {
 [[nodiscard]] Cover refine_cover(const BuildContext& context, const ErrorMeasure& measure,
                                  std::span<const std::uint32_t> samples, const Region& region,
                                  std::vector<Cluster> clusters);
+
+// The Tight method's last pass: moves and resizes the cover's balls so that their union adds less
+// volume outside the mesh (as the lattice counts it), every sample of the node staying inside
+// some ball and no ball reaching lattice points farther out than the start's did; then hands each
+// sample to the ball that holds it most centrally. Returns the start when it finds nothing better.
+[[nodiscard]] Cover shrink_outside_volume(const BuildContext& context,
+                                          const ExteriorLattice& lattice,
+                                          std::span<const std::uint32_t> samples, Cover start);
 
 // The largest error of a cover's balls.
 [[nodiscard]] double worst_error(const Cover& cover, const ErrorMeasure& measure);

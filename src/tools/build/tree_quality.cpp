@@ -6,13 +6,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <span>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "ball.h"
 #include "grid_cells.h"
 #include "sphys/error.h"
 #include "sphys/tools/mass_properties.h"
@@ -211,23 +211,6 @@ std::vector<Vec3d> sample_surface(const TriangleMesh& mesh, std::size_t count, s
   return points;
 }
 
-// A spherical Fibonacci lattice: evenly spread, so the largest protrusion found on a sphere
-// misses the true one by no more than the lattice's spacing allows, which random points would not
-// promise.
-std::vector<Vec3d> sphere_directions(std::size_t count) {
-  const double golden_angle = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  const double n = static_cast<double>(count);
-  std::vector<Vec3d> directions(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const double kd = static_cast<double>(k);
-    const double z = 1.0 - (2.0 * kd + 1.0) / n;
-    const double ring = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double phi = golden_angle * kd;
-    directions[k] = Vec3d(ring * std::cos(phi), ring * std::sin(phi), z);
-  }
-  return directions;
-}
-
 Reference make_reference(const MeshQuery& query, const QualityOptions& options) {
   validate(options);
   const TriangleMesh& mesh = query.mesh();
@@ -248,7 +231,7 @@ Reference make_reference(const MeshQuery& query, const QualityOptions& options) 
     }
   }
   reference.surface_points = sample_surface(mesh, options.surface_samples, options.seed);
-  reference.sphere_directions = sphere_directions(options.boundary_samples);
+  reference.sphere_directions = build::evenly_spread_directions(options.boundary_samples);
   return reference;
 }
 

@@ -19,8 +19,9 @@ namespace {
 using test::uncovered_points;
 
 constexpr BuildMethod kAllMethods[] = {
-    BuildMethod::Octree, BuildMethod::Grid,  BuildMethod::Spawn,  BuildMethod::Hubbard,
-    BuildMethod::Merge,  BuildMethod::Burst, BuildMethod::Expand, BuildMethod::Combined};
+    BuildMethod::Octree,  BuildMethod::Grid,     BuildMethod::Spawn,
+    BuildMethod::Hubbard, BuildMethod::Merge,    BuildMethod::Burst,
+    BuildMethod::Expand,  BuildMethod::Combined, BuildMethod::Tight};
 
 struct Subject {
   std::string name;

@@ -21,9 +21,9 @@ namespace {
 // does not depend on the count beyond their representative cap anyway.
 constexpr std::size_t kSampleCount = 3000;
 
-constexpr BuildMethod kMethods[] = {BuildMethod::Grid,    BuildMethod::Spawn, BuildMethod::Hubbard,
-                                    BuildMethod::Merge,   BuildMethod::Burst, BuildMethod::Expand,
-                                    BuildMethod::Combined};
+constexpr BuildMethod kMethods[] = {BuildMethod::Grid,     BuildMethod::Spawn, BuildMethod::Hubbard,
+                                    BuildMethod::Merge,    BuildMethod::Burst, BuildMethod::Expand,
+                                    BuildMethod::Combined, BuildMethod::Tight};
 
 std::string method_label(BuildMethod method) { return std::string(method_name(method)); }
 

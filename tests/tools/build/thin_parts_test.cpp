@@ -175,10 +175,10 @@ TEST(ThinParts, APlateTwoMillimetresThickIsSplitByEveryMedialMethod) {
   const TriangleMesh plate = make_box({1.0, 0.002, 1.0});
   // Under the sanitizers Combined alone, which runs the Merge, Burst and Expand reductions.
   const std::vector<BuildMethod> methods =
-      test::sanitized_run()
-          ? std::vector<BuildMethod>{BuildMethod::Combined}
-          : std::vector<BuildMethod>{BuildMethod::Hubbard, BuildMethod::Merge, BuildMethod::Burst,
-                                     BuildMethod::Expand, BuildMethod::Combined};
+      test::sanitized_run() ? std::vector<BuildMethod>{BuildMethod::Combined}
+                            : std::vector<BuildMethod>{BuildMethod::Hubbard,  BuildMethod::Merge,
+                                                       BuildMethod::Burst,    BuildMethod::Expand,
+                                                       BuildMethod::Combined, BuildMethod::Tight};
   for (const BuildMethod method : methods) {
     const SphereTree tree = expect_split_and_covered(plate, method, 8, 2);
     // Each of the 8 is far smaller than the 0.71 m sphere around the whole plate, which a

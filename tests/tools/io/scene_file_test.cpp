@@ -508,9 +508,10 @@ class RandomScene {
     if (coin()) {
       body.tree.sph_file = "trees/bunny.sph";
     } else {
-      body.tree.method = pick(std::array{
-          BuildMethod::Octree, BuildMethod::Grid, BuildMethod::Spawn, BuildMethod::Hubbard,
-          BuildMethod::Merge, BuildMethod::Burst, BuildMethod::Expand, BuildMethod::Combined});
+      body.tree.method =
+          pick(std::array{BuildMethod::Octree, BuildMethod::Grid, BuildMethod::Spawn,
+                          BuildMethod::Hubbard, BuildMethod::Merge, BuildMethod::Burst,
+                          BuildMethod::Expand, BuildMethod::Combined, BuildMethod::Tight});
       body.tree.branching = std::uniform_int_distribution<int>(2, 8)(rng_);
       body.tree.depth = std::uniform_int_distribution<int>(1, 6)(rng_);
     }
