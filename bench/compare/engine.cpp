@@ -27,13 +27,18 @@ bool has_prefix(const std::string& name, const std::string& prefix) {
 }  // namespace
 
 std::vector<std::string> engine_names() {
-  return {"sphys", "sphys-paper", "bullet-spheres", "bullet-hull", "ode", "mujoco"};
+  return {"sphys", "sphys-paper", "sphys-sap", "bullet-spheres", "bullet-hull", "ode", "mujoco"};
 }
 
 std::unique_ptr<Engine> make_engine(const std::string& name, const BenchScene& scene) {
   if (has_prefix(name, "sphys")) return make_sphys_engine(scene, false, sphys_threads(name, 5));
   if (has_prefix(name, "sphys-paper")) {
     return make_sphys_engine(scene, true, sphys_threads(name, 11));
+  }
+  // Plausible mode with the paper's one Sweep & Prune instead of the cells: the same run, for
+  // timing the broad phases against each other.
+  if (has_prefix(name, "sphys-sap")) {
+    return make_sphys_engine(scene, false, sphys_threads(name, 9), BroadPhaseKind::kSweepAndPrune);
   }
   if (name == "bullet-spheres") return make_bullet_engine(scene, false);
   if (name == "bullet-hull") return make_bullet_engine(scene, true);

@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench_scene.h"
+#include "sphys/collision_detector.h"
 
 namespace sphys::compare {
 
@@ -32,15 +34,18 @@ class Engine {
   [[nodiscard]] virtual std::string warnings() const { return {}; }
 };
 
-// The engines by name: "sphys", "sphys-paper", "bullet-spheres", "bullet-hull", "ode",
-// "mujoco"; "sphys:T" and "sphys-paper:T" step sphys on T threads (0: all). Throws sphys::Error
-// for an unknown name.
+// The engines by name: "sphys", "sphys-paper", "sphys-sap" (plausible mode with one Sweep &
+// Prune instead of the cells), "bullet-spheres", "bullet-hull", "ode", "mujoco"; "sphys:T",
+// "sphys-paper:T" and "sphys-sap:T" step sphys on T threads (0: all). Throws sphys::Error for an
+// unknown name.
 [[nodiscard]] std::unique_ptr<Engine> make_engine(const std::string& name, const BenchScene& scene);
 [[nodiscard]] std::vector<std::string> engine_names();
 
 // Each engine's maker, in its own file.
-[[nodiscard]] std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper,
-                                                        std::uint32_t threads);
+// `broad_phase` unset: the mode's.
+[[nodiscard]] std::unique_ptr<Engine> make_sphys_engine(
+    const BenchScene& scene, bool paper, std::uint32_t threads,
+    std::optional<BroadPhaseKind> broad_phase = std::nullopt);
 [[nodiscard]] std::unique_ptr<Engine> make_bullet_engine(const BenchScene& scene, bool hull);
 [[nodiscard]] std::unique_ptr<Engine> make_ode_engine(const BenchScene& scene);
 [[nodiscard]] std::unique_ptr<Engine> make_mujoco_engine(const BenchScene& scene);

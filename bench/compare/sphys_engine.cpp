@@ -7,13 +7,15 @@ namespace {
 
 class SphysEngine final : public Engine {
  public:
-  SphysEngine(const BenchScene& bench, bool paper, std::uint32_t threads)
+  SphysEngine(const BenchScene& bench, bool paper, std::uint32_t threads,
+              std::optional<BroadPhaseKind> broad_phase)
       : dt_(static_cast<float>(bench.time_step)) {
     tools::Scene scene = bench.scene;
     if (paper) scene.response = ResponseMode::kPaper;
     tools::BuildWorldOptions build;
     build.cache_dir = tools::default_cache_dir();
     build.threads = threads;
+    build.broad_phase = broad_phase;
     // The deepest penetration the comparison prints for every engine.
     build.plausibility_figures = true;
     setup_ = tools::build_world(scene, build);
@@ -41,8 +43,9 @@ class SphysEngine final : public Engine {
 }  // namespace
 
 std::unique_ptr<Engine> make_sphys_engine(const BenchScene& scene, bool paper,
-                                          std::uint32_t threads) {
-  return std::make_unique<SphysEngine>(scene, paper, threads);
+                                          std::uint32_t threads,
+                                          std::optional<BroadPhaseKind> broad_phase) {
+  return std::make_unique<SphysEngine>(scene, paper, threads, broad_phase);
 }
 
 }  // namespace sphys::compare

@@ -4,6 +4,7 @@
 // velocities, bounds and broad phase, narrow phase, contacts, response, positions.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -62,6 +63,10 @@ struct WorldSettings {
   // In plausible mode the world sets collision.contact_margin and collision.speculative from
   // `solver`; in paper mode it turns them off, as the paper makes contacts from overlaps only.
   CollisionSettings collision;
+  // The broad phase, in place of collision.broad_phase; unset: the paper's one Sweep & Prune in
+  // paper mode, Sweep & Prune per cell in plausible mode. Both give the same pairs in the same
+  // order, so the choice changes the speed of a step, never its result.
+  std::optional<BroadPhaseKind> broad_phase = std::nullopt;
   // Material of the exact ground plane (CollisionSettings::ground_plane_height), if there is one.
   float ground_restitution = 0.3f;
   float ground_friction = 0.5f;

@@ -41,7 +41,8 @@ CollisionSettings collision_settings(const WorldSettings& settings) {
   collision.measure_penetration = settings.plausibility_figures;
   // The same pairs either way: the paper's one Sweep & Prune for its mode, the cells (flat cost
   // per body as piles spread) for the plausible one.
-  collision.broad_phase = plausible ? BroadPhaseKind::kCells : BroadPhaseKind::kSweepAndPrune;
+  collision.broad_phase = settings.broad_phase.value_or(plausible ? BroadPhaseKind::kCells
+                                                                  : BroadPhaseKind::kSweepAndPrune);
   return collision;
 }
 

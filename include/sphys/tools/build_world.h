@@ -29,6 +29,8 @@ struct BuildWorldOptions {
   std::uint32_t threads = 1;
   // StepStats' plausibility figures each step (WorldSettings::plausibility_figures).
   bool plausibility_figures = false;
+  // The world's broad phase (WorldSettings::broad_phase); unset: the mode's.
+  std::optional<BroadPhaseKind> broad_phase = std::nullopt;
 };
 
 // A shape shared by bodies with the same mesh, size and tree.

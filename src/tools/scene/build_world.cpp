@@ -80,6 +80,7 @@ void make_world(const Scene& scene, const BuildWorldOptions& options, Simulation
   WorldSettings settings = world_settings(scene);
   settings.threads = options.threads;
   settings.plausibility_figures = options.plausibility_figures;
+  settings.broad_phase = options.broad_phase;
   const GroundSpec& ground = scene.ground;
   switch (ground.kind) {
     case GroundSpec::Kind::kNone:

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -46,9 +47,11 @@ struct ThreadedRun {
 };
 
 ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
-                      const std::filesystem::path& tree_cache) {
+                      const std::filesystem::path& tree_cache,
+                      std::optional<BroadPhaseKind> broad_phase = std::nullopt) {
   BuildWorldOptions options;
   options.threads = threads;
+  options.broad_phase = broad_phase;
   options.cache_dir = tree_cache;
   options.plausibility_figures = true;
   const SimulationSetup setup = build_world(scene, options);
@@ -145,6 +148,22 @@ TEST(Determinism, PaperModeOnTheOctreeGroundIsBitIdenticalOnOneAndTwoThreads) {
   Scene scene = bunny_stacks_scene(4, 5, 3);
   scene.response = ResponseMode::kPaper;
   expect_same_on_one_and_two_threads(scene, test::sanitized_run() ? 15 : 200);
+}
+
+// The broad phases list the same pairs in the same order, so plausible mode runs the same with
+// either: the cells (its own) and the paper's one Sweep & Prune, piles spread over several cells.
+TEST(Determinism, BothBroadPhasesGiveTheSameBits) {
+  Scene scene = bunny_stacks_scene(8, 6, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  const int frames = test::sanitized_run() ? 25 : 300;
+  const test::TempDir tree_cache;
+  const ThreadedRun cells = run_scene(scene, 2, frames, tree_cache.path(), BroadPhaseKind::kCells);
+  const ThreadedRun single =
+      run_scene(scene, 2, frames, tree_cache.path(), BroadPhaseKind::kSweepAndPrune);
+  EXPECT_EQ(single.steps, cells.steps) << "a step's contacts or counts differ";
+  EXPECT_EQ(single.final_state, cells.final_state) << "the final poses or velocities differ";
+  EXPECT_EQ(run_scene(scene, 2, frames, tree_cache.path()).final_state, cells.final_state)
+      << "plausible mode's own broad phase is the cells";
 }
 
 TEST(Determinism, TooManyThreadsAreRefused) {
