@@ -14,7 +14,7 @@ namespace sphys::tools::build {
 // The space around a mesh as a regular lattice of points, each with its signed distance to the
 // surface: what the outside-volume pass counts. A lattice point stands for a cube of side
 // spacing(), so the number of lattice points outside the mesh inside a union of balls, times
-// cell_volume(), estimates the union's volume outside the mesh, and how far it pokes out is read
+// spacing()³, estimates the union's volume outside the mesh, and how far it pokes out is read
 // from the distances between the points.
 class ExteriorLattice {
  public:
@@ -22,33 +22,22 @@ class ExteriorLattice {
   // (unit: m). Balls reaching farther than `margin` from the mesh are seen only up to it.
   ExteriorLattice(const MeshQuery& query, std::size_t target_points, double margin);
 
+  // The same with each point's position: visit(index, position).
+  template <typename Visit>
+  void for_each_outside_at(const Ball& ball, const Visit& visit) const {
+    const auto nx = static_cast<std::size_t>(dims_[0]);
+    const auto ny = static_cast<std::size_t>(dims_[1]);
+    for_each_outside(ball, [&](std::size_t index, double) {
+      visit(index, origin_ + spacing_ * Vec3d(static_cast<double>(index % nx),
+                                              static_cast<double>(index / nx % ny),
+                                              static_cast<double>(index / (nx * ny))));
+    });
+  }
+
   // Calls visit(index, signed_distance) for every lattice point inside `ball` that lies outside
   // the mesh. Indices are below size().
   template <typename Visit>
   void for_each_outside(const Ball& ball, const Visit& visit) const {
-    visit_outside(ball, [&](std::size_t index, double distance) {
-      visit(index, distance);
-      return true;
-    });
-  }
-
-  // The same with each point's position: visit(index, position).
-  template <typename Visit>
-  void for_each_outside_at(const Ball& ball, const Visit& visit) const {
-    visit_outside(ball, [&](std::size_t index, double) {
-      const std::size_t nx = static_cast<std::size_t>(dims_[0]);
-      const std::size_t ny = static_cast<std::size_t>(dims_[1]);
-      visit(index, origin_ + spacing_ * Vec3d(static_cast<double>(index % nx),
-                                              static_cast<double>(index / nx % ny),
-                                              static_cast<double>(index / (nx * ny))));
-      return true;
-    });
-  }
-
-  // The same as for_each_outside, until visit returns false; returns whether every point was
-  // visited.
-  template <typename Visit>
-  bool visit_outside(const Ball& ball, const Visit& visit) const {
     int lo[3];
     int hi[3];
     for (int axis = 0; axis < 3; ++axis) {
@@ -77,11 +66,10 @@ class ExteriorLattice {
         for (int x = x0; x <= x1; ++x) {
           const std::size_t index = row + static_cast<std::size_t>(x);
           const float distance = distance_[index];
-          if (distance > 0.0F && !visit(index, static_cast<double>(distance))) return false;
+          if (distance > 0.0F) visit(index, static_cast<double>(distance));
         }
       }
     }
-    return true;
   }
 
   // The part of this lattice around `region`, with `factor` times as many points along each
@@ -97,9 +85,8 @@ class ExteriorLattice {
   [[nodiscard]] double protrusion(const Ball& ball, std::span<const Vec3d> directions) const;
 
   [[nodiscard]] std::size_t size() const { return distance_.size(); }
-  [[nodiscard]] double spacing() const { return spacing_; }                            // unit: m
-  [[nodiscard]] double margin() const { return margin_; }                              // unit: m
-  [[nodiscard]] double cell_volume() const { return spacing_ * spacing_ * spacing_; }  // unit: m³
+  [[nodiscard]] double spacing() const { return spacing_; }  // unit: m
+  [[nodiscard]] double margin() const { return margin_; }    // unit: m
 
  private:
   ExteriorLattice() = default;

@@ -148,7 +148,7 @@ class VolumeDescent {
         improved |= search(balls_[i], own);
         add(balls_[i], 1);
       }
-      if (!improved && idle.empty()) break;
+      if (!improved) break;
     }
   }
 
@@ -332,17 +332,17 @@ Cover shrink_outside_volume(const BuildContext& context, const ExteriorLattice& 
   points.reserve(samples.size());
   for (const std::uint32_t s : samples) points.push_back(context.samples.points[s]);
   // No ball may poke out farther than the start's did.
-  static const std::vector<Vec3d> kDirections = evenly_spread_directions(kBoundaryDirections);
+  static const std::vector<Vec3d> kBoundary = evenly_spread_directions(kBoundaryDirections);
   double limit = -std::numeric_limits<double>::infinity();
   for (const Ball& ball : start.balls) {
-    limit = std::max(limit, lattice.protrusion(ball, kDirections));
+    limit = std::max(limit, lattice.protrusion(ball, kBoundary));
   }
   // Nor beyond the lattice, where the pass would not see the volume a ball adds.
   limit = std::min(limit, lattice.margin() - lattice.spacing());
-  const VolumeDescent before(lattice, kDirections, points, start.balls, limit);
-  VolumeDescent descent(lattice, kDirections, points, start.balls, limit);
+  VolumeDescent descent(lattice, kBoundary, points, start.balls, limit);
+  const Cost start_cost = descent.total();
   descent.run();
-  if (!(descent.total() < before.total())) return start;
+  if (!(descent.total() < start_cost)) return start;
 
   // Each sample to the ball that holds it most centrally; every ball then shrinks to its own.
   const std::vector<Ball>& balls = descent.balls();
