@@ -38,7 +38,7 @@ struct SolverSettings {
   // (rounded up), but gives each substep at least this many: each substep starts from the last
   // one's impulses, so a short substep needs fewer passes than a whole step. unit: passes
   std::uint32_t substep_velocity_iterations = 10;
-  std::uint32_t position_iterations = 4;  // passes for the split-impulse penetration recovery
+  std::uint32_t position_iterations = 8;  // passes for the split-impulse penetration recovery
   bool warm_starting = true;              // start from the previous step's impulses
   // After the passes, solve the contacts once more level by level from the ground up, each level
   // against the one below held fixed, so that no body of a pile is left sinking into its support.

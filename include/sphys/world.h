@@ -117,14 +117,14 @@ class World {
   // that is not a unit quaternion (within 1e-3), a mass that is not positive and finite, an
   // inertia that is not symmetric positive definite, restitution outside 0..1, negative friction.
   BodyId add_body(const BodyDesc& desc);
-  // The body leaves the world with its contacts, pair materials and sleep; the bodies it slept
-  // with wake. Its id, and every copy of it, is stale from then on. Every call taking a BodyId
-  // throws sphys::Error for a stale or unknown id.
+  // The body leaves the world with its contacts, pair materials and sleep; the sleeping bodies
+  // it touched wake. Its id, and every copy of it, is stale from then on. Every call taking a
+  // BodyId throws sphys::Error for a stale or unknown id.
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
   [[nodiscard]] RigidBody body(BodyId body) const { return store_->body(checked(body)); }
-  // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes with the
-  // bodies it sleeps with. Non-finite values throw.
+  // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes, and the
+  // sleeping bodies it touches wake as it moves them. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
   // Applies an impulse (unit: N·s, world frame) at a world point (unit: m) and wakes the body.
   void apply_impulse(BodyId body, const Vec3& impulse, const Vec3& point);
@@ -178,6 +178,9 @@ class World {
   void respond(float dt, bool plausible, StepStats& stats);
   void integrate_positions(float dt, bool plausible, StepStats& stats);
   void update_sleep(float dt, StepStats& stats);
+  // How deep a resting contact may be: a body with a deeper contact stays awake, and wakes the
+  // sleeping bodies it touches. unit: m
+  [[nodiscard]] float resting_depth() const;
   void measure_rest(StepStats& stats);
   void wake(std::uint32_t body);
   // Lists the store's awake bodies after a change, so that readers of bodies() never do (the

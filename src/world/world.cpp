@@ -132,6 +132,7 @@ BodyId World::add_body(const BodyDesc& desc) {
       generation_.resize(slot + 1, 0);
       sleep_->resize(slot + 1);
     }
+    sleep_->unsettle(slot);  // a slot used before keeps its last body's still time
     detector_.add_body(slot, desc.tree);
   } catch (...) {
     store_->remove(slot);  // no half-added body: the slot is free again
@@ -151,8 +152,8 @@ void World::list_awake() const { (void)store_->awake(); }
 
 void World::remove_body(BodyId id) {
   const std::uint32_t index = checked(id);
-  // The bodies it slept with, and sleeping bodies it touched (which may rest on it while it is
-  // awake or static), lose a support.
+  // The sleeping bodies it touched (which may rest on it, asleep, awake or static) lose a
+  // support.
   wake(index);
   removed_neighbours_.clear();
   detector_.paired_bodies(index, removed_neighbours_);

@@ -1,5 +1,6 @@
 // Islands that persist from step to step: merged as contacts join them, built afresh only after
-// bodies parted, and always at least as coarse as what touches (the solver's condition).
+// bodies parted, and always at least as coarse as what touches (the solver's condition); and
+// sleep body by body: who settles, and who wakes whom.
 #include "world/sleep_tracker.h"
 
 #include <vector>
@@ -71,22 +72,90 @@ TEST(SleepTracker, IslandsPersistUntilBodiesPartThenSplitOnce) {
   EXPECT_EQ(bodies.islands(), (std::vector<std::uint32_t>{0, 0, 0, 0, 4}));
 }
 
-TEST(SleepTracker, ASleepingGroupStaysOneIslandAcrossASplit) {
+// Still for twice the sleep time, at `speeds` (m/s), touching by `contacts`.
+std::vector<std::uint32_t> settle(Bodies& bodies, const std::vector<float>& speeds,
+                                  const std::vector<Contact>& contacts, float resting_depth) {
+  std::vector<std::uint32_t> fell_asleep;
+  (void)bodies.tracker.update(speeds, contacts, 2.0f * SleepSettings{}.time, SleepSettings{},
+                              resting_depth, fell_asleep);
+  return fell_asleep;
+}
+
+constexpr float kRestingDepth = 0.001f;  // unit: m
+
+TEST(SleepTracker, ASleepingBodyIsAnIslandOfItsOwnAcrossASplit) {
   Bodies bodies;
   const std::vector<Contact> pair{touching(1, 2)};
   bodies.tracker.link_islands(pair);
-  // Still for long enough, touching only each other: bodies 1 and 2 fall asleep as one group.
+  // Still for long enough, touching only each other: bodies 1 and 2 fall asleep.
   std::vector<float> speeds(bodies.store.slots(), 0.0f);
   speeds[0] = speeds[3] = speeds[4] = 1.0f;  // m/s, restless
-  SleepSettings settings;
-  std::vector<std::uint32_t> fell_asleep;
-  (void)bodies.tracker.update(speeds, pair, 2.0f * settings.time, settings, fell_asleep);
-  EXPECT_EQ(fell_asleep, (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(settle(bodies, speeds, pair, kRestingDepth), (std::vector<std::uint32_t>{1, 2}));
   EXPECT_TRUE(bodies.store.asleep(1));
-  // Asleep, the pair makes no contacts; a split keeps the group together all the same.
+  // Asleep, the pair makes no contacts: a split leaves each on its own.
   bodies.tracker.parted();
   bodies.tracker.split_islands({});
-  EXPECT_EQ(bodies.islands(), (std::vector<std::uint32_t>{0, 1, 1, 3, 4}));
+  EXPECT_EQ(bodies.islands(), (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
+}
+
+// Body 1 touches a restless body, bodies 3 and 4 are pressed into the ground: still for twice the
+// sleep time, they stay awake; body 2 sleeps. Body 3 does not come out and sleeps once its recovery
+// has stalled for twice the sleep time; body 4, coming out, waits until it is out.
+TEST(SleepTracker, ABodyTouchingARestlessOneOrPressedInWaitsLonger) {
+  Bodies bodies;
+  std::vector<float> speeds(bodies.store.slots(), 0.0f);
+  speeds[0] = 1.0f;  // m/s, restless
+  Contact pressed = touching(kGroundPlaneBody, 3);
+  pressed.depth = 2.0f * kRestingDepth;
+  Contact recovering = touching(kGroundPlaneBody, 4);
+  recovering.depth = 1.5f * kRestingDepth;
+  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1), pressed, recovering}, kRestingDepth),
+            (std::vector<std::uint32_t>{2}));
+  recovering.depth = 1.2f * kRestingDepth;
+  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1), pressed, recovering}, kRestingDepth),
+            (std::vector<std::uint32_t>{3}));
+  recovering.depth = 0.9f * kRestingDepth;
+  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1), recovering}, kRestingDepth),
+            (std::vector<std::uint32_t>{4}));
+}
+
+// A row 0-1-2 and body 3 beside body 4, bodies 1, 2 and 4 asleep. Only a body that moves, or that
+// is pressed in deeper than the resting depth, wakes what it touches, and that alone.
+TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMovesOrIsPressedIn) {
+  Bodies bodies;
+  std::vector<float> speeds(bodies.store.slots(), 0.0f);
+  speeds[0] = speeds[3] = 1.0f;  // m/s, restless
+  const std::vector<Contact> row{touching(0, 1), touching(1, 2)};
+  ASSERT_EQ(settle(bodies, speeds, row, kRestingDepth), (std::vector<std::uint32_t>{2, 4}));
+  // Body 0 drifts off for a while: body 1 settles.
+  const std::vector<Contact> apart{touching(1, 2)};
+  ASSERT_EQ(settle(bodies, speeds, apart, kRestingDepth), (std::vector<std::uint32_t>{1}));
+  const SleepSettings settings;
+  std::vector<std::uint32_t> woken;
+  // Body 0 slower than the sleep speed, body 3 still and not pressed in: they wake nothing.
+  // (Measured over no time: nobody settles.)
+  std::vector<std::uint32_t> fell_asleep;
+  speeds[0] = 0.5f * settings.speed;
+  speeds[3] = 0.0f;
+  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, kRestingDepth, fell_asleep);
+  bodies.tracker.wake_disturbed(row, settings, kRestingDepth, woken);
+  EXPECT_TRUE(woken.empty());
+  // Body 0 moves: body 1 wakes, body 2 beyond it sleeps on.
+  speeds[0] = 2.0f * settings.speed;
+  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, kRestingDepth, fell_asleep);
+  bodies.tracker.wake_disturbed(row, settings, kRestingDepth, woken);
+  EXPECT_EQ(woken, (std::vector<std::uint32_t>{1}));
+  EXPECT_TRUE(bodies.store.asleep(2));
+  // Body 3 is still but pressed into the ground: body 4, which it touches, wakes to make room.
+  Contact pressed = touching(kGroundPlaneBody, 3);
+  pressed.depth = 2.0f * kRestingDepth;
+  const std::vector<Contact> under{touching(3, 4)};
+  woken.clear();
+  bodies.tracker.wake_disturbed(under, settings, kRestingDepth, woken);
+  EXPECT_TRUE(woken.empty());
+  const std::vector<Contact> pressed_under{pressed, touching(3, 4)};
+  bodies.tracker.wake_disturbed(pressed_under, settings, kRestingDepth, woken);
+  EXPECT_EQ(woken, (std::vector<std::uint32_t>{4}));
 }
 
 }  // namespace
