@@ -116,6 +116,15 @@ class BulletEngine final : public Engine {
     return static_cast<float>(deepest);
   }
 
+  [[nodiscard]] std::optional<std::uint32_t> asleep() const override {
+    std::uint32_t count = 0;
+    for (const auto& body : bodies_) {
+      const int state = body->getActivationState();
+      count += state == ISLAND_SLEEPING || state == DISABLE_SIMULATION ? 1 : 0;
+    }
+    return count;
+  }
+
  private:
   btScalar dt_;
   Quat principal_to_body_;

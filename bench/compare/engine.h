@@ -30,6 +30,9 @@ class Engine {
   // (the engine's own measure: its contact depths). unit: m
   [[nodiscard]] virtual std::uint32_t contacts() const = 0;
   [[nodiscard]] virtual float deepest_penetration() const = 0;
+  // How many of the bodies the engine itself has put to sleep now (asleep, deactivated,
+  // disabled); nullopt for an engine without sleeping.
+  [[nodiscard]] virtual std::optional<std::uint32_t> asleep() const { return std::nullopt; }
   // What went wrong so far that makes the run suspect (e.g. contacts dropped); empty if nothing.
   [[nodiscard]] virtual std::string warnings() const { return {}; }
 };

@@ -80,6 +80,12 @@ class OdeEngine final : public Engine {
 
   [[nodiscard]] std::uint32_t contacts() const override { return contacts_; }
   [[nodiscard]] float deepest_penetration() const override { return static_cast<float>(deepest_); }
+  // Auto-disable: a disabled body is ODE's sleeping one.
+  [[nodiscard]] std::optional<std::uint32_t> asleep() const override {
+    std::uint32_t count = 0;
+    for (const dBodyID body : bodies_) count += dBodyIsEnabled(body) == 0 ? 1 : 0;
+    return count;
+  }
 
  private:
   using Vec3d = Eigen::Vector3d;

@@ -50,25 +50,33 @@ float deepest_overlap(const BenchScene& scene, const std::vector<BodyState>& bod
 
 }  // namespace
 
-RunResult run_engine(const std::string& name, const BenchScene& scene, int frames) {
+RunResult run_engine(const std::string& name, const BenchScene& scene, int frames,
+                     double time_limit) {
   const PeakMemory memory;
   const std::unique_ptr<Engine> engine = make_engine(name, scene);
   RunResult result;
   result.step_ms.reserve(static_cast<std::size_t>(frames));
   double contacts = 0.0;
+  // The deepest penetration of the last kLastSecond frames run, oldest overwritten first.
+  std::vector<float> last_second(kLastSecond, 0.0f);
   for (int frame = 0; frame < frames; ++frame) {
     const auto start = std::chrono::steady_clock::now();
     engine->step();
     const auto end = std::chrono::steady_clock::now();
     result.step_ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+    result.step_seconds += std::chrono::duration<double>(end - start).count();
     contacts += engine->contacts();
     const float deepest = engine->deepest_penetration();
     result.deepest = std::max(result.deepest, deepest);
-    if (frame >= frames - kLastSecond) {
-      result.deepest_last_second = std::max(result.deepest_last_second, deepest);
+    last_second[static_cast<std::size_t>(frame % kLastSecond)] = deepest;
+    if (time_limit > 0.0 && result.step_seconds > time_limit && frame + 1 < frames) {
+      result.stopped = true;
+      break;
     }
   }
-  result.contacts_per_step = frames > 0 ? contacts / frames : 0.0;
+  const auto frames_run = static_cast<double>(result.step_ms.size());
+  result.contacts_per_step = frames_run > 0.0 ? contacts / frames_run : 0.0;
+  result.deepest_last_second = *std::max_element(last_second.begin(), last_second.end());
   result.peak_memory_mib = memory.added_mib();
   std::vector<BodyState> bodies;
   engine->read(bodies);
@@ -84,6 +92,7 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
     result.below += body.pose.translation.y() < kBelowPlane ? 1 : 0;
   }
   result.end_overlap = deepest_overlap(scene, bodies);
+  result.asleep = engine->asleep();
   result.warnings = engine->warnings();
   return result;
 }

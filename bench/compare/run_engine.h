@@ -13,10 +13,12 @@
 namespace sphys::compare {
 
 struct RunResult {
-  std::vector<double> step_ms;     // wall time of each step call. unit: ms
-  double contacts_per_step = 0.0;  // mean, as the engine counts them
-  float deepest = 0.0f;            // engine-reported, over the run. unit: m
-  float deepest_last_second = 0.0f;
+  std::vector<double> step_ms;  // wall time of each step call, one per frame run. unit: ms
+  bool stopped = false;       // at the time limit, before the frames asked for: step_ms.size() ran
+  double step_seconds = 0.0;  // the step times summed. unit: s
+  double contacts_per_step = 0.0;    // mean over the frames run, as the engine counts them
+  float deepest = 0.0f;              // engine-reported, over the run. unit: m
+  float deepest_last_second = 0.0f;  // over the last 60 frames run. unit: m
   // At the end, counted afresh from the poses for every engine alike: the deepest overlap of two
   // bodies' leaf spheres, or of a leaf sphere with the plane. Exact for the engines colliding
   // those spheres; for a convex hull, an over-estimate (the spheres stick out of the mesh).
@@ -25,6 +27,8 @@ struct RunResult {
   double kinetic_energy = 0.0;  // at the end, from sphys's mass properties. unit: J
   std::uint32_t moving = 0;     // at the end: |v| + |ω| r_max > 1 cm/s
   std::uint32_t below = 0;      // at the end: centre of mass below y = -0.5 m
+  // At the end: the bodies the engine itself reports asleep; nullopt for one without sleeping.
+  std::optional<std::uint32_t> asleep;
   std::uint32_t bodies = 0;
   // Resident memory the engine added at its peak (building it and the steps), where the kernel
   // tells. unit: MiB
@@ -32,7 +36,10 @@ struct RunResult {
   std::string warnings;
 };
 
-// Builds the engine (not timed), steps it `frames` times timing each step call.
-[[nodiscard]] RunResult run_engine(const std::string& engine, const BenchScene& scene, int frames);
+// Builds the engine (not timed), steps it `frames` times timing each step call. With a
+// `time_limit` above 0 (unit: s), the run stops after the step that took the summed step times
+// over it; "the end" is then that frame.
+[[nodiscard]] RunResult run_engine(const std::string& engine, const BenchScene& scene, int frames,
+                                   double time_limit = 0.0);
 
 }  // namespace sphys::compare
