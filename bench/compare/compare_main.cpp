@@ -9,6 +9,7 @@
 #include <exception>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -112,6 +113,11 @@ std::vector<double> first_frames(const Pooled& pooled, std::size_t frames) {
   return step_ms;
 }
 
+// A run's step times summed. unit: s
+double seconds_of_steps(const RunResult& run) {
+  return std::accumulate(run.step_ms.begin(), run.step_ms.end(), 0.0) / 1000.0;
+}
+
 constexpr int kColumns = 17;
 
 std::string table(const std::string& layout, int depth, const std::vector<std::string>& engines,
@@ -170,7 +176,7 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
       most_frames = std::max(most_frames, run.step_ms.size());
       if (run.stopped) {
         stops.push_back(formatted("%s at frame %zu of %d (%.4g s of steps)", engine.c_str(),
-                                  run.step_ms.size(), frames, run.step_seconds));
+                                  run.step_ms.size(), frames, seconds_of_steps(run)));
         if (pooled.runs.size() > 1) stops.back() += formatted(" in run %zu", r + 1);
         stopped = true;
       }

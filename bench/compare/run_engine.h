@@ -14,8 +14,7 @@ namespace sphys::compare {
 
 struct RunResult {
   std::vector<double> step_ms;  // wall time of each step call, one per frame run. unit: ms
-  bool stopped = false;       // at the time limit, before the frames asked for: step_ms.size() ran
-  double step_seconds = 0.0;  // the step times summed. unit: s
+  bool stopped = false;  // at the time limit, before the frames asked for: step_ms.size() ran
   double contacts_per_step = 0.0;    // mean over the frames run, as the engine counts them
   float deepest = 0.0f;              // engine-reported, over the run. unit: m
   float deepest_last_second = 0.0f;  // over the last 60 frames run. unit: m

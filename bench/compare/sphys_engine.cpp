@@ -34,9 +34,7 @@ class SphysEngine final : public Engine {
   [[nodiscard]] std::uint32_t contacts() const override { return stats_.contacts; }
   [[nodiscard]] float deepest_penetration() const override { return stats_.deepest_penetration; }
   [[nodiscard]] std::optional<std::uint32_t> asleep() const override {
-    std::uint32_t count = 0;
-    for (const BodyId id : setup_.bodies) count += setup_.world->asleep(id) ? 1 : 0;
-    return count;
+    return stats_.bodies_asleep;
   }
 
  private:
