@@ -41,7 +41,6 @@ const SettledPile& settled_pile() {
   static const SettledPile pile = [] {
     tools::Scene scene = tools::bunny_stacks_scene(100, 10, 2);
     scene.ground.kind = tools::GroundSpec::Kind::kPlane;
-    scene.solver.method = SolverMethod::kSoftStep;
     scene.sleep.enabled = false;
     const tools::SimulationSetup setup = tools::build_world(scene, {});
     World& world = *setup.world;

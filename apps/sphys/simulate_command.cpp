@@ -358,12 +358,11 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--contacts", options->contacts, instead("solver.contacts"));
   cmd->add_option("--substeps", options->substeps, instead("substeps"));
   cmd->add_option("--passes", options->passes, instead("paper_passes"));
-  cmd->add_option(
-      "--set", options->settings,
-      "A setting of the world by its field, FIELD=VALUE: solver.method=sequential_impulses, "
-      "sleep.time=0.5, ground_friction=0.8 (docs/scenes.md's keys, with their object "
-      "and a dot for solver and sleep). Applied after the scene and the options "
-      "above; repeatable");
+  cmd->add_option("--set", options->settings,
+                  "A setting of the world by its field, FIELD=VALUE: solver.soft_substeps=8, "
+                  "sleep.time=0.5, ground_friction=0.8 (docs/scenes.md's keys, with their object "
+                  "and a dot for solver and sleep). Applied after the scene and the options "
+                  "above; repeatable");
   cmd->add_option("--out", options->out,
                   "Folder for frames.csv and recording.sphysrec (default out/<scene>)")
       ->check(kFileName);

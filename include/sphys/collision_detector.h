@@ -69,14 +69,15 @@ struct CollisionSettings {
 // What a contact carries from one narrow phase to the next for warm starting, matched by its leaf
 // pair within its body pair's record. The response writes it; the detector carries it over.
 struct ContactMemory {
-  float normal_impulse = 0.0f;   // to start the next solve from. unit: N·s
-  float solved_impulse = -1.0f;  // what the last solve ended with; negative for a new contact
+  float normal_impulse = 0.0f;           // to start the next solve from. unit: N·s
   Vec3 friction_impulse = Vec3::Zero();  // world frame, in the tangent plane. unit: N·s
-  // Approach speed at which this gap contact stopped its bodies short (0: it did not). unit: m/s
-  float stopped_approach = 0.0f;
-  // The most negative stopped_approach among the pair's contacts of the last narrow phase, so that
-  // bodies a gap contact stopped short bounce with the speed they came at. unit: m/s
-  float pair_stopped_approach = 0.0f;
+  bool solved = false;                   // false for a contact the last solve did not have
+  // Static friction's anchors: the material points of each body (in its own frame) that met
+  // where the contact began to stick; the solver pulls them back together, so that a body held
+  // by friction does not creep. Valid while `anchored` (the contact stuck in the last solve).
+  Vec3 anchor_a = Vec3::Zero();  // unit: m
+  Vec3 anchor_b = Vec3::Zero();  // unit: m
+  bool anchored = false;
 };
 
 // Figures of one detect() call.

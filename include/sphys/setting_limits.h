@@ -13,9 +13,6 @@ inline constexpr std::uint32_t kMaxManifoldPoints = 8;
 // Most substeps a step may run (WorldSettings::substeps and max_substeps): a step of 1/60 s cut
 // 64 ways is 0.26 ms, finer than any scene sphys runs needs.
 inline constexpr std::uint32_t kMaxSubsteps = 64;
-// Most solver passes per step (SolverSettings::velocity_iterations and position_iterations): far
-// beyond what converges, short of hanging a step. unit: passes
-inline constexpr std::uint32_t kMaxIterations = 1000;
 // Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
 inline constexpr std::uint32_t kMaxPaperPasses = 1000;
 // Largest magnitude of each component of gravity (WorldSettings::gravity), about 100 g: beyond

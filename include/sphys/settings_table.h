@@ -47,7 +47,7 @@ struct Setting {
   std::string_view object{};
   std::string_view key{};
   bool in_scene = true;
-  // The field of WorldSettings, as C++ names it ("solver.velocity_iterations"); messages of the
+  // The field of WorldSettings, as C++ names it ("solver.soft_substeps"); messages of the
   // runtime name the setting so.
   std::string_view field{};
   SettingKind kind = SettingKind::kNumber;
@@ -64,6 +64,17 @@ struct Setting {
   void (*set_vector)(WorldSettings&, const Vec3&) = nullptr;
 };
 
+// A setting sphys had and no longer has, with what replaced it: a scene file or --set that names
+// it is refused with this note rather than read as something it no longer means.
+struct RemovedSetting {
+  std::string_view field;        // as Setting::field named it ("solver.shock_speed")
+  std::string_view replacement;  // what to set instead, and why
+};
+// The removed setting of this field, or null when it is not one.
+[[nodiscard]] const RemovedSetting* removed_setting(std::string_view field);
+// "<field> was removed: <replacement>", for the messages that refuse it.
+[[nodiscard]] std::string removed_setting_message(const RemovedSetting& removed);
+
 // Every setting, in the order scene files and docs/scenes.md list them: the top level, then
 // "solver", "sleep", "ground", then those scene files do not carry.
 [[nodiscard]] std::span<const Setting> settings_table();
@@ -72,9 +83,9 @@ struct Setting {
 // std::out_of_range when there is none: a caller's mistake, not bad input.
 [[nodiscard]] const Setting& setting_of(std::string_view field);
 
-// Sets the field named as in Setting::field ("solver.method") from text as a command line gives
-// it: a number, true or false, or a choice's name. Throws sphys::Error for an unknown field, a
-// vector, or text that is none of these, naming `source` (e.g. "--set"); the range is
+// Sets the field named as in Setting::field ("solver.soft_substeps") from text as a command line
+// gives it: a number, true or false, or a choice's name. Throws sphys::Error for an unknown field,
+// a vector, or text that is none of these, naming `source` (e.g. "--set"); the range is
 // check_world_settings' to check.
 void set_setting_from_text(WorldSettings& settings, std::string_view field, std::string_view text,
                            std::string_view source);

@@ -26,8 +26,8 @@ enum class ResponseMode {
   // The paper's §4: per contact, in order, the impulse magnitude of eq. 4 along the normal when
   // the contact approaches; no friction. See docs/experiment.md.
   kPaper,
-  // Sequential impulses with warm starting, Coulomb friction, restitution above a threshold,
-  // split-impulse penetration recovery, speculative contacts and sleeping. See docs/dynamics.md.
+  // The soft step with warm starting, Coulomb friction, rolling resistance, restitution above a
+  // threshold, speculative contacts and sleeping. See docs/dynamics.md.
   kPlausible,
 };
 
@@ -102,7 +102,6 @@ struct BodyId {
   friend bool operator==(const BodyId&, const BodyId&) = default;
 };
 
-class ContactSolver;
 class SoftStepSolver;
 class SleepTracker;
 
@@ -166,8 +165,6 @@ class World {
   [[nodiscard]] std::uint32_t substeps_for(float dt) const;
   // The stages of a substep, in order, each in the file named for it (docs/architecture.md).
   void substep(float dt, StepStats& stats);
-  // The soft step: the solver integrates the moving bodies in its own substeps.
-  [[nodiscard]] bool soft_step() const;
   void integrate_velocities(float dt, bool plausible, StepStats& stats);
   // One awake body's gravity and reach; false when its motion is no longer finite.
   [[nodiscard]] bool integrate_velocity(std::uint32_t body, float dt, bool plausible);
@@ -202,8 +199,7 @@ class World {
   std::vector<std::uint32_t> removed_neighbours_;  // remove_body's scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
   // Plausible mode's machinery, private to the library.
-  std::unique_ptr<ContactSolver> solver_;
-  std::unique_ptr<SoftStepSolver> soft_solver_;
+  std::unique_ptr<SoftStepSolver> solver_;
   std::unique_ptr<SleepTracker> sleep_;
   // On the heap so that the detector's and solver's pointer to it survives moving the world.
   std::unique_ptr<Parallel> parallel_;

@@ -74,7 +74,7 @@ struct WorldSettings;
 namespace sphys::python {
 
 // `base` with the settings a Python mapping gives, by field as docs/scenes.md names them: either
-// dotted ({"solver.method": "soft_step"}) or nested ({"solver": {"method": "soft_step"}});
+// dotted ({"solver.soft_substeps": 8}) or nested ({"solver": {"soft_substeps": 8}});
 // values as Python writes them (numbers, True/False, a choice's name, 3 numbers for a vector).
 // Raises sphys.Error naming the setting for an unknown one or a value out of its range, with the
 // command line's messages.

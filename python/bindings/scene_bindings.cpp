@@ -143,7 +143,7 @@ void bind_scene(py::module_& m) {
             tools::set_world_settings(s, settings_from(settings, tools::world_settings(s)));
           },
           py::arg("settings"),
-          "Changes world settings, given as World() takes them ({'solver.method': ...}).")
+          "Changes world settings, given as World() takes them ({'solver.soft_substeps': ...}).")
       .def("__repr__", [](const Scene& s) {
         return "<sphys.Scene '" + s.name + "': " + std::to_string(s.bodies.size()) + " bodies, " +
                std::to_string(s.frames) + " frames>";

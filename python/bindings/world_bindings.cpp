@@ -266,7 +266,7 @@ void bind_world(py::module_& m) {
   py::class_<World>(m, "World",
                     "A world of rigid bodies with sphere-trees. Settings are keyword arguments "
                     "named as in scene files, nested for the solver and sleep "
-                    "(World(gravity=(0, -9.81, 0), solver={'method': 'soft_step'})); see "
+                    "(World(gravity=(0, -9.81, 0), solver={'soft_substeps': 8})); see "
                     "settings_table(). ground_plane: height (m) of an exact ground plane, or None.")
       .def(py::init([](const py::object& ground_plane, const py::kwargs& settings) {
              WorldSettings world_settings = settings_from(settings, WorldSettings{});

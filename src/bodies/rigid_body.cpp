@@ -41,15 +41,23 @@ Vec3 angular_velocity_of(const Mat3& inverse_inertia_body, const Quat& q, const 
 }
 
 // q turned by ω over dt, to first order, renormalised.
-Quat turned(const Quat& q, const Vec3& w, float dt) {
-  Quat result = q;
-  result.coeffs() += (0.5f * dt) * (Quat(0.0f, w.x(), w.y(), w.z()) * q).coeffs();
+template <class Q, class V, class S>
+Q turned(const Q& q, const V& w, S dt) {
+  Q result = q;
+  result.coeffs() += (S(0.5) * dt) * (Q(S(0), w.x(), w.y(), w.z()) * q).coeffs();
   result.normalize();
   return result;
 }
 
 // Fixed-point iterations of the implicit midpoint rule for the orientation.
 constexpr int kMidpointIterations = 2;
+
+// Fixed-point iterations of the implicit midpoint rule for the body-frame angular momentum. Each
+// shrinks the error by about h |ω| (1/80 for 3 rad/s at 240 Hz): four leave the quadratic
+// invariants below float rounding per step.
+constexpr int kMomentumIterations = 4;
+// Beyond this turn per step (h |ω|) the iterations above stop converging. unit: rad
+constexpr double kMostMomentumTurn = 0.5;
 
 }  // namespace
 
@@ -72,15 +80,42 @@ void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angu
   angular_velocity = angular_velocity_of(inverse_inertia_body, pose.rotation, momentum);
 }
 
+void integrate_position_keeping_spin(Transform& pose, const Vec3& linear_velocity,
+                                     Vec3& angular_velocity, const Mat3& inertia_body,
+                                     const Mat3& inverse_inertia_body, float dt) {
+  // In the body frame L_b obeys Euler's equations, dL_b/dt = L_b × I⁻¹ L_b, whose implicit
+  // midpoint rule keeps |L_b|² and the kinetic energy ½ L_b·I⁻¹L_b exactly, both being quadratic
+  // in L_b. Solved in double with the rotation of the unit quaternion, so that rounding adds up to
+  // no drift over thousands of steps (in float, the rotation matrix's own rounding drifted the
+  // energy by 5e-4 in 10 s at 240 Hz); the orientation turns by the midpoint's ω.
+  using Vec3d = Eigen::Vector3d;
+  const Eigen::Quaterniond start = pose.rotation.cast<double>().normalized();
+  const Eigen::Matrix3d inverse_inertia = inverse_inertia_body.cast<double>();
+  const Eigen::Matrix3d start_rotation = start.toRotationMatrix();
+  const Vec3d momentum =
+      inertia_body.cast<double>() * (start_rotation.transpose() * angular_velocity.cast<double>());
+  const double step = static_cast<double>(dt);
+  if (!(step * (inverse_inertia * momentum).norm() <= kMostMomentumTurn)) {
+    integrate_position(pose, linear_velocity, angular_velocity, inertia_body, inverse_inertia_body,
+                       dt);
+    return;
+  }
+  pose.translation += linear_velocity * dt;
+  Vec3d middle = momentum;
+  for (int i = 0; i < kMomentumIterations; ++i) {
+    middle = momentum + 0.5 * step * middle.cross(inverse_inertia * middle);
+  }
+  const Vec3d end = 2.0 * middle - momentum;
+  const Eigen::Quaterniond rotation =
+      turned(start, Vec3d(start_rotation * (inverse_inertia * middle)), step);
+  pose.rotation = rotation.cast<float>();
+  angular_velocity = (rotation.toRotationMatrix() * (inverse_inertia * end)).cast<float>();
+}
+
 void integrate_position(RigidBody& body, float dt) {
   if (body.is_static) return;
   integrate_position(body.pose, body.linear_velocity, body.angular_velocity, body.inertia_body,
                      body.inverse_inertia_body, dt);
-}
-
-void correct_position(Transform& pose, const Vec3& linear, const Vec3& angular, float dt) {
-  pose.translation += linear * dt;
-  if (!angular.isZero(0.0f)) pose.rotation = turned(pose.rotation, angular, dt);
 }
 
 }  // namespace sphys

@@ -429,10 +429,6 @@ void CollisionDetector::carry_memory(const PairRecord& record, std::size_t first
   const std::span<const Contact> old_contacts = last_contacts(record);
   const std::span<const ContactMemory> old_memory = last_memory(record);
   const std::size_t old_count = old_contacts.size();
-  float pair_stopped = 0.0f;
-  for (const ContactMemory& old : old_memory) {
-    pair_stopped = std::min(pair_stopped, old.stopped_approach);
-  }
   std::size_t hint = 0;
   for (std::size_t k = first; k < first + count; ++k) {
     const Contact& contact = contacts_[k];
@@ -446,8 +442,6 @@ void CollisionDetector::carry_memory(const PairRecord& record, std::size_t first
         break;
       }
     }
-    memory.stopped_approach = 0.0f;
-    memory.pair_stopped_approach = pair_stopped;
     memory_[k] = memory;
   }
 }

@@ -209,6 +209,7 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
   const F inverse_substep = F::splat(settings.inverse_substep);
   const F slop = F::splat(settings.linear_slop);
   const F most_correction = F::splat(-settings.max_correction_speed);
+  const F most_slip_correction = F::splat(settings.max_correction_speed);
   for (ManifoldBlock<W>& m : blocks) {
     LanePair<F> pair(m, bodies);
     const LaneMotion<F> motion_a = LaneMotion<F>::gather(bodies, m.body_a);
@@ -232,10 +233,13 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       if (use_bias) {
         // Penetration within the slop is left alone, so that resting contacts keep touching.
         const F soft_mass = F::load(p.mass_scale);
+        // Within the slop the contact is rigid, its spring only pushes what lies deeper: the
+        // spring's give under a resting load added up to a millimetre under a deep heap.
         const F error = min(separation + slop, zero);
+        const auto springy = error < zero;
         bias = select(apart, bias, max(soft_mass * bias_rate * error, most_correction));
-        mass_scale = select(apart, one, soft_mass);
-        impulse_scale = select(apart, zero, F::load(p.impulse_scale));
+        mass_scale = select(springy, soft_mass, one);
+        impulse_scale = select(springy, F::load(p.impulse_scale), zero);
       }
       const F speed = dot(normal, pair.relative_velocity(ra, rb));
       // The fastest approach met in the solve passes: a body falling onto a contact within the
@@ -254,10 +258,21 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       const V3<F> tangent1 = load3<F>(p.tangent1);
       const V3<F> tangent2 = cross(normal, tangent1);
       const V3<F> slip = pair.relative_velocity(ra, rb);
+      F slip1 = dot(tangent1, slip);
+      F slip2 = dot(tangent2, slip);
+      if (use_bias) {
+        // Static friction's anchors, apart by what the bodies crept since they stuck, are pulled
+        // back together at the contact spring's rate; the relax pass takes the speed back out.
+        const F rate = F::load(p.mass_scale) * bias_rate;
+        const F apart1 = F::load(p.base_slip[0]) + dot(tangent1, moved);
+        const F apart2 = F::load(p.base_slip[1]) + dot(tangent2, moved);
+        slip1 = slip1 + max(min(rate * apart1, most_slip_correction), most_correction);
+        slip2 = slip2 + max(min(rate * apart2, most_slip_correction), most_correction);
+      }
       const F old1 = F::load(p.impulse[1]);
       const F old2 = F::load(p.impulse[2]);
-      F t1 = old1 - F::load(p.mass[1]) * dot(tangent1, slip);
-      F t2 = old2 - F::load(p.mass[2]) * dot(tangent2, slip);
+      F t1 = old1 - F::load(p.mass[1]) * slip1;
+      F t2 = old2 - F::load(p.mass[2]) * slip2;
       const F limit = friction * normal_impulse;
       const F length_squared = t1 * t1 + t2 * t2;
       const auto outside = length_squared > limit * limit;
@@ -268,7 +283,9 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       t2.store(p.impulse[2]);
       pair.push(ra, rb, (t1 - old1) * tangent1 + (t2 - old2) * tangent2);
     }
-    if (settings.rolling_resistance > 0.0f) {
+    // In the relax pass only (as Box2D v3): resisting the turns that the solve pass's push out of
+    // penetration gives kept piles rocking.
+    if (settings.rolling_resistance > 0.0f && !use_bias) {
       // Rolling resistance: an angular impulse against the pair's relative turning (rolling and
       // spinning), at most the arm times the manifold's normal impulse.
       const V3<F> old = load3<F>(m.rolling_impulse);
@@ -286,7 +303,12 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
 }
 
 // Restitution once the substeps are done (as Box2D does it): a point that approached faster than
-// the threshold and pushed during the step leaves at ε times that speed.
+// the threshold and pushed during the step leaves at ε times that speed, plus (1 + ε) times half
+// a substep of the gravity closing it. Semi-implicit Euler keeps ½ v² + g y − ½ g v_y h in flight,
+// not the energy: a ball meets the ground with ½ g h of speed more than its fall gives, and
+// leaves with ½ g h less than it climbs on. With the half substep the rebound climbs to ε² times
+// the fall (its apex at rest, where the kept figure is the energy), and ε = 1 keeps the kept
+// figure, not raising it.
 template <class F>
 std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
                         const LaneSettings& settings) {
@@ -294,10 +316,20 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
   const F zero = F::splat(0.0f);
   const F one = F::splat(1.0f);
   const F threshold = F::splat(-settings.restitution_threshold);
+  const F half_substep = F::splat(0.5f * settings.substep);
+  const V3<F> gravity{F::splat(settings.gravity[0]), F::splat(settings.gravity[1]),
+                      F::splat(settings.gravity[2])};
   F bounces = zero;
   for (ManifoldBlock<W>& m : blocks) {
     LanePair<F> pair(m, bodies);
     const F restitution = F::load(m.restitution);
+    // Gravity acts on the bodies that move: the one their relative acceleration comes from.
+    const auto a_falls = F::load(m.inverse_mass_a) > zero;
+    const auto b_falls = F::load(m.inverse_mass_b) > zero;
+    const V3<F> gravity_a{select(a_falls, gravity.x, zero), select(a_falls, gravity.y, zero),
+                          select(a_falls, gravity.z, zero)};
+    const V3<F> gravity_b{select(b_falls, gravity.x, zero), select(b_falls, gravity.y, zero),
+                          select(b_falls, gravity.z, zero)};
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
       auto& p = m.points[i];
       const F approach = F::load(p.approach);
@@ -307,7 +339,9 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
       const V3<F> ra = load3<F>(p.ra);
       const V3<F> rb = load3<F>(p.rb);
       const F old = F::load(p.impulse[0]);
-      const F target = zero - restitution * approach;
+      const F closing_gravity = dot(normal, gravity_b - gravity_a);  // negative when closing
+      const F target =
+          zero - restitution * approach - (one + restitution) * half_substep * closing_gravity;
       const F speed = dot(normal, pair.relative_velocity(ra, rb));
       const F total = max(old - F::load(p.mass[0]) * (speed - target), zero);
       const F impulse = select(bounce, total, old);

@@ -45,6 +45,9 @@ struct alignas(32) ManifoldBlock {
     float impulse_scale[W];
     // Separation at the step's start less the anchors' offset along the normal. unit: m
     float base_separation[W];
+    // Static friction's anchors apart along tangent1 and tangent2 at the step's start, less the
+    // contact point's offsets from the centres along them (as base_separation). unit: m
+    float base_slip[2][W];
     float approach[W];            // the fastest approach met by the solve passes. unit: m/s
     float max_normal_impulse[W];  // over the step: did the contact push at all. unit: N s
     float impulse[3][W];          // accumulated, along normal, tangent1, tangent2. unit: N s
@@ -79,11 +82,13 @@ struct LaneBodies {
 };
 
 struct LaneSettings {
-  float inverse_substep = 0.0f;        // unit: 1/s
-  float linear_slop = 0.0f;            // unit: m
-  float max_correction_speed = 0.0f;   // unit: m/s
-  float rolling_resistance = 0.0f;     // the arm; 0 is off. unit: m
-  float restitution_threshold = 0.0f;  // unit: m/s
+  float substep = 0.0f;                   // unit: s
+  float inverse_substep = 0.0f;           // unit: 1/s
+  float gravity[3] = {0.0f, 0.0f, 0.0f};  // unit: m/s²
+  float linear_slop = 0.0f;               // unit: m
+  float max_correction_speed = 0.0f;      // unit: m/s
+  float rolling_resistance = 0.0f;        // the arm; 0 is off. unit: m
+  float restitution_threshold = 0.0f;     // unit: m/s
 };
 
 // What a pass does to blocks of one width. `bias`: the solve pass (soft push out of penetration)

@@ -21,6 +21,23 @@ constexpr float kMostHertzPerSubstepRate = 0.125f;
 // nothing on the other side gives way, and a pile's weight ends on them. unit: dimensionless
 constexpr float kImmovableStiffness = 2.0f;
 
+// Static friction's anchors are given up (the contact sticks afresh where it now is) once they
+// part by more than this along the contact, or by more than kAnchorLift times the slop across it:
+// the bodies slid, or rolled (rolling lifts the anchors off each other while it leaves them
+// together along the surface). unit: m, and slops
+constexpr float kAnchorReach = 0.005f;
+constexpr float kAnchorLift = 2.0f;
+
+// No body turns more than this in a substep (as Box2D bounds rotation): a turn that large is
+// beyond what the integrator and the contacts' anchors follow, and bodies squeezed between two
+// 10⁹ times heavier ones were spun up to 10¹⁹ rad/s and overflowed. 283 rad/s at 60 frames of 6
+// substeps a second. unit: rad
+constexpr float kMostTurnPerSubstep = 0.25f * std::numbers::pi_v<float>;
+
+// A contact whose friction impulse reached this share of its Coulomb bound slid: it is anchored
+// afresh in the next step. unit: dimensionless
+constexpr float kSlidingShare = 0.99f;
+
 }  // namespace
 
 // The contact spring: stiffness k = M ω² and damping c = 2 M ζ ω, solved implicitly (Catto,
@@ -62,6 +79,7 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
   // The impulse that holds up a kilogram against gravity for a substep. unit: N s / kg
   const float weight_per_substep = gravity.norm() * substep;
   constraints_.clear();
+  resize_buffer(anchors_, contacts.size());
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Contact& contact = contacts[k];
     Constraint c;
@@ -75,7 +93,10 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
                           rb_cross.dot(inverse_inertia_[c.b] * rb_cross));
     }
     const ContactMemory& kept = memory[k];
-    if (settings.warm_starting && kept.solved_impulse >= 0.0f) {
+    const Vec3 apart = anchor(contact, k, c, kept, settings.linear_slop);
+    c.base_slip = {apart.dot(c.tangent1) - c.tangent1.dot(c.rb - c.ra),
+                   apart.dot(c.tangent2) - c.tangent2.dot(c.rb - c.ra)};
+    if (settings.warm_starting && kept.solved) {
       c.normal_impulse = rescale * kept.normal_impulse;
       c.tangent1_impulse = rescale * kept.friction_impulse.dot(c.tangent1);
       c.tangent2_impulse = rescale * kept.friction_impulse.dot(c.tangent2);
@@ -142,6 +163,8 @@ void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& mat
     p.mass_scale[lane] = c.soft.mass_scale;
     p.impulse_scale[lane] = c.soft.impulse_scale;
     p.base_separation[lane] = c.base_separation;
+    p.base_slip[0][lane] = c.base_slip[0];
+    p.base_slip[1][lane] = c.base_slip[1];
     p.approach[lane] = c.approach;
     p.impulse[0][lane] = c.normal_impulse;
     p.impulse[1][lane] = c.tangent1_impulse;
@@ -285,13 +308,36 @@ void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake, 
 void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies,
                                          float substep) {
   const std::span<Transform> poses = bodies.poses();
+  const float most_spin = kMostTurnPerSubstep / substep;
   for (const std::uint32_t i : awake) {
+    const float spin = angular_[i].norm();
+    if (spin > most_spin) angular_[i] *= most_spin / spin;
     // The angular velocity changes too: the angular momentum is kept as the inertia turns.
-    integrate_position(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
-                       bodies.inverse_inertias_body()[i], substep);
+    integrate_position_keeping_spin(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
+                                    bodies.inverse_inertias_body()[i], substep);
     moved_[i] = poses[i].translation - position_[i];
     turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
   }
+}
+
+Vec3 SoftStepSolver::anchor(const Contact& contact, std::size_t k, const Constraint& c,
+                            const ContactMemory& kept, float slop) {
+  const Mat3 turn_a = rotation_[c.a].toRotationMatrix();
+  const Mat3 turn_b = rotation_[c.b].toRotationMatrix();
+  if (kept.anchored) {
+    const Vec3 apart =
+        (position_[c.b] + turn_b * kept.anchor_b) - (position_[c.a] + turn_a * kept.anchor_a);
+    const float across = apart.dot(c.normal);
+    const Vec3 along = apart - across * c.normal;
+    if (std::abs(across) <= kAnchorLift * slop && along.norm() <= kAnchorReach) {
+      anchors_[k] = {kept.anchor_a, kept.anchor_b};
+      return apart;
+    }
+  }
+  // Anchored afresh: both at the contact point.
+  anchors_[k] = {turn_a.transpose() * (contact.point - position_[c.a]),
+                 turn_b.transpose() * (contact.point - position_[c.b])};
+  return Vec3::Zero();
 }
 
 void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
@@ -304,11 +350,18 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
       if (!(p.mass[0][lane] > 0.0f)) continue;
       ContactMemory& kept = memory[block.contact[i][lane]];
       kept.normal_impulse = p.impulse[0][lane];
-      kept.solved_impulse = p.impulse[0][lane];
+      kept.solved = true;
       const Vec3 normal(p.normal[0][lane], p.normal[1][lane], p.normal[2][lane]);
       const Vec3 tangent1(p.tangent1[0][lane], p.tangent1[1][lane], p.tangent1[2][lane]);
       const Vec3 tangent2 = normal.cross(tangent1);
       kept.friction_impulse = p.impulse[1][lane] * tangent1 + p.impulse[2][lane] * tangent2;
+      // It stuck unless its friction reached the Coulomb bound: then it slid, and sticks afresh
+      // where it stops.
+      const float bound = kSlidingShare * block.friction[lane] * p.impulse[0][lane];
+      kept.anchored = p.impulse[0][lane] > 0.0f && kept.friction_impulse.norm() < bound;
+      const std::array<Vec3, 2>& anchors = anchors_[block.contact[i][lane]];
+      kept.anchor_a = anchors[0];
+      kept.anchor_b = anchors[1];
     }
   };
   for (const ManifoldBlock<kLaneWidth>& block : blocks_) {
@@ -337,7 +390,9 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
   load_bodies(bodies);
   prepare(contacts, memory, settings, gravity, substep, stats);
   pack(materials);
-  const LaneSettings lane_settings{.inverse_substep = 1.0f / substep,
+  const LaneSettings lane_settings{.substep = substep,
+                                   .inverse_substep = 1.0f / substep,
+                                   .gravity = {gravity.x(), gravity.y(), gravity.z()},
                                    .linear_slop = settings.linear_slop,
                                    .max_correction_speed = settings.max_correction_speed,
                                    .rolling_resistance = settings.rolling_resistance,

@@ -65,6 +65,8 @@ class SoftStepSolver {
     // Separation at the step's start less the anchors' offset along the normal, so that adding
     // the anchors' current offset gives the current separation. unit: m
     float base_separation = 0.0f;
+    // The same along the tangents for static friction's anchors (ContactMemory::anchor_a). unit: m
+    std::array<float, 2> base_slip{};
     float approach = 0.0f;  // relative normal speed before the step. unit: m/s
     bool a_moves = false;   // the body has mass here (neither static nor asleep nor the ground)
     bool b_moves = false;
@@ -115,10 +117,17 @@ class SoftStepSolver {
   void integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
                             float substep);
   void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies, float substep);
+  // Static friction's anchors of a contact at the step's start: those it kept while they still
+  // meet near the contact, else its point now. Writes anchors_[k]; returns how far b's anchor is
+  // from a's. unit: m
+  Vec3 anchor(const Contact& contact, std::size_t k, const Constraint& c, const ContactMemory& kept,
+              float slop);
   void keep_impulses(std::span<ContactMemory> memory) const;
   [[nodiscard]] LaneBodies lane_bodies();
 
   std::vector<Constraint> constraints_;
+  // Per contact: static friction's anchors in each body's frame, as this step started them.
+  std::vector<std::array<Vec3, 2>> anchors_;
   std::vector<Manifold> manifolds_;
   std::vector<ManifoldBodies> manifold_bodies_;
   ConstraintColouring colouring_;

@@ -1,8 +1,8 @@
 #pragma once
 
-// The bodies as both plausible solvers see them: one slot per body of the store and one more, the
-// last, for the ground plane. The solvers work on these velocities and write the awake bodies'
-// back to the store when done.
+// The bodies as the soft step sees them: one slot per body of the store and one more, the last,
+// for the ground plane. The solver works on these velocities and writes the awake bodies' back to
+// the store when done.
 
 #include <cstdint>
 #include <span>

@@ -1,27 +1,22 @@
-// Stage 5 of a substep: the positions (the second half of semi-implicit Euler) and, in plausible
-// mode, the split-impulse penetration recovery (the soft step moved the bodies in stage 4); then
-// each moved body's world inertia, and a body whose state stopped being finite stops the world.
+// Stage 5 of a substep: the positions (the second half of semi-implicit Euler) in paper mode; the
+// soft step moved the bodies in stage 4. Then each moved body's world inertia, and a body whose
+// state stopped being finite stops the world.
 
 #include "core/stopwatch.h"
-#include "dynamics/contact_solver.h"
 #include "sphys/world.h"
 
 namespace sphys {
 
 void World::integrate_positions(float dt, bool plausible, StepStats& stats) {
   const StepClock::time_point start = StepClock::now();
-  const bool integrate = !soft_step();
   BodyStore& store = *store_;
   const std::span<Transform> poses = store.poses();
   const std::span<Vec3> linear = store.linear_velocities();
   const std::span<Vec3> angular = store.angular_velocities();
   for (const std::uint32_t i : store.awake()) {
-    if (integrate) {
+    if (!plausible) {
       integrate_position(poses[i], linear[i], angular[i], store.inertias_body()[i],
                          store.inverse_inertias_body()[i], dt);
-    }
-    if (integrate && plausible) {
-      correct_position(poses[i], solver_->position_linear()[i], solver_->position_angular()[i], dt);
     }
     store.update_world_inertia(i);
   }

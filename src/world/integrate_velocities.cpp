@@ -1,6 +1,6 @@
-// Stage 1 of a substep: the velocities under gravity (the first half of semi-implicit Euler), and
-// each moving body's reach in the substep for speculative contacts. The soft step integrates in
-// its own substeps (stage 4): here it only bounds the reach, with gravity's speed at the end.
+// Stage 1 of a substep. Paper mode: the velocities under gravity (the first half of semi-implicit
+// Euler). Plausible mode: each moving body's reach in the substep for speculative contacts, with
+// gravity's speed at its end; the soft step integrates in its own substeps (stage 4).
 
 #include <cmath>
 
@@ -22,13 +22,12 @@ void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
 }
 
 bool World::integrate_velocity(std::uint32_t body, float dt, bool plausible) {
-  const bool soft = soft_step();
   Vec3& linear = store_->linear_velocities()[body];
-  // The first half of semi-implicit Euler.
-  if (!soft) linear += settings_.gravity * dt;
-  if (!plausible) return true;
-  const Vec3 gravity_speed = soft ? Vec3(settings_.gravity * dt) : Vec3::Zero();
-  const Vec3 displacement = (linear + gravity_speed) * dt;
+  if (!plausible) {
+    linear += settings_.gravity * dt;  // the first half of semi-implicit Euler
+    return true;
+  }
+  const Vec3 displacement = (linear + settings_.gravity * dt) * dt;
   const float turn_reach = store_->angular_velocities()[body].norm() * dt * store_->extents()[body];
   // Speeds whose squares overflow single precision leave no bound on the motion to detect
   // with: the simulation has gone non-finite in all but name.

@@ -1,16 +1,11 @@
-// Stage 4 of a substep: the response. Plausible mode: each contact's material, then the solver
-// over the islands: the soft step (which moves the bodies too) or sequential impulses. Paper
-// mode: eq. 4 per contact in order.
-
-#include <algorithm>
+// Stage 4 of a substep: the response. Plausible mode: each contact's material, then the soft step
+// (which moves the bodies too). Paper mode: eq. 4 per contact in order.
 
 #include "core/buffers.h"
 #include "core/stopwatch.h"
-#include "dynamics/contact_solver.h"
 #include "dynamics/paper_response.h"
 #include "dynamics/soft_step_solver.h"
 #include "sphys/world.h"
-#include "world/sleep_tracker.h"
 
 namespace sphys {
 
@@ -43,29 +38,17 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
   const std::span<const Contact> contacts = detector_.contacts();
   if (plausible) {
     mix_materials();
-    // A step cut into substeps shares its velocity passes out among them, each substep running at
-    // least substep_velocity_iterations: at 4 × 50 bunnies, depth 2, a step ran 4.5 substeps on
-    // average while stacks landed, and twenty passes in each bought no plausibility.
-    SolverSettings solver = settings_.solver;
-    const std::uint32_t substeps = std::max(stats.substeps, 1u);
-    solver.velocity_iterations =
-        std::max(std::min(solver.substep_velocity_iterations, solver.velocity_iterations),
-                 (solver.velocity_iterations + substeps - 1) / substeps);
-    const bool soft = soft_step();
     // Every collision pass gets all the soft step's substeps, even when fast bodies split a frame
     // into several: sharing them out (a quarter each of four) let a blow into a pile sink bodies
     // 10% of a bunny deep, against 4% (stacks:4x50, depth 2).
-    const std::uint32_t solver_substeps = solver.soft_substeps;
+    const SolverSettings& solver = settings_.solver;
     const ContactSolverStats solved =
-        soft ? soft_solver_->solve(*store_, contacts, detector_.memory(), materials_, solver,
-                                   settings_.gravity, dt, solver_substeps, *parallel_)
-             : solver_->solve(*store_, sleep_->islands(), contacts, detector_.memory(), materials_,
-                              solver, settings_.gravity, dt, *parallel_);
+        solver_->solve(*store_, contacts, detector_.memory(), materials_, solver, settings_.gravity,
+                       dt, solver.soft_substeps, *parallel_);
     stats.impulses += solved.constraints;
     stats.warm_started += solved.warm_started;
     stats.bounces += solved.bounces;
-    // The soft step: a solve and a relax pass per substep.
-    stats.response_passes += soft ? 2 * solver_substeps : solver.velocity_iterations;
+    stats.response_passes += 2 * solver.soft_substeps;  // a solve and a relax pass per substep
   } else {
     const PaperResponseStats response = apply_paper_response(
         *store_, contacts, settings_.ground_restitution, settings_.paper_passes);

@@ -77,7 +77,6 @@ constexpr SettingRange above(double low) { return {.min = low, .min_inclusive = 
 
 constexpr std::array<std::string_view, 2> kResponseChoices = {"paper", "plausible"};
 constexpr std::array<std::string_view, 2> kContactChoices = {"all", "reduced"};
-constexpr std::array<std::string_view, 2> kMethodChoices = {"soft_step", "sequential_impulses"};
 
 using W = WorldSettings;
 using S = SolverSettings;
@@ -100,9 +99,9 @@ const auto kTable = std::to_array<Setting>({
         .kind = SettingKind::kEnum,
         .choices = kResponseChoices,
         .doc = "How contacts change velocities. paper: the impulse of the paper's eq. 4 per "
-               "contact, no friction (docs/experiment.md). plausible: sequential impulses with "
-               "warm starting, Coulomb friction, restitution above a threshold, penetration "
-               "recovery, speculative contacts and sleeping (docs/dynamics.md).",
+               "contact, no friction (docs/experiment.md). plausible: the soft step with warm "
+               "starting, Coulomb friction, rolling resistance, restitution above a threshold, "
+               "speculative contacts and sleeping (docs/dynamics.md).",
     }),
     scalar<Top<&W::paper_passes>>({
         .key = "paper_passes",
@@ -150,18 +149,6 @@ const auto kTable = std::to_array<Setting>({
         .doc = "Plausible mode: a body's fastest point (|v| + |ω| · its bounding radius) travels "
                "at most this much of its bounding radius per substep, within max_substeps.",
     }),
-    scalar<Nested<&W::solver, &S::method>>({
-        .object = "solver",
-        .key = "method",
-        .field = "solver.method",
-        .kind = SettingKind::kEnum,
-        .choices = kMethodChoices,
-        .doc = "Plausible mode: how contacts are solved. soft_step: one collision pass, then "
-               "solver.soft_substeps substeps that each integrate, solve the contacts once with a "
-               "spring-damper push out of penetration and relax them once (Box2D v3). "
-               "sequential_impulses: solver.velocity_iterations passes per step, split-impulse "
-               "recovery and shock propagation.",
-    }),
     scalar<Nested<&W::solver, &S::soft_substeps>>({
         .object = "solver",
         .key = "soft_substeps",
@@ -169,7 +156,7 @@ const auto kTable = std::to_array<Setting>({
         .kind = SettingKind::kInteger,
         .unit = "substeps",
         .range = between(1, kMaxSubsteps),
-        .doc = "Soft step: solver substeps per collision pass.",
+        .doc = "Solver substeps per collision pass, each one solve and one relax pass.",
     }),
     scalar<Nested<&W::solver, &S::contact_hertz>>({
         .object = "solver",
@@ -177,7 +164,7 @@ const auto kTable = std::to_array<Setting>({
         .field = "solver.contact_hertz",
         .unit = "Hz",
         .range = above(0),
-        .doc = "Soft step: the contacts' spring frequency, capped at an eighth of the substep "
+        .doc = "The contacts' spring frequency, capped at an eighth of the substep "
                "rate; contacts with an immovable body are twice as stiff.",
     }),
     scalar<Nested<&W::solver, &S::contact_damping_ratio>>({
@@ -186,35 +173,7 @@ const auto kTable = std::to_array<Setting>({
         .field = "solver.contact_damping_ratio",
         .unit = "dimensionless",
         .range = at_least(0),
-        .doc = "Soft step: the contacts' damping ratio (1 is critical damping).",
-    }),
-    scalar<Nested<&W::solver, &S::velocity_iterations>>({
-        .object = "solver",
-        .key = "velocity_iterations",
-        .field = "solver.velocity_iterations",
-        .kind = SettingKind::kInteger,
-        .unit = "passes",
-        .range = between(1, kMaxIterations),
-        .doc = "Passes over the contacts for velocities per step.",
-    }),
-    scalar<Nested<&W::solver, &S::substep_velocity_iterations>>({
-        .object = "solver",
-        .key = "substep_velocity_iterations",
-        .field = "solver.substep_velocity_iterations",
-        .kind = SettingKind::kInteger,
-        .unit = "passes",
-        .range = between(1, kMaxIterations),
-        .doc = "Fewest velocity passes of a substep: a step cut into n substeps gives each the "
-               "larger of this and velocity_iterations / n.",
-    }),
-    scalar<Nested<&W::solver, &S::position_iterations>>({
-        .object = "solver",
-        .key = "position_iterations",
-        .field = "solver.position_iterations",
-        .kind = SettingKind::kInteger,
-        .unit = "passes",
-        .range = between(0, kMaxIterations),
-        .doc = "Passes of the split-impulse penetration recovery per step.",
+        .doc = "The contacts' damping ratio (1 is critical damping).",
     }),
     scalar<Nested<&W::solver, &S::warm_starting>>({
         .object = "solver",
@@ -222,23 +181,6 @@ const auto kTable = std::to_array<Setting>({
         .field = "solver.warm_starting",
         .kind = SettingKind::kBool,
         .doc = "Start from the previous step's impulses.",
-    }),
-    scalar<Nested<&W::solver, &S::shock_propagation>>({
-        .object = "solver",
-        .key = "shock_propagation",
-        .field = "solver.shock_propagation",
-        .kind = SettingKind::kBool,
-        .doc = "After the passes, solve the contacts level by level from the ground up, so that "
-               "no body of a pile is left sinking into its support.",
-    }),
-    scalar<Nested<&W::solver, &S::shock_speed>>({
-        .object = "solver",
-        .key = "shock_speed",
-        .field = "solver.shock_speed",
-        .unit = "m/s",
-        .range = at_least(0),
-        .doc = "Shock propagation acts on contacts still closing faster than this after the "
-               "passes, leaving resting contacts to the solver.",
     }),
     scalar<Nested<&W::solver, &S::restitution_threshold>>({
         .object = "solver",
@@ -256,21 +198,13 @@ const auto kTable = std::to_array<Setting>({
         .range = at_least(0),
         .doc = "Penetration left alone, so that resting contacts keep touching.",
     }),
-    scalar<Nested<&W::solver, &S::position_correction>>({
-        .object = "solver",
-        .key = "position_correction",
-        .field = "solver.position_correction",
-        .unit = "dimensionless",
-        .range = between(0, 1),
-        .doc = "Fraction of the penetration beyond the slop removed per step.",
-    }),
     scalar<Nested<&W::solver, &S::max_correction_speed>>({
         .object = "solver",
         .key = "max_correction_speed",
         .field = "solver.max_correction_speed",
         .unit = "m/s",
         .range = at_least(0),
-        .doc = "Largest speed of the penetration recovery.",
+        .doc = "Largest speed at which the contact springs push bodies apart.",
     }),
     scalar<Nested<&W::solver, &S::rolling_resistance>>({
         .object = "solver",
@@ -389,6 +323,28 @@ const auto kTable = std::to_array<Setting>({
     }),
 });
 
+// The settings of the sequential-impulse solver, which the soft step replaced as the plausible
+// mode's only solver.
+constexpr auto kRemoved = std::to_array<RemovedSetting>({
+    {"solver.method", "the soft step is the only solver; delete the setting"},
+    {"solver.velocity_iterations",
+     "the soft step solves and relaxes each contact once per substep; set solver.soft_substeps"},
+    {"solver.substep_velocity_iterations",
+     "the soft step solves and relaxes each contact once per substep; set solver.soft_substeps"},
+    {"solver.position_iterations",
+     "the soft step's contact springs push bodies apart; set solver.contact_hertz and "
+     "solver.contact_damping_ratio"},
+    {"solver.position_correction",
+     "the soft step's contact springs push bodies apart; set solver.contact_hertz and "
+     "solver.contact_damping_ratio"},
+    {"solver.shock_propagation",
+     "the soft step's relax passes and stiffer springs against immovable bodies carry a pile's "
+     "weight; delete the setting"},
+    {"solver.shock_speed",
+     "the soft step's relax passes and stiffer springs against immovable bodies carry a pile's "
+     "weight; delete the setting"},
+});
+
 // What a value must be, for messages: "between 1 and 64", "finite and not negative".
 std::string requirement(const Setting& setting) {
   const SettingRange& range = setting.range;
@@ -459,6 +415,17 @@ bool SettingRange::contains(double value) const {
 
 std::span<const Setting> settings_table() { return kTable; }
 
+const RemovedSetting* removed_setting(std::string_view field) {
+  const auto found =
+      std::find_if(kRemoved.begin(), kRemoved.end(),
+                   [&](const RemovedSetting& removed) { return removed.field == field; });
+  return found == kRemoved.end() ? nullptr : &*found;
+}
+
+std::string removed_setting_message(const RemovedSetting& removed) {
+  return std::string(removed.field) + " was removed: " + std::string(removed.replacement);
+}
+
 const Setting& setting_of(std::string_view field) {
   const auto found = std::find_if(kTable.begin(), kTable.end(),
                                   [&](const Setting& setting) { return setting.field == field; });
@@ -473,8 +440,12 @@ void set_setting_from_text(WorldSettings& settings, std::string_view field, std:
   const std::string where = std::string(source) + " " + std::string(field) + ": ";
   const auto found = std::find_if(kTable.begin(), kTable.end(),
                                   [&](const Setting& setting) { return setting.field == field; });
-  if (found == kTable.end())
+  if (found == kTable.end()) {
+    if (const RemovedSetting* removed = removed_setting(field)) {
+      throw Error(std::string(source) + " " + removed_setting_message(*removed));
+    }
     throw Error(std::string(source) + ": no setting " + std::string(field));
+  }
   const Setting& setting = *found;
   double value = 0.0;
   switch (setting.kind) {

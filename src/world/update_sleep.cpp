@@ -19,13 +19,8 @@ void World::update_sleep(float dt, StepStats& stats) {
                                  resting_depth(), sleep_changes_);
 }
 
-// Sequential impulses push resting contacts out to the linear slop; one twice as deep has its
-// recovery still to finish (with all its neighbours asleep and immovable, it never would). The
-// soft step's contact springs give under load by design (millimetres at the bottom of a heap of
-// 10,000 bunnies), so depth does not hold its bodies awake.
-float World::resting_depth() const {
-  if (soft_step()) return std::numeric_limits<float>::infinity();
-  return 2.0f * settings_.solver.linear_slop;
-}
+// The soft step's contact springs give under load by design (a heavy pile's bottom contacts
+// rest deeper than its top's), so depth does not hold its bodies awake.
+float World::resting_depth() const { return std::numeric_limits<float>::infinity(); }
 
 }  // namespace sphys

@@ -6,7 +6,6 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/stopwatch.h"
-#include "dynamics/contact_solver.h"
 #include "dynamics/soft_step_solver.h"
 #include "sphys/error.h"
 #include "sphys/settings_table.h"
@@ -84,8 +83,7 @@ World::World(const WorldSettings& settings)
     : settings_(settings),
       store_(std::make_unique<BodyStore>()),
       detector_(collision_settings(settings)),
-      solver_(std::make_unique<ContactSolver>()),
-      soft_solver_(std::make_unique<SoftStepSolver>()),
+      solver_(std::make_unique<SoftStepSolver>()),
       sleep_(std::make_unique<SleepTracker>(store_.get())) {
   check_world_settings(settings);
   parallel_ = std::make_unique<Parallel>(settings.threads);
@@ -209,11 +207,6 @@ void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) 
   const std::uint32_t ib = checked(b);
   check_material(material.restitution, material.friction);
   pair_materials_[pair_key(ia, ib)] = material;
-}
-
-bool World::soft_step() const {
-  return settings_.response == ResponseMode::kPlausible &&
-         settings_.solver.method == SolverMethod::kSoftStep;
 }
 
 bool World::asleep(BodyId id) const { return store_->asleep(checked(id)); }

@@ -104,7 +104,7 @@ TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
   const test::TempDir dir;
   const fs::path scene =
       dir.write("fall.json", scene_text(R"("gravity": [0, -6, 0], "time_step": 0.1, "frames": 4,
-                                "max_substeps": 1, "solver": {"method": "soft_step", "soft_substeps": 4},
+                                "max_substeps": 1, "solver": {"soft_substeps": 4},
                                 "ground": {"type": "none"}, "bodies": [)" +
                                         std::string(kQuickBody) + "]"));
   const fs::path out = dir.path() / "out";
@@ -222,10 +222,13 @@ TEST(SimulateCommand, BadOptionsExitWithCode2) {
       {{"--passes", "0"}, "--passes must be between 1 and 1000, got 0"},
       {{"--passes", "1001"}, "--passes must be between 1 and 1000, got 1001"},
       {{"--ground", "box"}, "--ground must be octree or plane, got 'box'"},
-      {{"--set", "solver.method"}, "--set takes FIELD=VALUE, got 'solver.method'"},
+      {{"--set", "solver.soft_substeps"}, "--set takes FIELD=VALUE, got 'solver.soft_substeps'"},
       {{"--set", "solver.nope=1"}, "--set: no setting solver.nope"},
-      {{"--set", "solver.method=fast"},
-       "--set solver.method: must be soft_step or sequential_impulses, got 'fast'"},
+      {{"--set", "solver.method=soft_step"},
+       "--set solver.method was removed: the soft step is the only solver; delete the setting"},
+      {{"--set", "solver.velocity_iterations=20"},
+       "--set solver.velocity_iterations was removed: the soft step solves and relaxes each "
+       "contact once per substep; set solver.soft_substeps"},
       {{"--set", "sleep.enabled=yes"}, "--set sleep.enabled: must be true or false"},
       {{"--set", "solver.soft_substeps=2.5"},
        "--set solver.soft_substeps: must be a whole number from 0, got '2.5'"},
@@ -270,9 +273,10 @@ nlohmann::json dropped_bunny(const test::TempDir& dir, const std::string& mode) 
 }
 
 TEST(SimulateCommand, TheLowestCentreIsGivenAtTheEndAndOverTheRun) {
-  // A bunny thrown up at 5 m/s from y = 0 with nothing below, for half a second: it is lowest
-  // after the first step, y1 = (5 - g dt) dt = 0.0806 m (semi-implicit Euler), and at the end
-  // y30 = 30 dt 5 - g dt^2 (1 + ... + 30) = 2.5 - 9.81 * 465 / 3600 = 1.2329 m, still rising.
+  // A bunny thrown up at 5 m/s from y = 0 with nothing below, for half a second, by semi-implicit
+  // Euler in the soft step's 6 substeps of h = dt / 6 a frame: after k substeps
+  // y = 5 k h - g h^2 (1 + ... + k). It is lowest after the first frame, y1 = 5 dt - 21 g h^2 =
+  // 0.0817 m, and at the end y = 2.5 - 16290 g h^2 = 1.2669 m, still rising.
   test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path scene =
@@ -282,9 +286,9 @@ TEST(SimulateCommand, TheLowestCentreIsGivenAtTheEndAndOverTheRun) {
       sphys_cli({"simulate", scene.string(), "--out", (dir.path() / "out").string(), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
-  constexpr double g = 9.81, dt = 1.0 / 60.0;
-  EXPECT_NEAR(json["lowest_center_y_run_m"].get<double>(), (5.0 - g * dt) * dt, 1e-5);
-  EXPECT_NEAR(json["lowest_center_y_end_m"].get<double>(), 30 * dt * 5.0 - g * dt * dt * 465, 1e-4);
+  constexpr double g = 9.81, dt = 1.0 / 60.0, h = dt / 6.0;
+  EXPECT_NEAR(json["lowest_center_y_run_m"].get<double>(), 5.0 * dt - g * h * h * 21, 1e-5);
+  EXPECT_NEAR(json["lowest_center_y_end_m"].get<double>(), 30 * dt * 5.0 - g * h * h * 16290, 1e-4);
   EXPECT_EQ(json["movable_bodies"], 1);
   EXPECT_EQ(json["bodies_still_moving"], 1);
   EXPECT_EQ(json["bodies_at_rest"], 0);
@@ -294,7 +298,7 @@ TEST(SimulateCommand, TheLowestCentreIsGivenAtTheEndAndOverTheRun) {
       sphys_cli({"simulate", scene.string(), "--out", (dir.path() / "text").string()});
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_THAT(text.out, HasSubstr("0 of 1 movable bodies at the end (0 asleep, 1 still moving)"));
-  EXPECT_THAT(text.out, HasSubstr("m at the end, 0.08061 m over the run)"));
+  EXPECT_THAT(text.out, HasSubstr("m at the end, 0.08174 m over the run)"));
 }
 
 TEST(SimulateCommand, PlausibleModeBringsADroppedBunnyToRestOnThePlane) {
@@ -363,12 +367,12 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
   EXPECT_EQ(recorded["ground"]["type"], "plane");
 
   const test::CommandResult set =
-      sphys_cli({"simulate", scene.string(), "--set", "solver.method=soft_step", "--set",
+      sphys_cli({"simulate", scene.string(), "--set", "solver.contact_hertz=20", "--set",
                  "solver.soft_substeps=2", "--set", "sleep.enabled=false", "--out", out.string()});
   ASSERT_EQ(set.exit_code, 0) << set.err;
   const auto set_scene =
       nlohmann::json::parse(tools::read_recording(out / "recording.sphysrec").metadata);
-  EXPECT_EQ(set_scene["solver"]["method"], "soft_step");
+  EXPECT_EQ(set_scene["solver"]["contact_hertz"], 20);
   EXPECT_EQ(set_scene["solver"]["soft_substeps"], 2);
   EXPECT_EQ(set_scene["sleep"]["enabled"], false);
 

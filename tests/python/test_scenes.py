@@ -30,7 +30,7 @@ SCENE = {
     "gravity": [0.0, -9.5, 0.25],
     "response": "plausible",
     "substeps": 2,
-    "solver": {"method": "soft_step", "velocity_iterations": 9},
+    "solver": {"contact_hertz": 20, "soft_substeps": 9},
     "sleep": {"time": 0.75},
     "ground": {"type": "plane", "height": -0.5, "friction": 0.6},
     "defaults": {"triangles": 500, "sphere_tree": {"depth": 2}, "density": 800},
@@ -68,8 +68,8 @@ def test_scene_round_trips_through_json_and_dicts():
     # Every key written out, the given values kept.
     assert d["format"] == "sphys-scene" and d["version"] == 1
     assert d["gravity"] == [0.0, -9.5, 0.25] and d["substeps"] == 2
-    assert d["solver"]["method"] == "soft_step" and d["solver"]["velocity_iterations"] == 9
-    assert d["solver"]["soft_substeps"] == 4  # a default, written out
+    assert d["solver"]["contact_hertz"] == 20 and d["solver"]["soft_substeps"] == 9
+    assert d["solver"]["rolling_resistance"] == 0.01  # a default, written out
     assert d["sleep"] == {"enabled": True, "speed": 0.05, "time": 0.75}
     assert d["ground"]["type"] == "plane" and d["ground"]["height"] == -0.5
     assert [b["position"] for b in d["bodies"]] == [b["position"] for b in SCENE["bodies"]]
@@ -114,26 +114,26 @@ def test_scene_frames_time_step_name():
 def test_scene_settings():
     scene = sphys.Scene.from_dict(SCENE)
     s = scene.settings
-    assert s["solver.method"] == "soft_step" and s["solver.velocity_iterations"] == 9
+    assert s["solver.contact_hertz"] == 20 and s["solver.soft_substeps"] == 9
     assert s["sleep.time"] == 0.75 and s["substeps"] == 2
     assert s["ground_friction"] == 0.6 and s["ground_restitution"] == 0.3
     np.testing.assert_array_equal(np.float32(s["gravity"]), np.float32([0.0, -9.5, 0.25]))
     assert set(s) == {row["field"] for row in sphys.settings_table()}
 
     # Nested and dotted, as World() takes them; the scene file follows.
-    scene.set_settings({"solver": {"method": "sequential_impulses"}, "sleep.time": 1.5,
+    scene.set_settings({"solver": {"contact_hertz": 45}, "sleep.time": 1.5,
                         "ground_friction": 0.25, "substeps": 3})
     s = scene.settings
-    assert s["solver.method"] == "sequential_impulses" and s["sleep.time"] == 1.5
+    assert s["solver.contact_hertz"] == 45 and s["sleep.time"] == 1.5
     assert s["ground_friction"] == 0.25 and s["substeps"] == 3
-    assert s["solver.velocity_iterations"] == 9  # untouched
+    assert s["solver.soft_substeps"] == 9  # untouched
     d = scene.to_dict()
-    assert d["solver"]["method"] == "sequential_impulses" and d["sleep"]["time"] == 1.5
+    assert d["solver"]["contact_hertz"] == 45 and d["sleep"]["time"] == 1.5
     assert d["ground"]["friction"] == 0.25 and d["substeps"] == 3
 
     # A refused change names the setting and changes nothing.
     for bad, name in [({"bogus": 1}, "bogus"), ({"substeps": 0}, "substeps"),
-                      ({"solver": {"method": "bad"}}, r"solver\.method")]:
+                      ({"solver": {"method": "soft_step"}}, r"solver\.method was removed")]:
         with pytest.raises(sphys.Error, match=name):
             scene.set_settings(bad)
     assert scene.settings == s
@@ -236,7 +236,7 @@ def simulate_frame_by_frame(scene, frames, **options):
     return sim, np.stack(poses)
 
 
-@pytest.mark.parametrize("settings", [(), ("solver.method=soft_step", "sleep.time=0.25")])
+@pytest.mark.parametrize("settings", [(), ("solver.soft_substeps=6", "sleep.time=0.25")])
 def test_simulation_equals_the_command_line_bit_for_bit(simulate_cli, settings):
     frames = 30
     summary, recording_path = simulate_cli("stacks:1x3", frames, *settings)

@@ -96,7 +96,7 @@ def test_table1_scenes_are_the_papers_rows():
 
 
 def test_grid_is_every_scene_with_every_setting_and_seed_in_order():
-    settings = [{"response": "paper"}, {"solver.method": "soft_step"}]
+    settings = [{"response": "paper"}, {"solver.soft_substeps": 6}]
     runs = sweep.grid(["stacks:1x2", {"scene": "stacks:2x1", "depth": 2, "label": "two"}],
                       settings, seeds=[None, 5], frames=7)
     assert len(runs) == 8
@@ -147,7 +147,7 @@ def test_grid_rejects_bad_parameters(kwargs, message):
 
 
 @pytest.mark.parametrize("depth, settings", [(None, {}), (2, {"response": "paper"}),
-                                             (3, {"solver.method": "soft_step", "sleep.enabled": False})])
+                                             (3, {"solver.soft_substeps": 6, "sleep.enabled": False})])
 def test_a_run_is_the_command_lines_simulate(cli, tmp_path, depth, settings):
     frames = 90
     run = sweep.grid({"scene": "stacks:2x3", "depth": depth}, [settings], frames=frames)[0]
@@ -224,8 +224,8 @@ def test_a_failing_run_is_reported_not_raised(missing_mesh_file, case):
         "dict": ({"scene": missing_mesh_scene(), "label": "broken"}, {}, None),
         "depth": ({"scene": "stacks:1x1", "depth": 9}, {}, "the sphere-tree depth must be 1 to 6, got 9"),
         "setting": ("stacks:1x1", {"settings": [{"responce": "paper"}]}, "settings: no setting responce"),
-        "range": ("stacks:1x1", {"settings": [{"solver.velocity_iterations": 0}]},
-                  "solver.velocity_iterations must be between 1 and 1000, got 0"),
+        "range": ("stacks:1x1", {"settings": [{"solver.soft_substeps": 0}]},
+                  "solver.soft_substeps must be between 1 and 64, got 0"),
         "seed": (str(missing_mesh_file), {"seeds": [3]}, "seed: only the stacks:SxN presets take a seed"),
         "inline seed": ({"scene": missing_mesh_scene()}, {"seeds": [3]},
                         "seed: only the stacks:SxN presets take a seed, not an inline scene"),

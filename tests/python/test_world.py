@@ -40,23 +40,25 @@ def rotation_matrix(q):
 
 @pytest.mark.parametrize("gravity", [(0.0, -9.81, 0.0), (0.0, 0.0, -9.81)], ids=["y-up", "z-up"])
 def test_free_fall_is_exactly_semi_implicit_euler(sphere_tree, gravity):
-    # One substep per step (max_substeps=1 turns the adaptive substeps off), no ground: every step
-    # is v += g dt, then x += v dt, in float32 (src/world/integrate_velocities.cpp,
-    # src/bodies/rigid_body.cpp). numpy's float32 does the same operations, each rounded once (the
-    # library is not built with fused multiply-adds), so the two agree bit for bit.
+    # One collision pass per step (max_substeps=1 turns the adaptive substeps off), no ground: the
+    # soft step's 6 substeps of h = dt / 6 are each v += g h, then x += v h, in float32
+    # (src/dynamics/soft_step_solver.cpp, src/bodies/rigid_body.cpp). numpy's float32 does the
+    # same operations, each rounded once (the library is not built with fused multiply-adds), so
+    # the two agree bit for bit.
     world = sphys.World(gravity=gravity, max_substeps=1)
     start = (1.0, 10.0, 2.0)
     body = world.add_body(sphere_tree(0.5), position=start)
     g = np.array(gravity, dtype=np.float32)
-    dt = np.float32(DT)
+    h = np.float32(np.float32(DT) / np.float32(6))
     x = np.array(start, dtype=np.float32)
     v = np.zeros(3, dtype=np.float32)
     steps = 60
     for _ in range(steps):
         stats = world.step(DT)
         assert stats.substeps == 1
-        v = (v + g * dt).astype(np.float32)
-        x = (x + v * dt).astype(np.float32)
+        for _ in range(6):
+            v = (v + g * h).astype(np.float32)
+            x = (x + v * h).astype(np.float32)
     np.testing.assert_array_equal(world.poses([body])[0, :3], x)
     np.testing.assert_array_equal(world.velocities([body])[0, :3], v)
     np.testing.assert_array_equal(world.velocities([body])[0, 3:], 0.0)
@@ -66,7 +68,7 @@ def test_free_fall_is_exactly_semi_implicit_euler(sphere_tree, gravity):
     # x0 + g t²/2 by exactly |g| h t / 2 (x_n = x0 + g h² n(n+1)/2); the velocity is g t.
     t = steps * DT
     exact = np.array(start) + np.array(gravity) * t * t / 2
-    lag = np.array(gravity) * DT * t / 2
+    lag = np.array(gravity) * (DT / 6) * t / 2
     np.testing.assert_allclose(world.poses()[0, :3], exact + lag, atol=2e-5)
     np.testing.assert_allclose(world.velocities()[0, :3], np.array(gravity) * t, atol=2e-5)
 
@@ -90,7 +92,8 @@ def test_free_fall_with_adaptive_substeps_stays_within_the_euler_bound(sphere_tr
     slack = 1e-4  # float32 rounding of a position near 10 m over 90 steps
     assert parabola - g * DT * t / 2 - slack <= y <= parabola + slack
     vy = float(world.velocities([body])[0, 1])
-    assert vy == pytest.approx(-g * t, abs=1e-4)
+    # g h added in float32 once per solver substep, some thousand times.
+    assert vy == pytest.approx(-g * t, abs=5e-4)
     # The kinetic energy the step reports is ½ m v² of the one moving body.
     assert world.stats.kinetic_energy == pytest.approx(0.5 * mass * vy * vy, rel=1e-6)
     assert world.stats.bodies == 1 and world.stats.movable_bodies == 1
@@ -439,14 +442,14 @@ def test_step_stats_count_a_two_sphere_collision(sphere_tree):
     assert touching, "the spheres never met"
     meet = history[touching[0]]
     # One broad-phase pair, one root-root sphere test, one leaf pair, one contact, one island;
-    # nothing warm-started yet; sequential impulses' 20 velocity passes.
+    # nothing warm-started yet; the soft step's solve and relax passes of its 6 substeps.
     assert {k: meet[k] for k in ("candidate_pairs", "sphere_tests", "leaf_pairs", "contacts",
                                  "descended_pairs", "impulses", "islands", "warm_started",
                                  "reused_pairs", "pairs_cut_short", "coincident_centres",
                                  "response_passes", "substeps")} == {
         "candidate_pairs": 1, "sphere_tests": 1, "leaf_pairs": 1, "contacts": 1,
         "descended_pairs": 1, "impulses": 1, "islands": 1, "warm_started": 0, "reused_pairs": 0,
-        "pairs_cut_short": 0, "coincident_centres": 0, "response_passes": 20, "substeps": 1}
+        "pairs_cut_short": 0, "coincident_centres": 0, "response_passes": 12, "substeps": 1}
     assert history[touching[1]]["warm_started"] == 1  # the contact's impulse carried over
     bounced = [k for k, s in enumerate(history) if s["bounces"]]
     assert len(bounced) == 1 and history[bounced[0]]["bounces"] == 1  # restitution applied once
@@ -500,22 +503,22 @@ def test_world_going_non_finite_stops(sphere_tree):
 
 
 def test_settings_nested_and_dotted_are_the_same():
-    nested = sphys.World(solver={"method": "soft_step", "velocity_iterations": 7},
+    nested = sphys.World(solver={"contact_hertz": 20.0, "soft_substeps": 7},
                          sleep={"time": 0.25, "enabled": False}, substeps=3, response="paper",
                          gravity=(1.0, 2.0, -3.0), ground_friction=0.75)
-    dotted = sphys.World(**{"solver.method": "soft_step", "solver.velocity_iterations": 7,
+    dotted = sphys.World(**{"solver.contact_hertz": 20.0, "solver.soft_substeps": 7,
                             "sleep.time": 0.25, "sleep.enabled": False}, substeps=3,
                          response="paper", gravity=np.array([1.0, 2.0, -3.0]),
                          ground_friction=0.75)
     s = nested.settings
     assert s == dotted.settings
-    assert s["solver.method"] == "soft_step" and s["solver.velocity_iterations"] == 7
+    assert s["solver.contact_hertz"] == 20.0 and s["solver.soft_substeps"] == 7
     assert s["sleep.time"] == 0.25 and s["sleep.enabled"] is False
     assert s["substeps"] == 3 and s["response"] == "paper" and s["ground_friction"] == 0.75
     assert s["gravity"] == (1.0, 2.0, -3.0)
     # Everything not given keeps its default.
     defaults = sphys.World().settings
-    given = {"solver.method", "solver.velocity_iterations", "sleep.time", "sleep.enabled",
+    given = {"solver.contact_hertz", "solver.soft_substeps", "sleep.time", "sleep.enabled",
              "substeps", "response", "gravity", "ground_friction"}
     assert {k: v for k, v in s.items() if k not in given} == {
         k: v for k, v in defaults.items() if k not in given}
@@ -537,7 +540,7 @@ def test_settings_table():
     rows = {row["field"]: row for row in table}
     assert rows["substeps"]["valid"] == "1 to 64" and rows["substeps"]["unit"] == "substeps"
     assert rows["substeps"]["default"] == 1
-    assert rows["solver.method"]["default"] == "sequential_impulses"
+    assert rows["solver.soft_substeps"]["default"] == 6
     assert rows["sleep.enabled"]["default"] is True
     assert rows["solver.linear_slop"]["default"] == 0.0004 and rows["solver.linear_slop"]["unit"] == "m"
     # The default gravity (a float32 vector: compared as float32, whichever double shows it).
@@ -565,7 +568,8 @@ def test_settings_take_effect(sphere_tree):
 @pytest.mark.parametrize("settings, names", [
     ({"bogus": 1}, "bogus"),
     ({"solver": {"bogus": 1}}, "solver.bogus"),
-    ({"solver.method": "nope"}, "solver.method"),
+    ({"solver.method": "soft_step"}, "solver.method was removed"),
+    ({"solver": {"velocity_iterations": 20}}, "solver.velocity_iterations was removed"),
     ({"substeps": 0}, "substeps"),
     ({"substeps": 2.5}, "substeps"),
     ({"sleep": {"time": -1.0}}, "sleep.time"),

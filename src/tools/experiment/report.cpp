@@ -391,7 +391,7 @@ std::string mode_lines(const ExperimentMode& mode) {
     out += ", applies to plausible mode only)\n";
     return out;
   }
-  out += " (sequential impulses with friction, penetration recovery and sleeping)\n";
+  out += " (the soft step with friction, rolling resistance, contact springs and sleeping)\n";
   out += "Contacts: ";
   out += contact_set_name(mode.contacts);
   out += mode.contacts == ContactSet::kReduced

@@ -827,6 +827,14 @@ void read_settings(const Node& node, std::string_view object, WorldSettings& set
 
 // "solver" and "sleep": objects of world settings only.
 void read_settings_object(const Node& node, std::string_view object, WorldSettings& settings) {
+  if (node.json().is_object()) {
+    for (const auto& item : node.json().items()) {
+      const std::string field = std::string(object) + "." + item.key();
+      if (const RemovedSetting* removed = removed_setting(field)) {
+        node.child(item.key()).fail(removed_setting_message(*removed));
+      }
+    }
+  }
   check_keys(node, setting_keys(object));
   read_settings(node, object, settings);
 }

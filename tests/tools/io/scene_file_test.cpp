@@ -97,21 +97,14 @@ void expect_same_body(const BodySpec& a, const BodySpec& b) {
 }
 
 void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
-  EXPECT_EQ(a.method, b.method);
   EXPECT_EQ(a.soft_substeps, b.soft_substeps);
   EXPECT_EQ(bits(a.contact_hertz), bits(b.contact_hertz));
   EXPECT_EQ(bits(a.contact_damping_ratio), bits(b.contact_damping_ratio));
-  EXPECT_EQ(a.velocity_iterations, b.velocity_iterations);
-  EXPECT_EQ(a.substep_velocity_iterations, b.substep_velocity_iterations);
-  EXPECT_EQ(a.position_iterations, b.position_iterations);
   EXPECT_EQ(a.warm_starting, b.warm_starting);
-  EXPECT_EQ(a.shock_propagation, b.shock_propagation);
-  EXPECT_EQ(bits(a.shock_speed), bits(b.shock_speed));
   EXPECT_EQ(bits(a.rolling_resistance), bits(b.rolling_resistance));
   EXPECT_EQ(bits(a.reuse_distance), bits(b.reuse_distance));
   EXPECT_EQ(bits(a.restitution_threshold), bits(b.restitution_threshold));
   EXPECT_EQ(bits(a.linear_slop), bits(b.linear_slop));
-  EXPECT_EQ(bits(a.position_correction), bits(b.position_correction));
   EXPECT_EQ(bits(a.max_correction_speed), bits(b.max_correction_speed));
   EXPECT_EQ(a.contacts, b.contacts);
   EXPECT_EQ(a.manifold_points, b.manifold_points);
@@ -181,13 +174,10 @@ constexpr std::string_view kFullScene = R"({
   "substeps": 4,
   "max_substeps": 12,
   "substep_travel": 0.25,
-  "solver": {"method": "soft_step", "soft_substeps": 6, "contact_hertz": 45,
-             "contact_damping_ratio": 2.5,
-             "velocity_iterations": 12, "substep_velocity_iterations": 5,
-             "position_iterations": 0, "warm_starting": false,
-             "shock_propagation": false, "restitution_threshold": 0.5, "linear_slop": 0.01, "position_correction": 0.4,
+  "solver": {"soft_substeps": 7, "contact_hertz": 45, "contact_damping_ratio": 2.5,
+             "warm_starting": false, "restitution_threshold": 0.5, "linear_slop": 0.01,
              "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
-             "shock_speed": 0.75, "rolling_resistance": 0.02, "reuse_distance": 0.001,
+             "rolling_resistance": 0.02, "reuse_distance": 0.001,
              "speculative_contacts": false},
   "sleep": {"enabled": false, "speed": 0.1, "time": 2},
   "ground": {"type": "plane", "height": -1.5, "size": 20, "thickness": 0.75, "depth": 4,
@@ -232,20 +222,13 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   EXPECT_EQ(scene.max_substeps, 12);
   EXPECT_EQ(scene.substep_travel, 0.25f);
   SolverSettings solver;
-  solver.method = SolverMethod::kSoftStep;
-  solver.soft_substeps = 6;
+  solver.soft_substeps = 7;
   solver.contact_hertz = 45.0f;
   solver.contact_damping_ratio = 2.5f;
-  solver.velocity_iterations = 12;
-  solver.substep_velocity_iterations = 5;
-  solver.position_iterations = 0;
   solver.warm_starting = false;
-  solver.shock_propagation = false;
   solver.restitution_threshold = 0.5f;
   solver.linear_slop = 0.01f;
-  solver.position_correction = 0.4f;
   solver.max_correction_speed = 2.0f;
-  solver.shock_speed = 0.75f;
   solver.rolling_resistance = 0.02f;
   solver.reuse_distance = 0.001f;
   solver.contacts = ContactSet::kAll;
@@ -476,22 +459,14 @@ class RandomScene {
  private:
   SolverSettings solver() {
     SolverSettings solver;
-    solver.method = pick(std::array{SolverMethod::kSoftStep, SolverMethod::kSequentialImpulses});
     solver.soft_substeps = std::uniform_int_distribution<std::uint32_t>(1, 64)(rng_);
     solver.contact_hertz = std::abs(any_float()) + 1.0f;
     solver.contact_damping_ratio = std::abs(any_float());
-    solver.velocity_iterations = std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
-    solver.substep_velocity_iterations =
-        std::uniform_int_distribution<std::uint32_t>(1, 1000)(rng_);
-    solver.position_iterations = std::uniform_int_distribution<std::uint32_t>(0, 1000)(rng_);
     solver.warm_starting = coin();
-    solver.shock_propagation = coin();
-    solver.shock_speed = std::abs(any_float());
     solver.rolling_resistance = std::abs(any_float());
     solver.reuse_distance = std::abs(any_float());
     solver.restitution_threshold = std::abs(any_float());
     solver.linear_slop = std::abs(any_float());
-    solver.position_correction = unit_float();
     solver.max_correction_speed = std::abs(any_float());
     solver.contacts = pick(std::array{ContactSet::kAll, ContactSet::kReduced});
     solver.manifold_points = std::uniform_int_distribution<std::uint32_t>(1, 8)(rng_);
@@ -776,18 +751,25 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
        "must be between 1 and 64, got 65"},
       {scene_text(R"("substeps": 1.5, "bodies": [])"), "/substeps", "must be an integer, got 1.5"},
       {scene_text(R"("solver": [], "bodies": [])"), "/solver", "expected an object, got an array"},
-      {scene_text(R"("solver": {"velocity_iteration": 3}, "bodies": [])"),
-       "/solver/velocity_iteration", "unknown key; did you mean \"velocity_iterations\"?"},
-      {scene_text(R"("solver": {"velocity_iterations": 0}, "bodies": [])"),
-       "/solver/velocity_iterations", "must be between 1 and 1000, got 0"},
-      {scene_text(R"("solver": {"position_iterations": -1}, "bodies": [])"),
-       "/solver/position_iterations", "must be between 0 and 1000, got -1"},
+      {scene_text(R"("solver": {"soft_substep": 3}, "bodies": [])"), "/solver/soft_substep",
+       "unknown key; did you mean \"soft_substeps\"?"},
+      {scene_text(R"("solver": {"soft_substeps": 0}, "bodies": [])"), "/solver/soft_substeps",
+       "must be between 1 and 64, got 0"},
+      // The sequential-impulse solver's settings, removed with it, are refused by name.
+      {scene_text(R"("solver": {"velocity_iterations": 20}, "bodies": [])"),
+       "/solver/velocity_iterations",
+       "solver.velocity_iterations was removed: the soft step solves and relaxes each contact "
+       "once per substep; set solver.soft_substeps"},
+      {scene_text(R"("solver": {"method": "soft_step"}, "bodies": [])"), "/solver/method",
+       "solver.method was removed: the soft step is the only solver; delete the setting"},
+      {scene_text(R"("solver": {"position_correction": 0.2}, "bodies": [])"),
+       "/solver/position_correction",
+       "solver.position_correction was removed: the soft step's contact springs push bodies "
+       "apart; set solver.contact_hertz and solver.contact_damping_ratio"},
       {scene_text(R"("solver": {"warm_starting": "yes"}, "bodies": [])"), "/solver/warm_starting",
        "expected true or false, got a string \"yes\""},
-      {scene_text(R"("solver": {"shock_propagation": 0}, "bodies": [])"),
-       "/solver/shock_propagation", "expected true or false, got a number 0"},
-      {scene_text(R"("solver": {"shock_speed": -0.5}, "bodies": [])"), "/solver/shock_speed",
-       "must not be negative, got -0.5"},
+      {scene_text(R"("solver": {"contact_hertz": 0}, "bodies": [])"), "/solver/contact_hertz",
+       "must be positive, got 0"},
       {scene_text(R"("solver": {"rolling_resistance": "none"}, "bodies": [])"),
        "/solver/rolling_resistance", "expected a number, got a string \"none\""},
       {scene_text(R"("max_substeps": 0, "bodies": [])"), "/max_substeps",
@@ -798,8 +780,6 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
        "/solver/restitution_threshold", "must not be negative, got -1"},
       {scene_text(R"("solver": {"linear_slop": -0.01}, "bodies": [])"), "/solver/linear_slop",
        "must not be negative, got -0.01"},
-      {scene_text(R"("solver": {"position_correction": 1.5}, "bodies": [])"),
-       "/solver/position_correction", "must be between 0 and 1, got 1.5"},
       {scene_text(R"("solver": {"max_correction_speed": 1e39}, "bodies": [])"),
        "/solver/max_correction_speed", "does not fit in single precision, got 1e+39"},
       {scene_text(R"("solver": {"manifold_points": 9}, "bodies": [])"), "/solver/manifold_points",

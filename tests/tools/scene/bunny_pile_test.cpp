@@ -2,7 +2,8 @@
 // fall onto the exact plane. The top bunnies meet the piles at about 30 m/s, half their size per
 // step. Every bunny must come to rest within the 880 frames, no bunny may sink into another or
 // into the ground by more than 5% of its size at any time, the resting pile by no more than 1 mm
-// per metre of bunny, the whole pile must end asleep, and none may end below the plane.
+// per metre of bunny, the whole pile must end asleep, and none may end below the plane. The same
+// for the heaps of 1,000 and 10,000 bunnies (stacks of ten, depth 2).
 
 #include <algorithm>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include "sphys/tools/scenarios.h"
 #include "sphys/world.h"
 #include "support/sanitized_run.h"
+#include "support/temp_file.h"
 
 namespace sphys::tools {
 namespace {
@@ -59,6 +61,43 @@ TEST(BunnyPile, FourStacksOfFiftyComeToRestWithoutSinkingIn) {
   const Overlap resting = deepest_overlap(setup, 0.0f);
   EXPECT_LT(resting.depth, 0.001 * kBunnySize)
       << "bodies " << resting.body_a << " and " << resting.body_b;
+}
+
+// The heaps: S stacks of ten bunnies of depth 2 fall onto the plane and must all be asleep by
+// frame 880, none ever deeper than 5% of a bunny in another, resting less than 1 mm deep, none
+// below the plane.
+void expect_heap_comes_to_rest(int stacks) {
+  Scene scene = bunny_stacks_scene(stacks, 10, 2);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  const test::TempDir cache;
+  BuildWorldOptions options;
+  options.cache_dir = cache.path();
+  options.plausibility_figures = true;
+  options.threads = 2;
+  const SimulationSetup setup = build_world(scene, options);
+  World& world = *setup.world;
+  float deepest = 0.0f;
+  for (int frame = 1; frame <= 880; ++frame) {
+    const StepStats& stats = world.step(static_cast<float>(scene.time_step));
+    ASSERT_FALSE(stats.non_finite_body) << "frame " << frame;
+    deepest = std::max(deepest, stats.deepest_penetration);
+  }
+  EXPECT_LT(deepest, 0.05 * kBunnySize);
+  EXPECT_EQ(world.stats().bodies_asleep, setup.bodies.size());
+  for (const BodyId body : setup.bodies) {
+    ASSERT_GT(world.body(body).pose.translation.y(), 0.0f) << "body " << body.index;
+  }
+  const Overlap resting = deepest_overlap(setup, 0.0f);
+  EXPECT_LT(resting.depth, 0.001 * kBunnySize)
+      << "bodies " << resting.body_a << " and " << resting.body_b;
+}
+
+TEST(BunnyHeaps, AThousandBunniesAreAllAsleepByFrame880LessThanAMillimetreDeep) {
+  expect_heap_comes_to_rest(100);
+}
+
+TEST(BunnyHeaps, TenThousandBunniesAreAllAsleepByFrame880LessThanAMillimetreDeep) {
+  expect_heap_comes_to_rest(1000);
 }
 
 }  // namespace

@@ -43,7 +43,6 @@ struct ThreadedRun {
   std::uint64_t final_state = 0;  // every body's pose and velocities at the end
   std::uint64_t steps = 0;        // every step's counts and contacts
   std::uint32_t asleep = 0;
-  std::uint32_t islands_seen = 0;  // most islands in a step: there was more than one to share
 };
 
 ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
@@ -74,7 +73,6 @@ ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
       steps.add(contact.normal);
       steps.add(contact.depth);
     }
-    result.islands_seen = std::max(result.islands_seen, stats.islands);
   }
   StateHash state;
   for (const BodyId body : setup.bodies) {
@@ -107,19 +105,6 @@ ThreadedRun expect_same_on_one_and_two_threads(const Scene& scene, int frames) {
   return two;
 }
 
-// Plausible mode on the exact plane: narrow phase, contacts and the solver's islands threaded.
-// Eight stacks fall as separate islands, meet and merge, and fall asleep.
-TEST(Determinism, BunnyStacksOnThePlaneAreBitIdenticalOnOneAndTwoThreads) {
-  Scene scene = bunny_stacks_scene(8, 6, 3);
-  scene.ground.kind = GroundSpec::Kind::kPlane;
-  const int frames = test::sanitized_run() ? 25 : 400;
-  const ThreadedRun two = expect_same_on_one_and_two_threads(scene, frames);
-  EXPECT_GT(two.islands_seen, 1u);
-  if (!test::sanitized_run()) {
-    EXPECT_GT(two.asleep, 0u);
-  }
-}
-
 // The soft step: its contacts coloured into blocks of SIMD lanes, the blocks of a colour and the
 // bodies' integration threaded. One, two and four threads end in the same bits, and those bits are
 // the committed ones (as Box2D's determinism test does): a change of the arithmetic shows here,
@@ -128,7 +113,6 @@ TEST(Determinism, BunnyStacksOnThePlaneAreBitIdenticalOnOneAndTwoThreads) {
 TEST(Determinism, SoftStepPilesAreBitIdenticalOnOneTwoAndFourThreadsAndAsCommitted) {
   Scene scene = bunny_stacks_scene(8, 6, 3);
   scene.ground.kind = GroundSpec::Kind::kPlane;
-  scene.solver.method = SolverMethod::kSoftStep;
   const int frames = test::sanitized_run() ? 25 : 300;
   const test::TempDir tree_cache;
   const ThreadedRun one = run_scene(scene, 1, frames, tree_cache.path());
@@ -138,8 +122,10 @@ TEST(Determinism, SoftStepPilesAreBitIdenticalOnOneTwoAndFourThreadsAndAsCommitt
     EXPECT_EQ(many.final_state, one.final_state) << threads << " threads: the final state differs";
   }
   if (!test::sanitized_run()) {
-    // The optimised build's state after 300 frames (the sanitizer's build runs fewer).
-    EXPECT_EQ(one.final_state, 0x4e2729e4b18fc83au) << std::hex << one.final_state;
+    // The optimised build's state after 300 frames (the sanitizer's build runs fewer). Changed
+    // when the soft step became the only solver: six substeps, rigid within the slop, static
+    // friction's anchors, rolling resistance in the relax pass, the integrator that keeps spin.
+    EXPECT_EQ(one.final_state, 0x988283e7bb397a66u) << std::hex << one.final_state;
   }
 }
 

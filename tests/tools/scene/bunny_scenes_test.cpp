@@ -1,0 +1,119 @@
+// The soft step on bunnies, scenes whose outcome is known in advance: a bunny resting on a slope
+// steeper than it could hold without friction, one sliding down a slope, and a heavy bunny on a
+// light one.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "sphys/tools/build_world.h"
+#include "sphys/tools/scenarios.h"
+#include "sphys/world.h"
+#include "support/temp_file.h"
+
+namespace sphys::tools {
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+// One bunny (depth 3, Combined) over the exact plane y = 0, with friction μ on both sides.
+Scene one_bunny(float friction) {
+  Scene scene = bunny_stacks_scene(1, 1, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  scene.ground.friction = friction;
+  scene.bodies[0].friction = friction;
+  scene.bodies[0].restitution = 0.0f;
+  return scene;
+}
+
+SimulationSetup build(const Scene& scene, const test::TempDir& cache) {
+  BuildWorldOptions options;
+  options.cache_dir = cache.path();
+  options.plausibility_figures = true;
+  return build_world(scene, options);
+}
+
+// The pose a bunny comes to rest in on the flat plane, turned a quarter about the vertical so that
+// the slope runs along its length (it stands across a 30° slope too): where it is placed on the
+// slopes.
+Transform resting_pose(const test::TempDir& cache) {
+  const SimulationSetup setup = build(one_bunny(0.6f), cache);
+  for (int frame = 0; frame < 180; ++frame) setup.world->step(kDt);
+  EXPECT_TRUE(setup.world->asleep(setup.bodies[0]));
+  Transform pose = setup.world->body(setup.bodies[0]).pose;
+  pose.rotation =
+      Quat(Eigen::AngleAxisf(std::numbers::pi_v<float> / 2.0f, Vec3::UnitY())) * pose.rotation;
+  return pose;
+}
+
+// The slope of angle θ as tilted gravity (down the slope is +x), the bunny placed at rest.
+SimulationSetup on_slope(float angle, float friction, const Transform& pose,
+                         const test::TempDir& cache) {
+  Scene scene = one_bunny(friction);
+  scene.gravity = 9.81f * Vec3(std::sin(angle), -std::cos(angle), 0.0f);
+  scene.bodies[0].position = pose.translation;
+  scene.bodies[0].orientation = pose.rotation;
+  return build(scene, cache);
+}
+
+// Not met yet (docs/dynamics.md, Known limits): μ = 0.6 is 4% above tan 30°, and the bunny tips
+// over on its sphere-tree's rounded underside.
+TEST(BunnyOnASlope, DISABLED_AtRestOnThirtyDegreesWithMu06ItMovesUnderAMillimetreInFiveSeconds) {
+  const test::TempDir cache;
+  const Transform pose = resting_pose(cache);
+  const SimulationSetup setup = on_slope(std::numbers::pi_v<float> / 6.0f, 0.6f, pose, cache);
+  float worst = 0.0f;  // along the slope, from where it was placed, the first second included
+  for (int frame = 0; frame < 300; ++frame) {
+    ASSERT_FALSE(setup.world->step(kDt).non_finite_body);
+    const Vec3 moved = setup.world->body(setup.bodies[0]).pose.translation - pose.translation;
+    worst = std::max(worst, std::hypot(moved.x(), moved.z()));
+  }
+  EXPECT_LT(worst, 0.001f);
+}
+
+TEST(BunnyOnASlope, OnThirtyDegreesWithMu03ItSlidesAtGTimesSinMinusMuCos) {
+  const test::TempDir cache;
+  const Transform pose = resting_pose(cache);
+  const float angle = std::numbers::pi_v<float> / 6.0f;
+  const float mu = 0.3f;
+  const SimulationSetup setup = on_slope(angle, mu, pose, cache);
+  World& world = *setup.world;
+  const BodyId bunny = setup.bodies[0];
+  for (int frame = 0; frame < 30; ++frame) world.step(kDt);
+  const float v0 = world.body(bunny).linear_velocity.x();
+  for (int frame = 0; frame < 60; ++frame) world.step(kDt);
+  const float v1 = world.body(bunny).linear_velocity.x();
+  const float expected = 9.81f * (std::sin(angle) - mu * std::cos(angle));
+  EXPECT_NEAR(v1 - v0, expected, 0.05f * expected);
+  // It slides, not tumbles.
+  EXPECT_LT(world.body(bunny).angular_velocity.norm(), 0.05f);
+}
+
+// A bunny of 100 times the mass of the one it rests on (a stack of two of the preset).
+// Not met yet (docs/dynamics.md, Known limits): the heavy bunny sinks 5 cm in and neither sleeps.
+TEST(BunnyMassRatio, DISABLED_ABunnyAHundredTimesHeavierRestsOnALightOneWithoutSinkingIn) {
+  const test::TempDir cache;
+  Scene scene = bunny_stacks_scene(1, 2, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  const SimulationSetup light = build(scene, cache);
+  const float mass = light.world->body(light.bodies[0]).mass();
+  scene.bodies[1].mass = 100.0 * mass;
+  const SimulationSetup setup = build(scene, cache);
+  World& world = *setup.world;
+  float deepest = 0.0f;
+  // The top bunny lands on the other (half a second of fall from the preset's height), then rests
+  // for three seconds.
+  for (int frame = 0; frame < 60 + 180; ++frame) {
+    const StepStats& stats = world.step(kDt);
+    ASSERT_FALSE(stats.non_finite_body);
+    deepest = std::max(deepest, stats.deepest_penetration);
+  }
+  EXPECT_LT(deepest, 0.01f);
+  EXPECT_TRUE(world.asleep(setup.bodies[0]));
+  EXPECT_TRUE(world.asleep(setup.bodies[1]));
+}
+
+}  // namespace
+}  // namespace sphys::tools
