@@ -59,6 +59,66 @@ void SoftStepSolver::use_portable_lanes(bool portable) {
   kernels_ = portable ? &portable_lane_kernels() : &native_lane_kernels();
 }
 
+// A body pair's contacts come one after another (the detector and the reducer emit them by
+// pair). Gauss–Seidel passes a heavy body's weight down through a light one slowly, at a rate set
+// by their mass ratio: a box 100 times heavier on a light one squeezed it 2 to 6 cm into the plane
+// and slid off. So in a pair whose bodies both move, the supported body (fewer contacts from the
+// ground, a static or a sleeping body) counts as at least as heavy as the one it carries: its
+// inverse mass and inertia are scaled by their mass ratio in these contacts, in every pass, and
+// the upper body is stopped in one pass as if its support stood on what holds it up. Bodies of one
+// mass, bodies at the same level, and piles no contact path ties to anything immovable keep their
+// own masses. (Scaled by the load the pair carried instead, a heap's supported bunnies turned so
+// heavy that falling ones went 19% of a bunny deep into the 1,000-bunny heap.)
+void SoftStepSolver::scale_supported() {
+  const std::size_t slots = linear_.size();
+  fill_buffer(immovable_, slots, std::uint8_t{0});
+  for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
+  pairs_.clear();
+  for (std::size_t k = 0; k < constraints_.size(); ++k) {
+    if (k == 0 || !same_bodies(constraints_[k], constraints_[k - 1])) {
+      pairs_.emplace_back(constraints_[k].a, constraints_[k].b);
+    }
+  }
+  const std::span<const std::uint32_t> level = levels_.compute(immovable_, pairs_);
+  for (std::size_t first = 0; first < constraints_.size();) {
+    std::size_t end = first;
+    while (end < constraints_.size() && same_bodies(constraints_[end], constraints_[first])) ++end;
+    const Constraint& c = constraints_[first];
+    float scale_a = 1.0f;
+    float scale_b = 1.0f;
+    if (c.a_moves && c.b_moves && level[c.a] != level[c.b]) {
+      const bool a_below = level[c.a] < level[c.b];
+      const float lower = mass_of(inverse_mass_[a_below ? c.a : c.b]);
+      const float upper = mass_of(inverse_mass_[a_below ? c.b : c.a]);
+      (a_below ? scale_a : scale_b) = std::min(1.0f, lower / upper);
+    }
+    for (std::size_t k = first; k < end; ++k) {
+      constraints_[k].scale_a = scale_a;
+      constraints_[k].scale_b = scale_b;
+    }
+    first = end;
+  }
+}
+
+void SoftStepSolver::set_masses(Constraint& c) const {
+  const std::array<Vec3, 3> directions = {c.normal, c.tangent1, c.tangent2};
+  for (std::size_t r = 0; r < 3; ++r) {
+    const Vec3 ra_cross = c.ra.cross(directions[r]);
+    const Vec3 rb_cross = c.rb.cross(directions[r]);
+    c.mass[r] =
+        1.0f / (c.scale_a * (inverse_mass_[c.a] + ra_cross.dot(inverse_inertia_[c.a] * ra_cross)) +
+                c.scale_b * (inverse_mass_[c.b] + rb_cross.dot(inverse_inertia_[c.b] * rb_cross)));
+  }
+  // The spring's mass M: the heavier body's, or the mass whose weight the contact carried in the
+  // last step if more (the bottom of a stack carries the stack).
+  const float spring_mass =
+      std::max({mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]), c.carried});
+  const bool against_immovable = !c.a_moves || !c.b_moves;
+  const float spring = against_immovable ? spring_immovable_ : spring_moving_;
+  const float share = c.mass[0] / spring_mass / spring;
+  c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
+}
+
 void SoftStepSolver::load_bodies(const BodyStore& bodies) {
   load_solver_bodies(bodies, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
   const std::size_t slots = linear_.size();
@@ -84,14 +144,6 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
     const Contact& contact = contacts[k];
     Constraint c;
     if (!place_constraint(contact, ground, inverse_mass_, position_, c)) continue;
-    const float inverse_mass = inverse_mass_[c.a] + inverse_mass_[c.b];
-    const std::array<Vec3, 3> directions = {c.normal, c.tangent1, c.tangent2};
-    for (std::size_t r = 0; r < 3; ++r) {
-      const Vec3 ra_cross = c.ra.cross(directions[r]);
-      const Vec3 rb_cross = c.rb.cross(directions[r]);
-      c.mass[r] = 1.0f / (inverse_mass + ra_cross.dot(inverse_inertia_[c.a] * ra_cross) +
-                          rb_cross.dot(inverse_inertia_[c.b] * rb_cross));
-    }
     const ContactMemory& kept = memory[k];
     const Vec3 apart = anchor(contact, k, c, kept, settings.linear_slop);
     c.base_slip = {apart.dot(c.tangent1) - c.tangent1.dot(c.rb - c.ra),
@@ -102,21 +154,15 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
       c.tangent2_impulse = rescale * kept.friction_impulse.dot(c.tangent2);
       ++stats.warm_started;
     }
-    // The spring's mass M: the heavier body's, or the mass whose weight the contact carried in
-    // the last step if more (the bottom of a stack carries the stack).
-    const float carried = weight_per_substep > 0.0f ? c.normal_impulse / weight_per_substep : 0.0f;
-    const float spring_mass =
-        std::max({mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]), carried});
-    const bool against_immovable = !c.a_moves || !c.b_moves;
-    const float spring = against_immovable ? spring_immovable_ : spring_moving_;
-    const float share = c.mass[0] / spring_mass / spring;
-    c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
+    c.carried = weight_per_substep > 0.0f ? c.normal_impulse / weight_per_substep : 0.0f;
     c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
     c.approach = c.normal.dot(linear_[c.b] + angular_[c.b].cross(c.rb) - linear_[c.a] -
                               angular_[c.a].cross(c.ra));
     c.contact = static_cast<std::uint32_t>(k);
     constraints_.push_back(c);
   }
+  scale_supported();
+  for (Constraint& c : constraints_) set_masses(c);
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
 }
 
@@ -141,16 +187,18 @@ void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& mat
   block.body_b[lane] = first.b;
   block.a_moves[lane] = first.a_moves ? 1u : 0u;
   block.b_moves[lane] = first.b_moves ? 1u : 0u;
-  block.inverse_mass_a[lane] = inverse_mass_[first.a];
-  block.inverse_mass_b[lane] = inverse_mass_[first.b];
-  put(inverse_inertia_[first.a], lane, block.inverse_inertia_a);
-  put(inverse_inertia_[first.b], lane, block.inverse_inertia_b);
+  block.inverse_mass_a[lane] = first.scale_a * inverse_mass_[first.a];
+  block.inverse_mass_b[lane] = first.scale_b * inverse_mass_[first.b];
+  const Mat3 inverse_inertia_a = first.scale_a * inverse_inertia_[first.a];
+  const Mat3 inverse_inertia_b = first.scale_b * inverse_inertia_[first.b];
+  put(inverse_inertia_a, lane, block.inverse_inertia_a);
+  put(inverse_inertia_b, lane, block.inverse_inertia_b);
   block.friction[lane] = material.friction;
   block.restitution[lane] = material.restitution;
   block.bias_rate[lane] = first.a_moves && first.b_moves ? bias_rate_moving_ : bias_rate_immovable_;
   // Rolling resistance stops the bodies' relative turning: its mass is the inverse of the sum of
   // their inverse inertias. A pair with no inverse inertia at all (point masses) cannot turn.
-  const Mat3 sum = inverse_inertia_[first.a] + inverse_inertia_[first.b];
+  const Mat3 sum = inverse_inertia_a + inverse_inertia_b;
   put(inverse_or_zero(sum), lane, block.rolling_mass);
   for (std::uint32_t i = 0; i < manifold.count; ++i) {
     const Constraint& c = constraints_[manifold.first + i];

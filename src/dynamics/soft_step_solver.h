@@ -16,6 +16,7 @@
 
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_lanes.h"
+#include "dynamics/contact_levels.h"
 #include "dynamics/solver_stats.h"
 #include "sphys/body_store.h"
 #include "sphys/collision_detector.h"
@@ -70,6 +71,11 @@ class SoftStepSolver {
     float approach = 0.0f;  // relative normal speed before the step. unit: m/s
     bool a_moves = false;   // the body has mass here (neither static nor asleep nor the ground)
     bool b_moves = false;
+    // The weight this contact carried in the last step, as a mass. unit: kg
+    float carried = 0.0f;
+    // What the body's inverse mass and inertia count for in this contact (supported_scale()).
+    float scale_a = 1.0f;
+    float scale_b = 1.0f;
     Softness soft;  // of the solve passes, for a penetrating contact
     // Accumulated impulses, warm started. unit: N·s
     float normal_impulse = 0.0f;
@@ -98,6 +104,11 @@ class SoftStepSolver {
   };
 
   void load_bodies(const BodyStore& bodies);
+  // Each body pair's supported body (the one fewer contacts from what cannot move) counts in
+  // their contacts as heavy as the load they carry: Constraint::scale_a and scale_b.
+  void scale_supported();
+  // A constraint's effective masses and spring from its bodies, as scaled.
+  void set_masses(Constraint& c) const;
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                const SolverSettings& settings, const Vec3& gravity, float substep,
                ContactSolverStats& stats);
@@ -131,7 +142,10 @@ class SoftStepSolver {
   std::vector<Manifold> manifolds_;
   std::vector<ManifoldBodies> manifold_bodies_;
   ConstraintColouring colouring_;
-  std::vector<std::uint32_t> colours_;       // per manifold
+  ContactLevels levels_;
+  std::vector<std::uint8_t> immovable_;                         // per slot, for levels_
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // the constraints' body pairs
+  std::vector<std::uint32_t> colours_;                          // per manifold
   std::vector<std::uint32_t> colour_begin_;  // manifolds by colour, as group_by lists them
   std::vector<std::uint32_t> by_colour_;
   // Colour c's blocks are blocks_[block_begin_[c], block_begin_[c + 1]); the overflow's
