@@ -35,6 +35,10 @@ class Parallel {
         count, [](const void* f, std::size_t i) { (*static_cast<const Fn*>(f))(i); }, &fn);
   }
 
+  // Fewer items than this per stage on average, and for_each_in_stages runs on the caller's
+  // thread alone. unit: items
+  static constexpr std::size_t kItemsPerStageForThreads = 4;
+
   // Runs stages one after another: stage s calls fn(s, i) for every i in [0, counts[s]), in any
   // order and concurrently when there are threads, and starts once stage s - 1 has finished. For
   // many short stages (a solver's colours, pass after pass): the threads stay for the whole run
@@ -42,7 +46,11 @@ class Parallel {
   // must not touch what another item of its stage writes; it sees what earlier stages wrote.
   template <class Fn>
   void for_each_in_stages(std::span<const std::uint32_t> counts, const Fn& fn) const {
-    if (!arena_) {
+    std::size_t items = 0;
+    for (const std::uint32_t count : counts) items += count;
+    // Stages of a few items each run on this thread: the wait between stages costs more than
+    // their items (a pile of 100 bunnies has some 200 stages a step of one to three blocks each).
+    if (!arena_ || items < kItemsPerStageForThreads * counts.size()) {
       for (std::size_t stage = 0; stage < counts.size(); ++stage) {
         for (std::uint32_t i = 0; i < counts[stage]; ++i) fn(stage, i);
       }
