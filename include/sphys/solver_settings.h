@@ -18,7 +18,7 @@ enum class ContactSet {
 // does and why.
 struct SolverSettings {
   // Solver substeps per collision pass, each one solve and one relax pass. With 4, a heap of
-  // 10,000 bunnies slept 1.03 mm deep; with 6, 0.8 mm (docs/dynamics.md). unit: substeps
+  // 10,000 bunnies slept 1.03 mm deep; with 6, 0.87 mm (docs/dynamics.md). unit: substeps
   std::uint32_t soft_substeps = 6;
   // The contacts' spring, as a frequency and a damping ratio. Capped at an eighth of the substep
   // rate; contacts with an immovable body are twice as stiff. unit: Hz
