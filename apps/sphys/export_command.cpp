@@ -56,7 +56,7 @@ void run(const ExportOptions& options) {
   tools::throw_if_interrupted();
   tools::Scene scene;
   try {
-    scene = tools::parse_scene(recording.metadata, recording_path);
+    scene = tools::parse_recorded_scene(recording.metadata, recording_path);
   } catch (const Error& error) {
     throw Error(recording_path.string() + ": its scene cannot be read: " + error.what());
   }

@@ -10,7 +10,7 @@ namespace sphys::viewer {
 Replay::Replay(const std::filesystem::path& path, const tools::BuildWorldOptions& build)
     : recording_(tools::read_recording(path)) {
   try {
-    scene_ = tools::parse_scene(recording_.metadata, path);
+    scene_ = tools::parse_recorded_scene(recording_.metadata, path);
   } catch (const Error& error) {
     throw Error(path.string() + ": its scene cannot be read: " + error.what());
   }

@@ -252,7 +252,7 @@ void bind_scene(py::module_& m) {
       .def(
           "scene",
           [](const tools::Recording& r) {
-            return tools::parse_scene(r.metadata, "recording.json");
+            return tools::parse_recorded_scene(r.metadata, "recording.json");
           },
           "The scene the recording was made from.");
   m.def(

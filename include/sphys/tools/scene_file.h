@@ -21,6 +21,11 @@ namespace sphys::tools {
 // the base directory).
 [[nodiscard]] Scene parse_scene(std::string_view json_text, const std::filesystem::path& name);
 
+// The scene a recording embeds (Recording::metadata), as parse_scene reads it, less the settings
+// sphys no longer has (removed_setting): recordings made before they were removed carry them.
+[[nodiscard]] Scene parse_recorded_scene(std::string_view json_text,
+                                         const std::filesystem::path& name);
+
 // The scene as pretty JSON (2-space indent) with every key written out, ready to be embedded in a
 // recording. parse_scene reads it back to an equal scene, every number bit for bit, when the
 // scene is one parse_scene accepts. Neither the name nor the base directory is written: mesh and

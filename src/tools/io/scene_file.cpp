@@ -1033,6 +1033,22 @@ Scene parse_scene(std::string_view json_text, const fs::path& name) {
   return read_scene(builder.take(), name);
 }
 
+Scene parse_recorded_scene(std::string_view json_text, const fs::path& name) {
+  DocumentBuilder builder(json_text, name);
+  Json::sax_parse(json_text.begin(), json_text.end(), &builder);
+  Json document = builder.take();
+  // A recording made before a setting was removed carries it, written out with all the others: it
+  // says how the recording was made, and replaying or exporting needs the shapes and the poses.
+  if (document.is_object() && document.contains("solver") && document["solver"].is_object()) {
+    Json& solver = document["solver"];
+    for (auto item = solver.begin(); item != solver.end();) {
+      item =
+          removed_setting("solver." + item.key()) != nullptr ? solver.erase(item) : std::next(item);
+    }
+  }
+  return read_scene(document, name);
+}
+
 Scene read_scene_file(const fs::path& path) {
   return parse_scene(read_input_file(path, InputKind::kScene), path);
 }

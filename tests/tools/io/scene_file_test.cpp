@@ -322,6 +322,22 @@ TEST(SceneFile, SolverAndSleepObjectsSetOnlyTheKeysTheyHave) {
   expect_same_sleep(scene.sleep, {.enabled = true, .speed = SleepSettings{}.speed, .time = 0.0f});
 }
 
+// A recording made before the sequential-impulse solver was removed embeds its settings: the
+// scene reads back without them, the others kept; a scene file naming them is refused (below).
+TEST(SceneFile, ARecordedSceneDropsTheRemovedSolverSettings) {
+  const std::string text = scene_text(R"("solver": {"method": "sequential_impulses",
+      "velocity_iterations": 20, "shock_speed": 0.5, "manifold_points": 3}, "bodies": [])");
+  const Scene scene = parse_recorded_scene(text, "recording.json");
+  SolverSettings solver;
+  solver.manifold_points = 3;
+  expect_same_solver(scene.solver, solver);
+  EXPECT_THROW(static_cast<void>(parse_scene(text, "scene.json")), Error);
+  // Anything else wrong is still refused.
+  EXPECT_THROW(static_cast<void>(parse_recorded_scene(
+                   scene_text(R"("solver": {"velocity_iteration": 20}, "bodies": [])"), "r.json")),
+               Error);
+}
+
 TEST(SceneFile, APairMaterialLeftPartlyOpenTakesTheMixOfItsBodies) {
   const Scene scene = parse_scene(scene_text(R"(
     "bodies": [{"friction": 0.2, "restitution": 0.1}, {"friction": 0.8, "restitution": 0.6}, {}],

@@ -1,6 +1,6 @@
 // The soft step on bunnies, scenes whose outcome is known in advance: a bunny resting on a slope
-// steeper than it could hold without friction, one sliding down a slope, and a heavy bunny on a
-// light one.
+// steeper than it could hold without friction, one sliding down a slope, a heavy bunny on a light
+// box, and bunnies shot at 100 m/s.
 
 #include <algorithm>
 #include <cmath>
@@ -124,6 +124,40 @@ TEST(BunnyMassRatio, ABunnyAHundredTimesHeavierRestsOnALightBoxWithoutSinkingIn)
   EXPECT_GT(moved.y(), -0.015f);
   EXPECT_TRUE(world.asleep(box));
   EXPECT_TRUE(world.asleep(bunny));
+}
+
+// A bunny shot down at 100 m/s (1.7 m a frame, nearly twice its size) at a bunny resting on the
+// plane, and another at the bare plane: neither passes through.
+TEST(BunnyImpact, AHundredMetresPerSecondGoesThroughNeitherABunnyNorThePlane) {
+  const test::TempDir cache;
+  Scene scene = bunny_stacks_scene(1, 2, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  scene.bodies[0].position = Vec3(0.0f, 0.4f, 0.0f);
+  scene.bodies[1].position = Vec3(0.05f, 6.0f, 0.02f);
+  scene.bodies[1].linear_velocity = Vec3(0.0f, -100.0f, 0.0f);
+  Scene bare = one_bunny(0.5f);
+  bare.bodies[0].position = Vec3(0.0f, 6.0f, 0.0f);
+  bare.bodies[0].linear_velocity = Vec3(0.0f, -100.0f, 0.0f);
+  for (const Scene& shot : {scene, bare}) {
+    const SimulationSetup setup = build(shot, cache);
+    World& world = *setup.world;
+    float deepest = 0.0f;
+    for (int frame = 0; frame < 120; ++frame) {
+      const StepStats& stats = world.step(kDt);
+      ASSERT_FALSE(stats.non_finite_body);
+      deepest = std::max(deepest, stats.deepest_penetration);
+      for (const BodyId body : setup.bodies) {
+        ASSERT_GT(world.body(body).pose.translation.y(), 0.0f) << "frame " << frame;
+      }
+    }
+    EXPECT_LT(deepest, 0.05f) << shot.bodies.size() << " bunnies";
+    if (shot.bodies.size() == 2) {
+      // The shot bunny ends above the one it hit, or knocked beside it: never under it.
+      const Vec3 apart = world.body(setup.bodies[1]).pose.translation -
+                         world.body(setup.bodies[0]).pose.translation;
+      EXPECT_TRUE(apart.y() > 0.0f || std::hypot(apart.x(), apart.z()) > 0.5f);
+    }
+  }
 }
 
 }  // namespace
