@@ -1,7 +1,7 @@
 #pragma once
 
-// The plausible mode's second method (SolverMethod::kSoftStep): the soft step (Catto's Solver2D
-// "soft step", as in Box2D v3; Bepu v2's substepping). One collision pass feeds several solver
+// The plausible mode's solver: the soft step (Catto's Solver2D "soft step", as in Box2D v3; Bepu
+// v2's substepping). One collision pass feeds several solver
 // substeps, each of which integrates velocities, warm starts, solves the contacts once with a soft
 // (spring-damper) position bias, integrates positions and relaxes the contacts once without the
 // bias; restitution and the impulses kept for the next step come once at the end. Contact
