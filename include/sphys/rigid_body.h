@@ -55,7 +55,7 @@ void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angu
                         const Mat3& inertia_body, const Mat3& inverse_inertia_body, float dt);
 // The same motion with the angular momentum following Euler's equations in the body frame by the
 // implicit midpoint rule, in double: a torque-free body keeps |L| and its kinetic energy to float
-// rounding (1e-5 over 2,400 steps of an asymmetric body tumbling). The plausible mode's
+// rounding (2e-5 over 2,400 steps of an asymmetric body tumbling). The plausible mode's
 // integrator. A body turning more than half a radian in the step goes by integrate_position.
 void integrate_position_keeping_spin(Transform& pose, const Vec3& linear_velocity,
                                      Vec3& angular_velocity, const Mat3& inertia_body,

@@ -175,9 +175,6 @@ class World {
   void respond(float dt, bool plausible, StepStats& stats);
   void integrate_positions(float dt, bool plausible, StepStats& stats);
   void update_sleep(float dt, StepStats& stats);
-  // How deep a resting contact may be: a body with a deeper contact stays awake, and wakes the
-  // sleeping bodies it touches. unit: m
-  [[nodiscard]] float resting_depth() const;
   void measure_rest(StepStats& stats);
   void wake(std::uint32_t body);
   // Lists the store's awake bodies after a change, so that readers of bodies() never do (the

@@ -73,7 +73,7 @@ class SoftStepSolver {
     bool b_moves = false;
     // The weight this contact carried in the last step, as a mass. unit: kg
     float carried = 0.0f;
-    // What the body's inverse mass and inertia count for in this contact (supported_scale()).
+    // What the body's inverse mass and inertia count for in this contact (scale_supported()).
     float scale_a = 1.0f;
     float scale_b = 1.0f;
     Softness soft;  // of the solve passes, for a penetrating contact
@@ -105,7 +105,7 @@ class SoftStepSolver {
 
   void load_bodies(const BodyStore& bodies);
   // Each body pair's supported body (the one fewer contacts from what cannot move) counts in
-  // their contacts as heavy as the load they carry: Constraint::scale_a and scale_b.
+  // their contacts as at least as heavy as the body it carries: Constraint::scale_a and scale_b.
   void scale_supported();
   // A constraint's effective masses and spring from its bodies, as scaled.
   void set_masses(Constraint& c) const;

@@ -37,14 +37,13 @@ void World::detect_contacts(StepStats& stats) {
 
 // The detector passed over the pairs of sleeping bodies: without their contacts a blow on a
 // sleeping pile would pass through its top body unopposed. So the sleeping bodies that a moving
-// or pressed-in body touches wake, and their pairs get their narrow phase now, once; their
-// contacts may show them pressed into other sleeping bodies, which wake in turn, until nothing
-// more wakes. Then the islands that this substep's contacts join merge (they split once a step,
-// World::step).
+// body touches wake, and their pairs get their narrow phase now, once; a woken body that moves
+// wakes those it touches in turn, until nothing more wakes. Then the islands that this substep's
+// contacts join merge (they split once a step, World::step).
 void World::wake_touched(float dt, StepStats& stats) {
   for (;;) {
     sleep_changes_.clear();
-    sleep_->wake_disturbed(detector_.contacts(), settings_.sleep, resting_depth(), sleep_changes_);
+    sleep_->wake_disturbed(detector_.contacts(), settings_.sleep, sleep_changes_);
     if (sleep_changes_.empty()) break;
     // This substep's gravity, as the bodies awake in stage 1 had: without it the warm start,
     // the impulses that held them against gravity when they fell asleep, threw them up at

@@ -9,15 +9,6 @@ namespace {
 
 // How many times sleep.time a body waits before it sleeps while its island has a restless body.
 constexpr float kPatience = 2.0f;
-// A body pressed in deeper than the resting depth sleeps only once it has been still for
-// kPressedPatience times sleep.time and its recovery has stalled, its deepest contact no
-// shallower by kRecoveryStep of the resting depth for kStalledPatience times sleep.time: a pair
-// of bunnies at the bottom of a heap came out at 8 µm a frame, and put to sleep after the wait
-// alone they kept 1.2 mm. A stalled recovery (sequential impulses leave 1 to 4 mm at the bottom
-// of a column of ten boxes, whose passes do not converge) must not keep a body awake for ever.
-constexpr float kPressedPatience = 4.0f;
-constexpr float kRecoveryStep = 0.02f;
-constexpr float kStalledPatience = 2.0f;
 // A woken body keeps its still time (being asleep is being still) up to this share of
 // sleep.time: restless a while yet, it keeps its neighbours awake and sleeps again only after
 // its island has had time to settle what the disturbance pressed in. Kept up to the whole sleep
@@ -35,9 +26,6 @@ void SleepTracker::resize(std::size_t bodies) {
   still_time_.resize(bodies, 0.0f);
   speed_.resize(bodies, kUnmeasured);
   has_restless_.resize(bodies, 0);
-  stalled_.resize(bodies, 0);
-  best_depth_.resize(bodies, kUnmeasured);
-  stalled_time_.resize(bodies, 0.0f);
   for (std::size_t i = before; i < bodies; ++i) {
     island_parent_[i] = static_cast<std::uint32_t>(i);  // an island of its own
   }
@@ -49,7 +37,6 @@ void SleepTracker::wake(std::uint32_t body, const SleepSettings& settings,
   store_->set_asleep(body, false);
   still_time_[body] = std::min(still_time_[body], kWokenStillShare * settings.time);
   speed_[body] = 0.0f;  // it slept at rest
-  stalled_[body] = 0;
   woken.push_back(body);
 }
 
@@ -95,31 +82,11 @@ std::span<const std::uint32_t> SleepTracker::islands() {
   return island_;
 }
 
-bool SleepTracker::stalled(std::uint32_t body, const SleepSettings& settings) const {
-  return still_time_[body] >= kPressedPatience * settings.time &&
-         stalled_time_[body] >= kStalledPatience * settings.time;
-}
-
-void SleepTracker::find_deepest(std::span<const Contact> contacts) {
-  deepest_.assign(island_parent_.size(), -kUnmeasured);
-  for (const Contact& contact : contacts) {
-    deepest_[contact.body_b] = std::max(deepest_[contact.body_b], contact.depth);
-    if (contact.body_a == kGroundPlaneBody) continue;
-    deepest_[contact.body_a] = std::max(deepest_[contact.body_a], contact.depth);
-  }
-}
-
 void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
-                                  float resting_depth, std::vector<std::uint32_t>& woken) {
-  find_deepest(contacts);
-  // A body pressed in deeper than the resting depth wakes what it touches, so that they can make
-  // room (wedged among sleeping bunnies, one stayed 1.8 mm in the plane to the end), until its
-  // recovery stalls, and not a body that fell asleep with its own recovery stalled: two of a
-  // column's bottom boxes woke each other in turn for ever.
+                                  std::vector<std::uint32_t>& woken) {
   const auto wakes = [&](std::uint32_t sleeper, std::uint32_t other) {
-    if (!store_->asleep(sleeper) || store_->moving()[other] == 0) return false;
-    if (speed_[other] >= settings.speed) return true;
-    return deepest_[other] > resting_depth && !stalled(other, settings) && stalled_[sleeper] == 0;
+    return store_->asleep(sleeper) && store_->moving()[other] != 0 &&
+           speed_[other] >= settings.speed;
   };
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
@@ -131,10 +98,9 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
 }
 
 std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<const Contact> contacts,
-                                   float dt, const SleepSettings& settings, float resting_depth,
+                                   float dt, const SleepSettings& settings,
                                    std::vector<std::uint32_t>& fell_asleep) {
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
-  find_deepest(contacts);
   std::uint32_t islands = 0;
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (dynamic[i] == 0) continue;
@@ -142,24 +108,13 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
     if (store_->asleep(i)) continue;
     speed_[i] = speeds[i];
     still_time_[i] = speeds[i] < settings.speed ? still_time_[i] + dt : 0.0f;
-    if (!(deepest_[i] > resting_depth)) {
-      best_depth_[i] = kUnmeasured;
-      stalled_time_[i] = 0.0f;
-    } else if (deepest_[i] < best_depth_[i] - kRecoveryStep * resting_depth) {
-      best_depth_[i] = deepest_[i];
-      stalled_time_[i] = 0.0f;
-    } else {
-      stalled_time_[i] += dt;
-    }
   }
   if (!settings.enabled) return islands;
   // Who settles: awake, still for long enough and touching no restless body. A restless body
   // keeps its neighbours awake, so that what it pushes against yields; beyond them a heap sleeps
   // (1,000 bunnies in one heap stayed awake for 7 s while a few of them rocked). In an island
-  // with a restless body a body waits kPatience times longer: time for its penetration recovery
-  // to finish under the load of what still moves above it. A body pressed in deeper than the
-  // resting depth waits for its recovery to finish or stall, since it stops while the body
-  // sleeps (asleep as soon as still, 10,000 bunnies ended with 3.4 mm of overlap).
+  // with a restless body a body waits kPatience times longer: time for its contacts to settle
+  // under the load of what still moves above it.
   std::fill(has_restless_.begin(), has_restless_.end(), std::uint8_t{0});
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (restless(i, settings)) has_restless_[island(i)] = 1;
@@ -168,9 +123,7 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (dynamic[i] == 0 || store_->asleep(i)) continue;
     const float patience = has_restless_[island(i)] != 0 ? kPatience : 1.0f;
-    const bool pressed = deepest_[i] > resting_depth;
-    settles_[i] =
-        still_time_[i] >= patience * settings.time && (!pressed || stalled(i, settings)) ? 1 : 0;
+    settles_[i] = still_time_[i] >= patience * settings.time ? 1 : 0;
   }
   for (const Contact& contact : contacts) {
     if (contact.body_a == kGroundPlaneBody) continue;
@@ -180,7 +133,6 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (settles_[i] == 0) continue;
     store_->set_asleep(i, true);
-    stalled_[i] = deepest_[i] > resting_depth ? 1 : 0;
     fell_asleep.push_back(i);
   }
   return islands;

@@ -1,10 +1,9 @@
 #pragma once
 
 // Islands of touching bodies, and sleep body by body: a body sleeps once it has been still for a
-// while (longer while pressed into something deeper than the solver's resting depth), touching no
-// restless body; a sleeping body wakes alone, when a body touching it moves or is pressed in
-// deeper than that. A blow then wakes a sleeping heap only as far as it moves bodies, and a
-// restless body keeps awake only its neighbours.
+// while, touching no restless body; a sleeping body wakes alone, when a body touching it moves. A
+// blow then wakes a sleeping heap only as far as it moves bodies, and a restless body keeps awake
+// only its neighbours.
 
 #include <cstdint>
 #include <span>
@@ -47,18 +46,15 @@ class SleepTracker {
   // call of any other member.
   [[nodiscard]] std::span<const std::uint32_t> islands();
   // Wakes every sleeping body that a contact joins to an awake body that moves (as fast as
-  // settings.speed at the last update()) or that has a contact deeper than `resting_depth`
-  // (unit: m; unless either has waited out its recovery), appending them to `woken`.
+  // settings.speed at the last update()), appending them to `woken`.
   void wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
-                      float resting_depth, std::vector<std::uint32_t>& woken);
+                      std::vector<std::uint32_t>& woken);
   // Counts how long each awake moving body has been still (`speeds[i]`: its fastest point's
   // speed, unit: m/s), then puts to sleep every body still for long enough (settings.time, or
-  // more in an island with a restless body or with a contact deeper than `resting_depth`, unit:
-  // m) that touches no restless body, appending them to `fell_asleep`. Returns the number of
-  // islands.
+  // more in an island with a restless body) that touches no restless body, appending them to
+  // `fell_asleep`. Returns the number of islands.
   std::uint32_t update(std::span<const float> speeds, std::span<const Contact> contacts, float dt,
-                       const SleepSettings& settings, float resting_depth,
-                       std::vector<std::uint32_t>& fell_asleep);
+                       const SleepSettings& settings, std::vector<std::uint32_t>& fell_asleep);
 
  private:
   // Union-find over body slots: path halving, the smaller slot the root of a set.
@@ -68,10 +64,6 @@ class SleepTracker {
   [[nodiscard]] bool restless(std::uint32_t body, const SleepSettings& settings) const {
     return store_->moving()[body] != 0 && still_time_[body] < settings.time;
   }
-  // Per body, the depth of its deepest contact in deepest_.
-  void find_deepest(std::span<const Contact> contacts);
-  // A pressed-in body, still for a while, whose recovery has made no progress for a while.
-  [[nodiscard]] bool stalled(std::uint32_t body, const SleepSettings& settings) const;
 
   BodyStore* store_;
   std::vector<std::uint32_t> island_parent_;  // the islands
@@ -81,12 +73,6 @@ class SleepTracker {
   std::vector<float> speed_;                // the fastest point's, at the last update(). unit: m/s
   std::vector<std::uint8_t> has_restless_;  // per island root, scratch
   std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch
-  std::vector<float> deepest_;  // per body: its deepest contact's depth, scratch. unit: m
-  // Per pressed-in body: the shallowest its deepest contact has been since it was pressed in
-  // (unit: m), and the time since that last grew shallower by a recovery step (unit: s).
-  std::vector<float> best_depth_;
-  std::vector<float> stalled_time_;
-  std::vector<std::uint8_t> stalled_;  // per sleeping body: it fell asleep pressed in
 };
 
 }  // namespace sphys

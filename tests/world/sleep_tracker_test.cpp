@@ -74,14 +74,12 @@ TEST(SleepTracker, IslandsPersistUntilBodiesPartThenSplitOnce) {
 
 // Still for twice the sleep time, at `speeds` (m/s), touching by `contacts`.
 std::vector<std::uint32_t> settle(Bodies& bodies, const std::vector<float>& speeds,
-                                  const std::vector<Contact>& contacts, float resting_depth) {
+                                  const std::vector<Contact>& contacts) {
   std::vector<std::uint32_t> fell_asleep;
   (void)bodies.tracker.update(speeds, contacts, 2.0f * SleepSettings{}.time, SleepSettings{},
-                              resting_depth, fell_asleep);
+                              fell_asleep);
   return fell_asleep;
 }
-
-constexpr float kRestingDepth = 0.001f;  // unit: m
 
 TEST(SleepTracker, ASleepingBodyIsAnIslandOfItsOwnAcrossASplit) {
   Bodies bodies;
@@ -90,7 +88,7 @@ TEST(SleepTracker, ASleepingBodyIsAnIslandOfItsOwnAcrossASplit) {
   // Still for long enough, touching only each other: bodies 1 and 2 fall asleep.
   std::vector<float> speeds(bodies.store.slots(), 0.0f);
   speeds[0] = speeds[3] = speeds[4] = 1.0f;  // m/s, restless
-  EXPECT_EQ(settle(bodies, speeds, pair, kRestingDepth), (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(settle(bodies, speeds, pair), (std::vector<std::uint32_t>{1, 2}));
   EXPECT_TRUE(bodies.store.asleep(1));
   // Asleep, the pair makes no contacts: a split leaves each on its own.
   bodies.tracker.parted();
@@ -98,64 +96,46 @@ TEST(SleepTracker, ASleepingBodyIsAnIslandOfItsOwnAcrossASplit) {
   EXPECT_EQ(bodies.islands(), (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
 }
 
-// Body 1 touches a restless body, bodies 3 and 4 are pressed into the ground: still for twice the
-// sleep time, they stay awake; body 2 sleeps. Body 3 does not come out and sleeps once its recovery
-// has stalled for twice the sleep time; body 4, coming out, waits until it is out.
-TEST(SleepTracker, ABodyTouchingARestlessOneOrPressedInWaitsLonger) {
+// Body 1 touches a restless body: still for twice the sleep time, it stays awake; body 2 sleeps.
+TEST(SleepTracker, ABodyTouchingARestlessOneWaitsLonger) {
   Bodies bodies;
   std::vector<float> speeds(bodies.store.slots(), 0.0f);
-  speeds[0] = 1.0f;  // m/s, restless
-  Contact pressed = touching(kGroundPlaneBody, 3);
-  pressed.depth = 2.0f * kRestingDepth;
-  Contact recovering = touching(kGroundPlaneBody, 4);
-  recovering.depth = 1.5f * kRestingDepth;
-  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1), pressed, recovering}, kRestingDepth),
-            (std::vector<std::uint32_t>{2}));
-  recovering.depth = 1.2f * kRestingDepth;
-  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1), pressed, recovering}, kRestingDepth),
-            (std::vector<std::uint32_t>{3}));
-  recovering.depth = 0.9f * kRestingDepth;
-  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1), recovering}, kRestingDepth),
-            (std::vector<std::uint32_t>{4}));
+  speeds[0] = speeds[3] = speeds[4] = 1.0f;  // m/s, restless
+  EXPECT_EQ(settle(bodies, speeds, {touching(0, 1)}), (std::vector<std::uint32_t>{2}));
 }
 
-// A row 0-1-2 and body 3 beside body 4, bodies 1, 2 and 4 asleep. Only a body that moves, or that
-// is pressed in deeper than the resting depth, wakes what it touches, and that alone.
-TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMovesOrIsPressedIn) {
+// A row 0-1-2 and body 3 beside body 4, bodies 1, 2 and 4 asleep. Only a body that moves wakes
+// what it touches, and that alone.
+TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMoves) {
   Bodies bodies;
   std::vector<float> speeds(bodies.store.slots(), 0.0f);
   speeds[0] = speeds[3] = 1.0f;  // m/s, restless
   const std::vector<Contact> row{touching(0, 1), touching(1, 2)};
-  ASSERT_EQ(settle(bodies, speeds, row, kRestingDepth), (std::vector<std::uint32_t>{2, 4}));
+  ASSERT_EQ(settle(bodies, speeds, row), (std::vector<std::uint32_t>{2, 4}));
   // Body 0 drifts off for a while: body 1 settles.
   const std::vector<Contact> apart{touching(1, 2)};
-  ASSERT_EQ(settle(bodies, speeds, apart, kRestingDepth), (std::vector<std::uint32_t>{1}));
+  ASSERT_EQ(settle(bodies, speeds, apart), (std::vector<std::uint32_t>{1}));
   const SleepSettings settings;
   std::vector<std::uint32_t> woken;
-  // Body 0 slower than the sleep speed, body 3 still and not pressed in: they wake nothing.
+  // Body 0 slower than the sleep speed, body 3 still: they wake nothing.
   // (Measured over no time: nobody settles.)
   std::vector<std::uint32_t> fell_asleep;
   speeds[0] = 0.5f * settings.speed;
   speeds[3] = 0.0f;
-  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, kRestingDepth, fell_asleep);
-  bodies.tracker.wake_disturbed(row, settings, kRestingDepth, woken);
+  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, fell_asleep);
+  bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_TRUE(woken.empty());
   // Body 0 moves: body 1 wakes, body 2 beyond it sleeps on.
   speeds[0] = 2.0f * settings.speed;
-  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, kRestingDepth, fell_asleep);
-  bodies.tracker.wake_disturbed(row, settings, kRestingDepth, woken);
+  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, fell_asleep);
+  bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_EQ(woken, (std::vector<std::uint32_t>{1}));
   EXPECT_TRUE(bodies.store.asleep(2));
-  // Body 3 is still but pressed into the ground: body 4, which it touches, wakes to make room.
-  Contact pressed = touching(kGroundPlaneBody, 3);
-  pressed.depth = 2.0f * kRestingDepth;
-  const std::vector<Contact> under{touching(3, 4)};
+  // Body 3, still, touching sleeping body 4, wakes nothing.
   woken.clear();
-  bodies.tracker.wake_disturbed(under, settings, kRestingDepth, woken);
+  const std::vector<Contact> beside{touching(3, 4)};
+  bodies.tracker.wake_disturbed(beside, settings, woken);
   EXPECT_TRUE(woken.empty());
-  const std::vector<Contact> pressed_under{pressed, touching(3, 4)};
-  bodies.tracker.wake_disturbed(pressed_under, settings, kRestingDepth, woken);
-  EXPECT_EQ(woken, (std::vector<std::uint32_t>{4}));
 }
 
 }  // namespace

@@ -1025,18 +1025,21 @@ std::size_t parse_name(std::string_view name, const Setting& setting, std::strin
   throw Error(message);
 }
 
+// The JSON document of a scene's text; errors name `name` and the line and column.
+Json parse_document(std::string_view json_text, const fs::path& name) {
+  DocumentBuilder builder(json_text, name);
+  Json::sax_parse(json_text.begin(), json_text.end(), &builder);
+  return builder.take();
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const fs::path& name) {
-  DocumentBuilder builder(json_text, name);
-  Json::sax_parse(json_text.begin(), json_text.end(), &builder);
-  return read_scene(builder.take(), name);
+  return read_scene(parse_document(json_text, name), name);
 }
 
 Scene parse_recorded_scene(std::string_view json_text, const fs::path& name) {
-  DocumentBuilder builder(json_text, name);
-  Json::sax_parse(json_text.begin(), json_text.end(), &builder);
-  Json document = builder.take();
+  Json document = parse_document(json_text, name);
   // A recording made before a setting was removed carries it, written out with all the others: it
   // says how the recording was made, and replaying or exporting needs the shapes and the poses.
   if (document.is_object() && document.contains("solver") && document["solver"].is_object()) {
