@@ -4,6 +4,7 @@
 // Each item writes only its own outputs, so what a loop computes does not depend on how many
 // threads ran it, nor on which thread took which item.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -33,6 +34,15 @@ class Parallel {
     }
     run(
         count, [](const void* f, std::size_t i) { (*static_cast<const Fn*>(f))(i); }, &fn);
+  }
+
+  // Calls fn(begin, end) for runs of at most `run` consecutive indices that together cover
+  // [0, count), as for_each does its items: for loops whose items are too small to hand out one
+  // by one.
+  template <class Fn>
+  void for_each_run(std::size_t count, std::size_t run, const Fn& fn) const {
+    for_each((count + run - 1) / run,
+             [&](std::size_t r) { fn(r * run, std::min(count, r * run + run)); });
   }
 
   // Fewer items than this per stage on average, and for_each_in_stages runs on the caller's

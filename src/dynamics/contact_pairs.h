@@ -13,22 +13,31 @@
 
 namespace sphys {
 
-// Fills c's bodies (the ground plane as slot `ground`), whether each moves, its anchors from the
-// bodies' centres and its normal and tangents. False when neither body moves: no constraint.
+// The solver slot of a contact's first body: the ground plane is slot `ground`.
+inline std::uint32_t first_slot(const Contact& contact, std::uint32_t ground) {
+  return contact.body_a == kGroundPlaneBody ? ground : contact.body_a;
+}
+
+// Whether a contact makes a constraint: one of its bodies moves.
+inline bool constrains(const Contact& contact, std::uint32_t ground,
+                       const std::vector<float>& inverse_mass) {
+  return inverse_mass[first_slot(contact, ground)] > 0.0f || inverse_mass[contact.body_b] > 0.0f;
+}
+
+// Fills c's bodies, whether each moves, its anchors from the bodies' centres and its normal and
+// tangents, for a contact that constrains().
 template <class Constraint>
-bool place_constraint(const Contact& contact, std::uint32_t ground,
+void place_constraint(const Contact& contact, std::uint32_t ground,
                       const std::vector<float>& inverse_mass, const std::vector<Vec3>& position,
                       Constraint& c) {
-  c.a = contact.body_a == kGroundPlaneBody ? ground : contact.body_a;
+  c.a = first_slot(contact, ground);
   c.b = contact.body_b;
   c.a_moves = inverse_mass[c.a] > 0.0f;
   c.b_moves = inverse_mass[c.b] > 0.0f;
-  if (!c.a_moves && !c.b_moves) return false;
   c.ra = contact.point - position[c.a];
   c.rb = contact.point - position[c.b];
   c.normal = contact.normal;
   tangent_basis(c.normal, c.tangent1, c.tangent2);
-  return true;
 }
 
 // Whether two constraints act between the same two bodies (the same body pair).

@@ -38,6 +38,10 @@ constexpr float kMostTurnPerSubstep = 0.25f * std::numbers::pi_v<float>;
 // afresh in the next step. unit: dimensionless
 constexpr float kSlidingShare = 0.99f;
 
+// Contacts per item of the threaded loops that prepare constraints and keep their impulses.
+// unit: contacts
+constexpr std::size_t kConstraintsPerRun = 128;
+
 }  // namespace
 
 // The contact spring: stiffness k = M ω² and damping c = 2 M ζ ω, solved implicitly (Catto,
@@ -119,50 +123,72 @@ void SoftStepSolver::set_masses(Constraint& c) const {
   c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
 }
 
-void SoftStepSolver::load_bodies(const BodyStore& bodies) {
-  load_solver_bodies(bodies, linear_, angular_, position_, inverse_mass_, inverse_inertia_);
+void SoftStepSolver::load_bodies(const BodyStore& bodies, const Parallel& parallel) {
+  load_solver_bodies(bodies, parallel, linear_, angular_, position_, inverse_mass_,
+                     inverse_inertia_);
   const std::size_t slots = linear_.size();
-  fill_buffer(rotation_, slots, Quat(Quat::Identity()));
-  fill_buffer(moved_, slots, Vec3(Vec3::Zero()));
-  fill_buffer(turned_, slots, Mat3(Mat3::Identity()));
+  resize_buffer(rotation_, slots);
+  resize_buffer(moved_, slots);
+  resize_buffer(turned_, slots);
   const std::span<const Transform> poses = bodies.poses();
-  for (std::size_t i = 0; i < poses.size(); ++i) rotation_[i] = poses[i].rotation;
+  parallel.for_each_run(slots, kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      rotation_[i] = i < poses.size() ? poses[i].rotation : Quat::Identity();
+      moved_[i] = Vec3::Zero();
+      turned_[i] = Mat3::Identity();
+    }
+  });
 }
 
 void SoftStepSolver::prepare(std::span<const Contact> contacts,
                              std::span<const ContactMemory> memory, const SolverSettings& settings,
-                             const Vec3& gravity, float substep, ContactSolverStats& stats) {
+                             const Vec3& gravity, float substep, const Parallel& parallel,
+                             ContactSolverStats& stats) {
   const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
   // Impulses were kept per substep of the last step's length; a substep of another length needs
   // them in proportion.
   const float rescale = kept_substep_ > 0.0f ? substep / kept_substep_ : 1.0f;
   // The impulse that holds up a kilogram against gravity for a substep. unit: N s / kg
   const float weight_per_substep = gravity.norm() * substep;
-  constraints_.clear();
-  resize_buffer(anchors_, contacts.size());
+  const bool warm = settings.warm_starting;
+  // The contacts with a moving body, in order: each becomes a constraint, on the threads.
+  sources_.clear();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& contact = contacts[k];
-    Constraint c;
-    if (!place_constraint(contact, ground, inverse_mass_, position_, c)) continue;
-    const ContactMemory& kept = memory[k];
-    const Vec3 apart = anchor(contact, k, c, kept, settings.linear_slop);
-    c.base_slip = {apart.dot(c.tangent1) - c.tangent1.dot(c.rb - c.ra),
-                   apart.dot(c.tangent2) - c.tangent2.dot(c.rb - c.ra)};
-    if (settings.warm_starting && kept.solved) {
-      c.normal_impulse = rescale * kept.normal_impulse;
-      c.tangent1_impulse = rescale * kept.friction_impulse.dot(c.tangent1);
-      c.tangent2_impulse = rescale * kept.friction_impulse.dot(c.tangent2);
-      ++stats.warm_started;
-    }
-    c.carried = weight_per_substep > 0.0f ? c.normal_impulse / weight_per_substep : 0.0f;
-    c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
-    c.approach = c.normal.dot(linear_[c.b] + angular_[c.b].cross(c.rb) - linear_[c.a] -
-                              angular_[c.a].cross(c.ra));
-    c.contact = static_cast<std::uint32_t>(k);
-    constraints_.push_back(c);
+    if (!constrains(contacts[k], ground, inverse_mass_)) continue;
+    sources_.push_back(static_cast<std::uint32_t>(k));
+    if (warm && memory[k].solved) ++stats.warm_started;
   }
+  resize_buffer(constraints_, sources_.size());
+  resize_buffer(anchors_, contacts.size());
+  parallel.for_each_run(
+      sources_.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const std::uint32_t k = sources_[j];
+          const Contact& contact = contacts[k];
+          Constraint c;
+          place_constraint(contact, ground, inverse_mass_, position_, c);
+          const ContactMemory& kept = memory[k];
+          const Vec3 apart = anchor(contact, k, c, kept, settings.linear_slop);
+          c.base_slip = {apart.dot(c.tangent1) - c.tangent1.dot(c.rb - c.ra),
+                         apart.dot(c.tangent2) - c.tangent2.dot(c.rb - c.ra)};
+          if (warm && kept.solved) {
+            c.normal_impulse = rescale * kept.normal_impulse;
+            c.tangent1_impulse = rescale * kept.friction_impulse.dot(c.tangent1);
+            c.tangent2_impulse = rescale * kept.friction_impulse.dot(c.tangent2);
+          }
+          c.carried = weight_per_substep > 0.0f ? c.normal_impulse / weight_per_substep : 0.0f;
+          c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
+          c.approach = c.normal.dot(linear_[c.b] + angular_[c.b].cross(c.rb) - linear_[c.a] -
+                                    angular_[c.a].cross(c.ra));
+          c.contact = k;
+          constraints_[j] = c;
+        }
+      });
   scale_supported();
-  for (Constraint& c : constraints_) set_masses(c);
+  parallel.for_each_run(constraints_.size(), kConstraintsPerRun,
+                        [&](std::size_t begin, std::size_t end) {
+                          for (std::size_t j = begin; j < end; ++j) set_masses(constraints_[j]);
+                        });
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
 }
 
@@ -222,7 +248,7 @@ void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& mat
   block.point_count = std::max(block.point_count, manifold.count);
 }
 
-void SoftStepSolver::pack(std::span<const PairMaterial> materials) {
+void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Parallel& parallel) {
   // A body pair's contacts come one after another (the detector and the reducer emit them by
   // pair), cut into manifolds of at most kManifoldPoints.
   manifolds_.clear();
@@ -259,16 +285,23 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials) {
     std::fill(std::begin(block.body_b), std::end(block.body_b), ground);
   };
   resize_buffer(blocks_, blocks);
-  for (std::uint32_t colour = 0; colour < kColours; ++colour) {
-    for (std::uint32_t k = colour_begin_[colour]; k < colour_begin_[colour + 1]; ++k) {
-      const std::uint32_t in_colour = k - colour_begin_[colour];
-      ManifoldBlock<kLaneWidth>& block = blocks_[block_begin_[colour] + in_colour / kLaneWidth];
-      const int lane = static_cast<int>(in_colour % kLaneWidth);
-      if (lane == 0) empty(block);
+  // Block b holds the manifolds of its colour from the (b - the colour's first block)-th lane's
+  // worth on; each block is packed on its own, on the threads.
+  parallel.for_each(blocks, [&](std::size_t b) {
+    const auto colour = static_cast<std::uint32_t>(
+        std::upper_bound(block_begin_.begin(), block_begin_.begin() + kColours, b) -
+        block_begin_.begin() - 1);
+    ManifoldBlock<kLaneWidth>& block = blocks_[b];
+    empty(block);
+    const std::uint32_t first =
+        colour_begin_[colour] + (static_cast<std::uint32_t>(b) - block_begin_[colour]) * kLaneWidth;
+    const std::uint32_t end = std::min(colour_begin_[colour + 1], first + kLaneWidth);
+    for (std::uint32_t k = first; k < end; ++k) {
       const Manifold& manifold = manifolds_[by_colour_[k]];
-      pack_lane(manifold, materials[constraints_[manifold.first].contact], block, lane);
+      pack_lane(manifold, materials[constraints_[manifold.first].contact], block,
+                static_cast<int>(k - first));
     }
-  }
+  });
   const std::uint32_t overflow_begin = colour_begin_[kOverflowColour];
   resize_buffer(overflow_, colour_begin_[kOverflowColour + 1] - overflow_begin);
   for (std::size_t k = 0; k < overflow_.size(); ++k) {
@@ -310,6 +343,7 @@ void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool
     add_stage(Work::kIntegratePositions, 0, runs);
     add_pass(Work::kRelax);
   }
+  add_pass(Work::kRestitute);
 }
 
 void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies,
@@ -328,20 +362,31 @@ void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore&
   }
   const LaneBodies lanes = lane_bodies();
   if (stage.colour == kOverflowColour) {
-    const LaneKernels<1>& single = single_lane_kernels();
-    if (stage.work == Work::kWarmStart) {
-      single.warm_start(overflow_, lanes);
-    } else {
-      single.solve(overflow_, lanes, settings, stage.work == Work::kSolve);
-    }
+    run_pass(single_lane_kernels(), stage.work, std::span(overflow_), lanes, settings);
     return;
   }
-  const std::span<ManifoldBlock<kLaneWidth>> block(
-      blocks_.data() + block_begin_[stage.colour] + item, 1);
-  if (stage.work == Work::kWarmStart) {
-    kernels_->warm_start(block, lanes);
-  } else {
-    kernels_->solve(block, lanes, settings, stage.work == Work::kSolve);
+  run_pass(*kernels_, stage.work, std::span(blocks_.data() + block_begin_[stage.colour] + item, 1),
+           lanes, settings);
+}
+
+template <int W>
+void SoftStepSolver::run_pass(const LaneKernels<W>& kernels, Work work,
+                              std::span<ManifoldBlock<W>> blocks, const LaneBodies& lanes,
+                              const LaneSettings& settings) {
+  switch (work) {
+    case Work::kWarmStart:
+      kernels.warm_start(blocks, lanes);
+      return;
+    case Work::kSolve:
+    case Work::kRelax:
+      kernels.solve(blocks, lanes, settings, work == Work::kSolve);
+      return;
+    case Work::kRestitute:
+      bounces_.fetch_add(kernels.restitute(blocks, lanes, settings));
+      return;
+    case Work::kIntegrateVelocities:
+    case Work::kIntegratePositions:
+      return;  // run_item's, per run of bodies
   }
 }
 
@@ -388,9 +433,12 @@ Vec3 SoftStepSolver::anchor(const Contact& contact, std::size_t k, const Constra
   return Vec3::Zero();
 }
 
-void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
+void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory,
+                                   const Parallel& parallel) const {
   // Contacts with no moving body were not solved: they start the next step afresh.
-  for (ContactMemory& kept : memory) kept = ContactMemory{};
+  parallel.for_each_run(memory.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) memory[k] = ContactMemory{};
+  });
   const auto keep = [&](const auto& block, int lane) {
     for (std::uint32_t i = 0; i < kManifoldPoints; ++i) {
       const auto& p = block.points[i];
@@ -412,9 +460,10 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory) const {
       kept.anchor_b = anchors[1];
     }
   };
-  for (const ManifoldBlock<kLaneWidth>& block : blocks_) {
-    for (int lane = 0; lane < kLaneWidth; ++lane) keep(block, lane);
-  }
+  // Each contact is in one lane of one block: the blocks keep theirs on the threads.
+  parallel.for_each(blocks_.size(), [&](std::size_t b) {
+    for (int lane = 0; lane < kLaneWidth; ++lane) keep(blocks_[b], lane);
+  });
   for (const ManifoldBlock<1>& block : overflow_) keep(block, 0);
 }
 
@@ -435,9 +484,9 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
   const float omega = 2.0f * std::numbers::pi_v<float> * hertz;
   spring(omega, spring_moving_, bias_rate_moving_);
   spring(kImmovableStiffness * omega, spring_immovable_, bias_rate_immovable_);
-  load_bodies(bodies);
-  prepare(contacts, memory, settings, gravity, substep, stats);
-  pack(materials);
+  load_bodies(bodies, parallel);
+  prepare(contacts, memory, settings, gravity, substep, parallel, stats);
+  pack(materials, parallel);
   const LaneSettings lane_settings{.substep = substep,
                                    .inverse_substep = 1.0f / substep,
                                    .gravity = {gravity.x(), gravity.y(), gravity.z()},
@@ -446,14 +495,13 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
                                    .rolling_resistance = settings.rolling_resistance,
                                    .restitution_threshold = settings.restitution_threshold};
   plan_stages(bodies.awake().size(), substeps, settings.warm_starting);
+  bounces_.store(0);
   parallel.for_each_in_stages(stage_items_, [&](std::size_t stage, std::uint32_t item) {
     run_item(stages_[stage], item, bodies, gravity, substep, lane_settings);
   });
-  const LaneBodies lanes = lane_bodies();
-  stats.bounces = kernels_->restitute(blocks_, lanes, lane_settings) +
-                  single_lane_kernels().restitute(overflow_, lanes, lane_settings);
-  store_solver_velocities(linear_, angular_, bodies);
-  keep_impulses(memory);
+  stats.bounces = bounces_.load();
+  store_solver_velocities(linear_, angular_, parallel, bodies);
+  keep_impulses(memory, parallel);
   kept_substep_ = substep;
   return stats;
 }

@@ -10,6 +10,7 @@
 // graph (contact_lanes.h, constraint_colouring.h). See docs/dynamics.md.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -90,20 +91,21 @@ class SoftStepSolver {
   };
   // The substeps' work as stages, each run over its items on the threads once the one before has
   // finished: the bodies' integration in runs of bodies, and each pass colour by colour (a block
-  // per item), the overflow last (one item).
+  // per item), the overflow last (one item); restitution's pass once, after the last substep.
   enum class Work : std::uint8_t {
     kIntegrateVelocities,
     kWarmStart,
     kSolve,
     kIntegratePositions,
-    kRelax
+    kRelax,
+    kRestitute
   };
   struct Stage {
     Work work = Work::kSolve;
     std::uint32_t colour = 0;  // of a pass; kOverflowColour for the overflow
   };
 
-  void load_bodies(const BodyStore& bodies);
+  void load_bodies(const BodyStore& bodies, const Parallel& parallel);
   // Each body pair's supported body (the one fewer contacts from what cannot move) counts in
   // their contacts as at least as heavy as the body it carries: Constraint::scale_a and scale_b.
   void scale_supported();
@@ -111,20 +113,24 @@ class SoftStepSolver {
   void set_masses(Constraint& c) const;
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                const SolverSettings& settings, const Vec3& gravity, float substep,
-               ContactSolverStats& stats);
+               const Parallel& parallel, ContactSolverStats& stats);
   // The constraints cut into manifolds, coloured and packed into blocks, colour by colour.
-  void pack(std::span<const PairMaterial> materials);
+  void pack(std::span<const PairMaterial> materials, const Parallel& parallel);
   template <int W>
   void pack_lane(const Manifold& manifold, const PairMaterial& material, ManifoldBlock<W>& block,
                  int lane) const;
   // The stages of `substeps` substeps: integrate velocities, warm start, solve, integrate
-  // positions, relax.
+  // positions, relax; then restitution.
   void plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting);
   void add_stage(Work work, std::uint32_t colour, std::uint32_t items);
   void add_pass(Work work);
   // Item `item` of a stage.
   void run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies, const Vec3& gravity,
                 float substep, const LaneSettings& settings);
+  // A contact pass (warm start, solve, relax or restitution) over some blocks.
+  template <int W>
+  void run_pass(const LaneKernels<W>& kernels, Work work, std::span<ManifoldBlock<W>> blocks,
+                const LaneBodies& lanes, const LaneSettings& settings);
   void integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
                             float substep);
   void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies, float substep);
@@ -133,9 +139,10 @@ class SoftStepSolver {
   // from a's. unit: m
   Vec3 anchor(const Contact& contact, std::size_t k, const Constraint& c, const ContactMemory& kept,
               float slop);
-  void keep_impulses(std::span<ContactMemory> memory) const;
+  void keep_impulses(std::span<ContactMemory> memory, const Parallel& parallel) const;
   [[nodiscard]] LaneBodies lane_bodies();
 
+  std::vector<std::uint32_t> sources_;  // per constraint, its contact's index
   std::vector<Constraint> constraints_;
   // Per contact: static friction's anchors in each body's frame, as this step started them.
   std::vector<std::array<Vec3, 2>> anchors_;
@@ -156,6 +163,7 @@ class SoftStepSolver {
   std::vector<Stage> stages_;
   std::vector<std::uint32_t> stage_items_;
   const LaneKernels<kLaneWidth>* kernels_ = &native_lane_kernels();
+  std::atomic<std::uint32_t> bounces_{0};  // restitution's pass, counted across its items
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one lane that holds it in a colour.
   std::vector<Vec3> linear_;

@@ -2,8 +2,9 @@
 
 // The bodies as the soft step sees them: one slot per body of the store and one more, the last,
 // for the ground plane. The solver works on these velocities and writes the awake bodies' back to
-// the store when done.
+// the store when done. Both copies run on the threads, each slot written by one run.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -11,39 +12,57 @@
 #include "core/buffers.h"
 #include "sphys/body_store.h"
 #include "sphys/math.h"
+#include "sphys/parallel.h"
 
 namespace sphys {
+
+// Slots or bodies per item of the threaded loops that copy them. unit: slots
+inline constexpr std::size_t kSlotsPerRun = 256;
 
 // Fills the slots: every body's position; velocities, inverse mass and world inverse inertia of
 // the awake bodies, zero for the others and the ground, so that an impulse leaves them as they
 // are.
-inline void load_solver_bodies(const BodyStore& bodies, std::vector<Vec3>& linear,
-                               std::vector<Vec3>& angular, std::vector<Vec3>& position,
-                               std::vector<float>& inverse_mass,
+inline void load_solver_bodies(const BodyStore& bodies, const Parallel& parallel,
+                               std::vector<Vec3>& linear, std::vector<Vec3>& angular,
+                               std::vector<Vec3>& position, std::vector<float>& inverse_mass,
                                std::vector<Mat3>& inverse_inertia) {
   const std::size_t slots = bodies.slots() + 1;
-  fill_buffer(linear, slots, Vec3(Vec3::Zero()));
-  fill_buffer(angular, slots, Vec3(Vec3::Zero()));
-  fill_buffer(position, slots, Vec3(Vec3::Zero()));
-  fill_buffer(inverse_mass, slots, 0.0f);
-  fill_buffer(inverse_inertia, slots, Mat3(Mat3::Zero()));
+  resize_buffer(linear, slots);
+  resize_buffer(angular, slots);
+  resize_buffer(position, slots);
+  resize_buffer(inverse_mass, slots);
+  resize_buffer(inverse_inertia, slots);
   const std::span<const Transform> poses = bodies.poses();
-  for (std::size_t i = 0; i < poses.size(); ++i) position[i] = poses[i].translation;
-  for (const std::uint32_t i : bodies.awake()) {
-    linear[i] = bodies.linear_velocities()[i];
-    angular[i] = bodies.angular_velocities()[i];
-    inverse_mass[i] = bodies.inverse_masses()[i];
-    inverse_inertia[i] = bodies.inverse_inertias_world()[i];
-  }
+  parallel.for_each_run(slots, kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      linear[i] = Vec3::Zero();
+      angular[i] = Vec3::Zero();
+      position[i] = i < poses.size() ? poses[i].translation : Vec3::Zero();
+      inverse_mass[i] = 0.0f;
+      inverse_inertia[i] = Mat3::Zero();
+    }
+  });
+  const std::span<const std::uint32_t> awake = bodies.awake();
+  parallel.for_each_run(awake.size(), kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (const std::uint32_t i : awake.subspan(begin, end - begin)) {
+      linear[i] = bodies.linear_velocities()[i];
+      angular[i] = bodies.angular_velocities()[i];
+      inverse_mass[i] = bodies.inverse_masses()[i];
+      inverse_inertia[i] = bodies.inverse_inertias_world()[i];
+    }
+  });
 }
 
 // The solved velocities of the awake bodies into the store.
 inline void store_solver_velocities(std::span<const Vec3> linear, std::span<const Vec3> angular,
-                                    BodyStore& bodies) {
-  for (const std::uint32_t i : bodies.awake()) {
-    bodies.linear_velocities()[i] = linear[i];
-    bodies.angular_velocities()[i] = angular[i];
-  }
+                                    const Parallel& parallel, BodyStore& bodies) {
+  const std::span<const std::uint32_t> awake = bodies.awake();
+  parallel.for_each_run(awake.size(), kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (const std::uint32_t i : awake.subspan(begin, end - begin)) {
+      bodies.linear_velocities()[i] = linear[i];
+      bodies.angular_velocities()[i] = angular[i];
+    }
+  });
 }
 
 }  // namespace sphys
