@@ -12,6 +12,7 @@
 
 #include "sphys/broad_phase.h"
 #include "sphys/math.h"
+#include "sphys/parallel.h"
 #include "sphys/sweep_and_prune.h"
 
 namespace sphys {
@@ -45,7 +46,9 @@ class CellSweepAndPrune {
   void set_box(ProxyId id, const Aabb& box);
   [[nodiscard]] Aabb box(ProxyId id) const { return boxes_[id]; }
 
-  void update();
+  // As SweepAndPrune::update; the cells re-sort on `parallel`'s threads where given, with the
+  // same pairs in the same order.
+  void update(const Parallel* parallel = nullptr);
 
   [[nodiscard]] std::span<const ProxyPair> pairs() const { return pairs_; }
   [[nodiscard]] std::span<const ProxyPair> pairs_entered() const { return entered_; }
@@ -100,7 +103,7 @@ class CellSweepAndPrune {
   void enter_cell(ProxyId id, const std::array<std::int32_t, 3>& cell);
   std::uint32_t cell_at(const std::array<std::int32_t, 3>& cell);
   void mark_changed(std::uint32_t cell);
-  void update_cells();
+  void update_cells(const Parallel* parallel);
   void update_wide();
   void release_empty_cells();
   void count_pair(ProxyId a, ProxyId b, bool entered);

@@ -244,7 +244,8 @@ class CollisionDetector {
                            NarrowChunk& chunk);
   void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
   void make_contacts(NarrowChunk& chunk) const;
-  void carry_memory(const PairRecord& record, std::size_t first, std::size_t count);
+  void carry_memory(NarrowChunk& chunk) const;
+  void place_contacts(NarrowChunk& chunk);
   // A record whose bodies both stopped moving (asleep, or asleep and static) keeps its contacts
   // and their memory in asleep_contacts_, so that the pair warm starts when it wakes.
   void keep_asleep(PairRecord& record);

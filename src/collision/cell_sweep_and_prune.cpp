@@ -74,7 +74,7 @@ void CellSweepAndPrune::set_box(ProxyId id, const Aabb& box) {
   }
 }
 
-void CellSweepAndPrune::update() {
+void CellSweepAndPrune::update(const Parallel* parallel) {
   swaps_last_update_ = 0;
   touched_.clear();
   entered_.clear();
@@ -86,7 +86,7 @@ void CellSweepAndPrune::update() {
     if (proxies_[id].alive) place(id);
   }
   changed_.clear();
-  update_cells();
+  update_cells(parallel);
   update_wide();
   release_empty_cells();
   merge_changes();
@@ -245,17 +245,26 @@ std::uint32_t CellSweepAndPrune::cell_at(const std::array<std::int32_t, 3>& coor
   return it->second;
 }
 
-// Each cell with changes reads its boxes' current bounds and re-sorts; the pairs it gains or
-// loses count up or down.
-void CellSweepAndPrune::update_cells() {
-  for (const std::uint32_t index : changed_cells_) {
-    Cell& cell = cells_[index];
-    cell_changed_[index] = 0;
+// Each cell with changes reads its boxes' current bounds and re-sorts, the cells on the threads
+// (each its own Sweep & Prune); then, cell by cell in order, the pairs it gained or lost count up
+// or down.
+void CellSweepAndPrune::update_cells(const Parallel* parallel) {
+  const auto sort_cell = [&](std::size_t i) {
+    Cell& cell = cells_[changed_cells_[i]];
     for (ProxyId local = 0; local < cell.proxy_of_local.size(); ++local) {
       const ProxyId id = cell.proxy_of_local[local];
       if ((id & kLeftBit) == 0) cell.sweep.set_box(local, boxes_[id]);
     }
     cell.sweep.update();
+  };
+  if (parallel != nullptr) {
+    parallel->for_each(changed_cells_.size(), sort_cell);
+  } else {
+    for (std::size_t i = 0; i < changed_cells_.size(); ++i) sort_cell(i);
+  }
+  for (const std::uint32_t index : changed_cells_) {
+    Cell& cell = cells_[index];
+    cell_changed_[index] = 0;
     swaps_last_update_ += cell.sweep.swaps_last_update();
     const auto proxy_of = [&](ProxyId local) { return cell.proxy_of_local[local] & ~kLeftBit; };
     for (const ProxyPair& pair : cell.sweep.pairs_entered()) {

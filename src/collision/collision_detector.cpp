@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 #include "collision/contact_reduction.h"
 #include "core/buffers.h"
@@ -73,6 +74,9 @@ struct CollisionDetector::NarrowChunk {
   std::vector<Contact> run;  // one pair's leaf contacts, before reduction
   std::vector<Contact> contacts;
   std::vector<ContactShape> shapes;
+  std::vector<ContactMemory> memory;  // per contact, carried from the record's last contacts
+  std::size_t base = 0;               // where its contacts start in contacts_
+  std::uint32_t parted_pairs = 0;
   std::uint64_t sphere_tests = 0;
   std::uint32_t leaf_pairs = 0;
   std::uint32_t cut_short_pairs = 0;
@@ -214,7 +218,11 @@ const CollisionStats& CollisionDetector::detect() {
         for (const std::uint32_t slot : store_->awake()) {
           broad_phase.set_box(bodies_[slot].proxy, broad_phase_box(slot));
         }
-        broad_phase.update();
+        if constexpr (std::is_same_v<std::decay_t<decltype(broad_phase)>, CellSweepAndPrune>) {
+          broad_phase.update(parallel_);
+        } else {
+          broad_phase.update();
+        }
       },
       broad_phase_);
   carry_records_over();
@@ -353,6 +361,8 @@ void CollisionDetector::plan_chunks() {
     chunk.pairs.clear();
     chunk.contacts.clear();
     chunk.shapes.clear();
+    chunk.memory.clear();
+    chunk.parted_pairs = 0;
     chunk.sphere_tests = 0;
     chunk.leaf_pairs = 0;
     chunk.cut_short_pairs = 0;
@@ -387,35 +397,31 @@ void CollisionDetector::run_jobs() {
   stats_.narrow_phase_ms = elapsed_ms(narrow_start);
 
   const StepClock::time_point contacts_start = StepClock::now();
-  for_each_chunk([&](NarrowChunk& chunk) { make_contacts(chunk); });
-  for (std::size_t c = 0; c < chunks_.size(); ++c) {
-    NarrowChunk& chunk = *chunks_[c];
-    const std::size_t base = contacts_.size();
-    contacts_.insert(contacts_.end(), chunk.contacts.begin(), chunk.contacts.end());
-    shapes_.insert(shapes_.end(), chunk.shapes.begin(), chunk.shapes.end());
-    resize_buffer(memory_, contacts_.size());
-    for (std::size_t k = 0; k < chunk.pairs.size(); ++k) {
-      const PairLeaves& pair = chunk.pairs[k];
-      const std::size_t end =
-          k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
-      const std::size_t first = base + pair.contacts_begin;
-      if (!pair.plane && end == pair.contacts_begin && links_dynamic_bodies(*pair.record)) {
-        ++stats_.parted_pairs;
-      }
-      carry_memory(*pair.record, first, base + end - first);
-      pair.record->first = static_cast<std::uint32_t>(first);
-      pair.record->count = static_cast<std::uint32_t>(base + end - first);
-      pair.record->kept_asleep = false;
-    }
-    stats_.sphere_tests += chunk.sphere_tests;
-    stats_.leaf_pairs += chunk.leaf_pairs;
-    stats_.pairs_cut_short += chunk.cut_short_pairs;
-    stats_.coincident_centres += chunk.coincident_centres;
-    stats_.descended_pairs += chunk.descended_pairs;
-    stats_.reused_pairs += chunk.reused_pairs;
-    stats_.deepest_penetration = std::max(stats_.deepest_penetration, chunk.deepest_penetration);
-    stats_.penetration_sum += chunk.penetration_sum;
-    stats_.penetrating_contacts += chunk.penetrating_contacts;
+  for_each_chunk([&](NarrowChunk& chunk) {
+    make_contacts(chunk);
+    carry_memory(chunk);
+  });
+  // Each chunk's contacts follow those of the chunks before it, in the jobs' order.
+  std::size_t total = contacts_.size();
+  for (NarrowChunk* chunk : chunks_) {
+    chunk->base = total;
+    total += chunk->contacts.size();
+  }
+  resize_buffer(contacts_, total);
+  resize_buffer(shapes_, total);
+  resize_buffer(memory_, total);
+  for_each_chunk([&](NarrowChunk& chunk) { place_contacts(chunk); });
+  for (const NarrowChunk* chunk : chunks_) {
+    stats_.parted_pairs += chunk->parted_pairs;
+    stats_.sphere_tests += chunk->sphere_tests;
+    stats_.leaf_pairs += chunk->leaf_pairs;
+    stats_.pairs_cut_short += chunk->cut_short_pairs;
+    stats_.coincident_centres += chunk->coincident_centres;
+    stats_.descended_pairs += chunk->descended_pairs;
+    stats_.reused_pairs += chunk->reused_pairs;
+    stats_.deepest_penetration = std::max(stats_.deepest_penetration, chunk->deepest_penetration);
+    stats_.penetration_sum += chunk->penetration_sum;
+    stats_.penetrating_contacts += chunk->penetrating_contacts;
   }
   stats_.contacts = static_cast<std::uint32_t>(contacts_.size());
   stats_.contacts_ms = elapsed_ms(contacts_start);
@@ -424,25 +430,50 @@ void CollisionDetector::run_jobs() {
 // Each new contact takes the memory of the contact of the same leaf pair among the record's
 // contacts of the last narrow phase. Both come in the descent's order mostly, so the search
 // starts after the last match.
-void CollisionDetector::carry_memory(const PairRecord& record, std::size_t first,
-                                     std::size_t count) {
-  const std::span<const Contact> old_contacts = last_contacts(record);
-  const std::span<const ContactMemory> old_memory = last_memory(record);
-  const std::size_t old_count = old_contacts.size();
-  std::size_t hint = 0;
-  for (std::size_t k = first; k < first + count; ++k) {
-    const Contact& contact = contacts_[k];
-    ContactMemory memory;
-    for (std::size_t tried = 0; tried < old_count; ++tried) {
-      const std::size_t i = (hint + tried) % old_count;
-      const Contact& old = old_contacts[i];
-      if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
-        memory = old_memory[i];
-        hint = i + 1;
-        break;
+void CollisionDetector::carry_memory(NarrowChunk& chunk) const {
+  resize_buffer(chunk.memory, chunk.contacts.size());
+  for (std::size_t k = 0; k < chunk.pairs.size(); ++k) {
+    const PairLeaves& pair = chunk.pairs[k];
+    const std::size_t end =
+        k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
+    const std::span<const Contact> old_contacts = last_contacts(*pair.record);
+    const std::span<const ContactMemory> old_memory = last_memory(*pair.record);
+    const std::size_t old_count = old_contacts.size();
+    std::size_t hint = 0;
+    for (std::size_t c = pair.contacts_begin; c < end; ++c) {
+      const Contact& contact = chunk.contacts[c];
+      ContactMemory memory;
+      for (std::size_t tried = 0; tried < old_count; ++tried) {
+        const std::size_t i = (hint + tried) % old_count;
+        const Contact& old = old_contacts[i];
+        if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
+          memory = old_memory[i];
+          hint = i + 1;
+          break;
+        }
       }
+      chunk.memory[c] = memory;
     }
-    memory_[k] = memory;
+  }
+}
+
+// A chunk's contacts, shapes and memory into their place in the detector's, and its records
+// pointed at them. Runs once every chunk has carried its memory from the records' last contacts.
+void CollisionDetector::place_contacts(NarrowChunk& chunk) {
+  const auto base = static_cast<std::ptrdiff_t>(chunk.base);
+  std::copy(chunk.contacts.begin(), chunk.contacts.end(), contacts_.begin() + base);
+  std::copy(chunk.shapes.begin(), chunk.shapes.end(), shapes_.begin() + base);
+  std::copy(chunk.memory.begin(), chunk.memory.end(), memory_.begin() + base);
+  for (std::size_t k = 0; k < chunk.pairs.size(); ++k) {
+    const PairLeaves& pair = chunk.pairs[k];
+    const std::size_t end =
+        k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
+    if (!pair.plane && end == pair.contacts_begin && links_dynamic_bodies(*pair.record)) {
+      ++chunk.parted_pairs;
+    }
+    pair.record->first = static_cast<std::uint32_t>(chunk.base + pair.contacts_begin);
+    pair.record->count = static_cast<std::uint32_t>(end - pair.contacts_begin);
+    pair.record->kept_asleep = false;
   }
 }
 
