@@ -70,7 +70,8 @@ struct WorldSettings {
   // Material of the exact ground plane (CollisionSettings::ground_plane_height), if there is one.
   float ground_restitution = 0.3f;
   float ground_friction = 0.5f;
-  // Threads a step runs on (oneTBB): the narrow phase, the contacts and the solver's islands.
+  // Threads a step runs on (oneTBB): the broad phase's cells, the narrow phase, the contacts and
+  // the solver's set-up and passes (docs/performance.md).
   // 0 takes every hardware thread. The results are bit for bit the same whatever the count.
   std::uint32_t threads = 1;
   // StepStats' plausibility figures (penetration of the leaf pairs, kinetic energy, bodies at
