@@ -235,7 +235,17 @@ class CollisionDetector {
   [[nodiscard]] float plane_margin(const Body& body) const;
   [[nodiscard]] bool budget() const;
   void carry_records_over();
-  void run_jobs();
+  // fn(i) for every i in [0, count): on the threads where the detector has them.
+  template <class Fn>
+  void for_each_item(std::size_t count, const Fn& fn) const {
+    if (parallel_ != nullptr) {
+      parallel_->for_each(count, fn);
+      return;
+    }
+    for (std::size_t i = 0; i < count; ++i) fn(i);
+  }
+  // The narrow phase and contacts of jobs_, placed in contacts_ from `base` on.
+  void run_jobs(std::size_t base);
   void plan_chunks();
   void narrow_phase(NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
   void pair_leaves(const Job& job, NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
@@ -244,7 +254,8 @@ class CollisionDetector {
                            NarrowChunk& chunk);
   void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
   void make_contacts(NarrowChunk& chunk) const;
-  void carry_memory(NarrowChunk& chunk) const;
+  void carry_memory(const PairRecord& record, std::span<const Contact> contacts,
+                    std::span<ContactMemory> memory) const;
   void place_contacts(NarrowChunk& chunk);
   // A record whose bodies both stopped moving (asleep, or asleep and static) keeps its contacts
   // and their memory in asleep_contacts_, so that the pair warm starts when it wakes.
@@ -268,6 +279,7 @@ class CollisionDetector {
   // update's (swapped, to carry them over); the ground plane's per body.
   std::vector<PairRecord> records_;
   std::vector<PairRecord> old_records_;
+  std::vector<std::uint32_t> parted_in_run_;  // carry_records_over's pairs parted, per run
   std::vector<PairRecord> ground_records_;
   std::vector<Job> jobs_;
   std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;

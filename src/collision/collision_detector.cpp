@@ -74,8 +74,7 @@ struct CollisionDetector::NarrowChunk {
   std::vector<Contact> run;  // one pair's leaf contacts, before reduction
   std::vector<Contact> contacts;
   std::vector<ContactShape> shapes;
-  std::vector<ContactMemory> memory;  // per contact, carried from the record's last contacts
-  std::size_t base = 0;               // where its contacts start in contacts_
+  std::size_t base = 0;  // where its contacts start in contacts_
   std::uint32_t parted_pairs = 0;
   std::uint64_t sphere_tests = 0;
   std::uint32_t leaf_pairs = 0;
@@ -176,30 +175,54 @@ Aabb CollisionDetector::bounds(std::uint32_t slot) const {
                     broad_phase_);
 }
 
+// Broad-phase pairs per item of the threaded merge of the pair records. unit: pairs
+constexpr std::size_t kRecordsPerRun = 1024;
+
 // The records follow the broad phase's pairs, both sorted by proxies: a pair still listed keeps
-// its record, a new pair gets an empty one, and the records of pairs gone are dropped.
+// its record, a new pair gets an empty one, and the records of pairs gone are dropped. The pairs
+// are merged in runs on the threads, each run with the old records of its keys (the first run also
+// those below, the last those above).
 void CollisionDetector::carry_records_over() {
   old_records_.swap(records_);
   const std::span<const ProxyPair> pairs =
       std::visit([](const auto& broad_phase) { return broad_phase.pairs(); }, broad_phase_);
   resize_buffer(records_, pairs.size());
-  std::size_t old = 0;
-  const auto drop = [&](const PairRecord& record) {
-    if (links_dynamic_bodies(record)) ++stats_.parted_pairs;
-  };
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
+  // The first old record at or after pair p's key.
+  const auto first_old = [&](std::size_t p) -> std::size_t {
+    if (p == 0) return 0;
+    if (p == pairs.size()) return old_records_.size();
     const std::uint64_t key = pair_key(pairs[p]);
-    while (old < old_records_.size() && pair_key(old_records_[old].proxies) < key) {
-      drop(old_records_[old++]);
+    return static_cast<std::size_t>(
+        std::partition_point(old_records_.begin(), old_records_.end(),
+                             [&](const PairRecord& r) { return pair_key(r.proxies) < key; }) -
+        old_records_.begin());
+  };
+  const std::size_t runs =
+      std::max<std::size_t>(1, (pairs.size() + kRecordsPerRun - 1) / kRecordsPerRun);
+  fill_buffer(parted_in_run_, runs, 0u);
+  for_each_item(runs, [&](std::size_t run) {
+    const std::size_t begin = run * kRecordsPerRun;
+    const std::size_t end = std::min(pairs.size(), begin + kRecordsPerRun);
+    std::size_t old = first_old(begin);
+    const std::size_t old_end = first_old(end);
+    const auto drop = [&](const PairRecord& record) {
+      if (links_dynamic_bodies(record)) ++parted_in_run_[run];
+    };
+    for (std::size_t p = begin; p < end; ++p) {
+      const std::uint64_t key = pair_key(pairs[p]);
+      while (old < old_end && pair_key(old_records_[old].proxies) < key) {
+        drop(old_records_[old++]);
+      }
+      if (old < old_end && pair_key(old_records_[old].proxies) == key) {
+        records_[p] = old_records_[old++];
+      } else {
+        records_[p] = PairRecord{};
+        records_[p].proxies = pairs[p];
+      }
     }
-    if (old < old_records_.size() && pair_key(old_records_[old].proxies) == key) {
-      records_[p] = old_records_[old++];
-    } else {
-      records_[p] = PairRecord{};
-      records_[p].proxies = pairs[p];
-    }
-  }
-  for (; old < old_records_.size(); ++old) drop(old_records_[old]);
+    for (; old < old_end; ++old) drop(old_records_[old]);
+  });
+  for (const std::uint32_t parted : parted_in_run_) stats_.parted_pairs += parted;
 }
 
 bool CollisionDetector::links_dynamic_bodies(const PairRecord& record) const {
@@ -232,9 +255,8 @@ const CollisionStats& CollisionDetector::detect() {
   previous_contacts_.swap(contacts_);
   previous_memory_.swap(memory_);
   previous_shapes_.swap(shapes_);
-  contacts_.clear();
-  memory_.clear();
-  shapes_.clear();
+  // run_jobs overwrites contacts_, memory_ and shapes_ from the start and sizes them: not cleared
+  // here, what they held is not zeroed first.
 
   // Pairs with no moving body make no contacts; their records keep the last ones asleep.
   jobs_.clear();
@@ -258,7 +280,7 @@ const CollisionStats& CollisionDetector::detect() {
     }
   }
   compact_asleep();
-  run_jobs();
+  run_jobs(0);
   return stats_;
 }
 
@@ -332,7 +354,7 @@ const CollisionStats& CollisionDetector::detect_woken() {
       if (!bodies_[i].ground_done && moves(i)) jobs_.push_back({i, true});
     }
   }
-  run_jobs();
+  run_jobs(contacts_.size());
   return stats_;
 }
 
@@ -361,7 +383,6 @@ void CollisionDetector::plan_chunks() {
     chunk.pairs.clear();
     chunk.contacts.clear();
     chunk.shapes.clear();
-    chunk.memory.clear();
     chunk.parted_pairs = 0;
     chunk.sphere_tests = 0;
     chunk.leaf_pairs = 0;
@@ -377,15 +398,10 @@ void CollisionDetector::plan_chunks() {
 }
 
 // The narrow phase and the contacts of jobs_, appended to contacts_ in the jobs' order.
-void CollisionDetector::run_jobs() {
+void CollisionDetector::run_jobs(std::size_t base) {
   plan_chunks();
   const auto for_each_chunk = [&](auto&& fn) {
-    const auto each = [&](std::size_t c) { fn(*chunks_[c]); };
-    if (parallel_ != nullptr) {
-      parallel_->for_each(chunks_.size(), each);
-    } else {
-      for (std::size_t c = 0; c < chunks_.size(); ++c) each(c);
-    }
+    for_each_item(chunks_.size(), [&](std::size_t c) { fn(*chunks_[c]); });
   };
 
   const StepClock::time_point narrow_start = StepClock::now();
@@ -397,12 +413,9 @@ void CollisionDetector::run_jobs() {
   stats_.narrow_phase_ms = elapsed_ms(narrow_start);
 
   const StepClock::time_point contacts_start = StepClock::now();
-  for_each_chunk([&](NarrowChunk& chunk) {
-    make_contacts(chunk);
-    carry_memory(chunk);
-  });
+  for_each_chunk([&](NarrowChunk& chunk) { make_contacts(chunk); });
   // Each chunk's contacts follow those of the chunks before it, in the jobs' order.
-  std::size_t total = contacts_.size();
+  std::size_t total = base;
   for (NarrowChunk* chunk : chunks_) {
     chunk->base = total;
     total += chunk->contacts.size();
@@ -430,49 +443,46 @@ void CollisionDetector::run_jobs() {
 // Each new contact takes the memory of the contact of the same leaf pair among the record's
 // contacts of the last narrow phase. Both come in the descent's order mostly, so the search
 // starts after the last match.
-void CollisionDetector::carry_memory(NarrowChunk& chunk) const {
-  resize_buffer(chunk.memory, chunk.contacts.size());
-  for (std::size_t k = 0; k < chunk.pairs.size(); ++k) {
-    const PairLeaves& pair = chunk.pairs[k];
-    const std::size_t end =
-        k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
-    const std::span<const Contact> old_contacts = last_contacts(*pair.record);
-    const std::span<const ContactMemory> old_memory = last_memory(*pair.record);
-    const std::size_t old_count = old_contacts.size();
-    std::size_t hint = 0;
-    for (std::size_t c = pair.contacts_begin; c < end; ++c) {
-      const Contact& contact = chunk.contacts[c];
-      ContactMemory memory;
-      for (std::size_t tried = 0; tried < old_count; ++tried) {
-        const std::size_t i = (hint + tried) % old_count;
-        const Contact& old = old_contacts[i];
-        if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
-          memory = old_memory[i];
-          hint = i + 1;
-          break;
-        }
+void CollisionDetector::carry_memory(const PairRecord& record, std::span<const Contact> contacts,
+                                     std::span<ContactMemory> memory) const {
+  const std::span<const Contact> old_contacts = last_contacts(record);
+  const std::span<const ContactMemory> old_memory = last_memory(record);
+  const std::size_t old_count = old_contacts.size();
+  std::size_t hint = 0;
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const Contact& contact = contacts[c];
+    memory[c] = ContactMemory{};
+    for (std::size_t tried = 0; tried < old_count; ++tried) {
+      const std::size_t i = (hint + tried) % old_count;
+      const Contact& old = old_contacts[i];
+      if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
+        memory[c] = old_memory[i];
+        hint = i + 1;
+        break;
       }
-      chunk.memory[c] = memory;
     }
   }
 }
 
-// A chunk's contacts, shapes and memory into their place in the detector's, and its records
-// pointed at them. Runs once every chunk has carried its memory from the records' last contacts.
+// A chunk's contacts and shapes into their place in the detector's, their warm-start memory
+// carried there from each record's last contacts, and the records then pointed at them (each
+// record is one chunk's, and the last contacts read are the previous narrow phase's or the
+// sleeping pairs', never those placed now).
 void CollisionDetector::place_contacts(NarrowChunk& chunk) {
   const auto base = static_cast<std::ptrdiff_t>(chunk.base);
   std::copy(chunk.contacts.begin(), chunk.contacts.end(), contacts_.begin() + base);
   std::copy(chunk.shapes.begin(), chunk.shapes.end(), shapes_.begin() + base);
-  std::copy(chunk.memory.begin(), chunk.memory.end(), memory_.begin() + base);
   for (std::size_t k = 0; k < chunk.pairs.size(); ++k) {
     const PairLeaves& pair = chunk.pairs[k];
     const std::size_t end =
         k + 1 < chunk.pairs.size() ? chunk.pairs[k + 1].contacts_begin : chunk.contacts.size();
-    if (!pair.plane && end == pair.contacts_begin && links_dynamic_bodies(*pair.record)) {
-      ++chunk.parted_pairs;
-    }
-    pair.record->first = static_cast<std::uint32_t>(chunk.base + pair.contacts_begin);
-    pair.record->count = static_cast<std::uint32_t>(end - pair.contacts_begin);
+    const std::size_t count = end - pair.contacts_begin;
+    const std::size_t first = chunk.base + pair.contacts_begin;
+    carry_memory(*pair.record, std::span<const Contact>(contacts_).subspan(first, count),
+                 std::span<ContactMemory>(memory_).subspan(first, count));
+    if (!pair.plane && count == 0 && links_dynamic_bodies(*pair.record)) ++chunk.parted_pairs;
+    pair.record->first = static_cast<std::uint32_t>(first);
+    pair.record->count = static_cast<std::uint32_t>(count);
     pair.record->kept_asleep = false;
   }
 }
