@@ -15,6 +15,7 @@
 #include "sphys/body_store.h"
 #include "sphys/cell_sweep_and_prune.h"
 #include "sphys/contact.h"
+#include "sphys/pair_cache.h"
 #include "sphys/parallel.h"
 #include "sphys/setting_limits.h"
 #include "sphys/sphere_tree.h"
@@ -64,20 +65,6 @@ struct CollisionSettings {
   bool measure_penetration = false;
   // Fixed when the detector is made (set_settings() keeps it).
   BroadPhaseKind broad_phase = BroadPhaseKind::kSweepAndPrune;
-};
-
-// What a contact carries from one narrow phase to the next for warm starting, matched by its leaf
-// pair within its body pair's record. The response writes it; the detector carries it over.
-struct ContactMemory {
-  float normal_impulse = 0.0f;           // to start the next solve from. unit: N·s
-  Vec3 friction_impulse = Vec3::Zero();  // world frame, in the tangent plane. unit: N·s
-  bool solved = false;                   // false for a contact the last solve did not have
-  // Static friction's anchors: the material points of each body (in its own frame) that met
-  // where the contact began to stick; the solver pulls them back together, so that a body held
-  // by friction does not creep. Valid while `anchored` (the contact stuck in the last solve).
-  Vec3 anchor_a = Vec3::Zero();  // unit: m
-  Vec3 anchor_b = Vec3::Zero();  // unit: m
-  bool anchored = false;
 };
 
 // Figures of one detect() call.
@@ -159,13 +146,16 @@ class CollisionDetector {
   // plane: their contacts are appended to contacts(), each pair's together. Figures of this call
   // alone, so that a step adds each pair's work once.
   const CollisionStats& detect_woken();
-  [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
-  [[nodiscard]] std::span<ContactMemory> memory() { return memory_; }
+  [[nodiscard]] std::span<const Contact> contacts() const { return cache_.contacts(); }
+  [[nodiscard]] std::span<ContactMemory> memory() { return cache_.memory(); }
   [[nodiscard]] const CollisionStats& stats() const { return stats_; }
   // The broad phase's current bound of a body (world frame).
   [[nodiscard]] Aabb bounds(std::uint32_t slot) const;
 
  private:
+  using PairRecord = PairCache::Record;
+  using ContactShape = PairCache::Shape;
+
   // What the detector keeps of a body beside the store's state.
   struct Body {
     std::shared_ptr<const SphereTree> tree;
@@ -173,24 +163,6 @@ class CollisionDetector {
     Vec3 displacement = Vec3::Zero();
     float turn_reach = 0.0f;
     bool ground_done = false;  // its ground plane pair had its narrow phase in this step
-  };
-
-  // The persistent record of a body pair (or of a body and the ground plane): created when the
-  // broad phase pairs the bodies, dropped when it unpairs them.
-  struct PairRecord {
-    ProxyPair proxies;  // the key; the ground plane's records are per body instead
-    // Body b's pose in body a's frame (the world's for the ground) at the last descent.
-    Transform relative;
-    // The gap the last descent looked up to; negative when the contacts below are not valid.
-    // unit: m
-    float descent_margin = -1.0f;
-    // Its contacts of the last narrow phase: [first, first + count) of contacts_ (of
-    // previous_contacts_ once the next narrow phase begins), or of asleep_contacts_ while
-    // neither body moves (`kept_asleep`).
-    std::uint32_t first = 0;
-    std::uint32_t count = 0;
-    bool kept_asleep = false;
-    bool done = false;  // had its narrow phase in this step
   };
 
   // Two leaf spheres within their pair's gap in the world frame, what the narrow phase hands to
@@ -215,9 +187,7 @@ class CollisionDetector {
     std::uint32_t contacts_begin = 0;  // its contacts in the chunk's output
   };
 
-  // The narrow phase's work on a run of jobs (candidate pairs, or bodies against the ground
-  // plane), done on one thread into its own buffers; the runs' contacts are joined in the runs'
-  // order, so the result is the same whatever thread did which run.
+  // The narrow phase's work on a run of jobs (collision/narrow_chunk.h).
   struct NarrowChunk;
 
   // A job of the narrow phase: a candidate pair's index, or a body's against the ground plane.
@@ -234,7 +204,6 @@ class CollisionDetector {
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
   [[nodiscard]] bool budget() const;
-  void carry_records_over();
   // fn(i) for every i in [0, count): on the threads where the detector has them.
   template <class Fn>
   void for_each_item(std::size_t count, const Fn& fn) const {
@@ -244,7 +213,7 @@ class CollisionDetector {
     }
     for (std::size_t i = 0; i < count; ++i) fn(i);
   }
-  // The narrow phase and contacts of jobs_, placed in contacts_ from `base` on.
+  // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();
   void narrow_phase(NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
@@ -254,19 +223,7 @@ class CollisionDetector {
                            NarrowChunk& chunk);
   void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
   void make_contacts(NarrowChunk& chunk) const;
-  void carry_memory(const PairRecord& record, std::span<const Contact> contacts,
-                    std::span<ContactMemory> memory) const;
   void place_contacts(NarrowChunk& chunk);
-  // A record whose bodies both stopped moving (asleep, or asleep and static) keeps its contacts
-  // and their memory in asleep_contacts_, so that the pair warm starts when it wakes.
-  void keep_asleep(PairRecord& record);
-  static std::uint32_t append_range(const std::vector<Contact>& contacts,
-                                    const std::vector<ContactMemory>& memory,
-                                    const PairRecord& record, std::vector<Contact>& to_contacts,
-                                    std::vector<ContactMemory>& to_memory);
-  void compact_asleep();
-  [[nodiscard]] std::span<const Contact> last_contacts(const PairRecord& record) const;
-  [[nodiscard]] std::span<const ContactMemory> last_memory(const PairRecord& record) const;
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
                                                float margin) const;
 
@@ -275,36 +232,11 @@ class CollisionDetector {
   std::vector<Body> bodies_;  // per slot of the store
   std::vector<std::uint32_t> body_of_proxy_;
   std::variant<SweepAndPrune, CellSweepAndPrune> broad_phase_;
-  // Records of the candidate pairs, in the order of broad_phase_.pairs(), and of the last
-  // update's (swapped, to carry them over); the ground plane's per body.
-  std::vector<PairRecord> records_;
-  std::vector<PairRecord> old_records_;
-  std::vector<std::uint32_t> parted_in_run_;  // carry_records_over's pairs parted, per run
-  std::vector<PairRecord> ground_records_;
+  PairCache cache_;
   std::vector<Job> jobs_;
   std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;
   std::vector<std::unique_ptr<NarrowChunk>> plane_chunks_;
   std::vector<NarrowChunk*> chunks_;  // the planned runs, in order
-  // This step's contacts and their memory, and the last step's, to carry the memory over.
-  std::vector<Contact> contacts_;
-  std::vector<ContactMemory> memory_;
-  std::vector<Contact> previous_contacts_;
-  std::vector<ContactMemory> previous_memory_;
-  // The contacts and memory of the records kept asleep, and how many of them are a live record's
-  // (records gone or woken leave theirs behind until the store is compacted).
-  std::vector<Contact> asleep_contacts_;
-  std::vector<ContactMemory> asleep_memory_;
-  std::vector<Contact> compacted_contacts_;  // compact_asleep's scratch
-  std::vector<ContactMemory> compacted_memory_;
-  std::size_t live_asleep_ = 0;
-  // Per contact, what reusing it needs: its depth beyond its own leaf pair's (a reduced contact
-  // carries its cluster's deepest overlap) and its normal in body a's frame. unit: m
-  struct ContactShape {
-    float depth_offset = 0.0f;
-    Vec3 normal_in_a = Vec3::UnitY();
-  };
-  std::vector<ContactShape> shapes_;
-  std::vector<ContactShape> previous_shapes_;
   const Parallel* parallel_ = nullptr;
   CollisionStats stats_;
 };
