@@ -15,6 +15,7 @@
 #include "sphys/tools/interrupt.h"
 #include "sphys/tools/robot.h"
 #include "sphys/tools/spherize.h"
+#include "standard_output.h"
 
 namespace sphys::cli {
 namespace {
@@ -138,7 +139,7 @@ void run(const SpherizeArguments& args) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (args.json) {
-    std::cout << report_json(args, robot, links, seconds).dump(2) << '\n';
+    print_output(report_json(args, robot, links, seconds).dump(2) + "\n");
   } else {
     print_report(args, robot, links, seconds);
   }

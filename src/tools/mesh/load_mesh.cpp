@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <new>
 #include <sstream>
 #include <unordered_map>
 
@@ -78,7 +79,14 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   const aiScene* scene = importer.ReadFile(
       path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
                          aiProcess_RemoveComponent | aiProcess_ValidateDataStructure);
-  if (scene == nullptr) throw Error::in_file(path, importer_message(importer));
+  if (scene == nullptr) {
+    // assimp catches every exception and keeps only its text: running out of memory is no fault
+    // of the file, and must stay an internal error.
+    if (std::string_view(importer.GetErrorString()).find("bad_alloc") != std::string_view::npos) {
+      throw std::bad_alloc();
+    }
+    throw Error::in_file(path, importer_message(importer));
+  }
   if (scene->mNumMeshes == 0) {
     throw Error::in_file(path, "no mesh found (not a mesh file, or an unreadable one)");
   }
