@@ -205,8 +205,11 @@ void run_gnuplot(const fs::path& gnuplot, const fs::path& script, const fs::path
 void check_whole_png(const fs::path& png, const fs::path& target) {
   // The last 12 bytes of every PNG: IEND's zero length, its type and its CRC.
   static constexpr std::string_view kEnd("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+  std::error_code ec;
+  if (!fs::exists(png, ec))
+    throw Error::in_file(target, "gnuplot finished without drawing the plot");
   const std::string bytes = read_whole_file(png);
-  if (bytes.size() >= kEnd.size() && bytes.ends_with(kEnd)) return;
+  if (bytes.ends_with(kEnd)) return;
   const std::string cut = "gnuplot stopped at " + std::to_string(bytes.size()) + " bytes";
   if (const int reason = append_error(png)) {
     throw Error::in_file(target,
