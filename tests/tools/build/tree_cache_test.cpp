@@ -164,19 +164,26 @@ TEST(TreeCache, CheckNamesTheDamagedEntriesAndClearEmptiesTheFolder) {
   std::string bytes = test::read_whole(damaged);
   bytes[sph_header(bytes)] = '2';
   overwrite(damaged, bytes);
+  // An entry of the versions whose entries were plain .sph files, and files of the user's.
+  const fs::path plain = dir.write("octree-b8-d3-fedcba9876543210.sph", "1 8\n0 0 0 1 1\n");
   dir.write("notes.txt", "not an entry");
+  dir.write("mine.sph", "1 8\n0 0 0 1 1\n");
 
   const std::vector<CacheEntryCheck> checks = check_cache(dir.path());
-  ASSERT_EQ(checks.size(), 2u);
+  ASSERT_EQ(checks.size(), 3u);
   EXPECT_EQ(checks[0].path, cache_path(dir.path(), box, octree(2)));
   EXPECT_FALSE(checks[0].problem);
   EXPECT_EQ(checks[0].description, "octree, branching 8, depth 2 (9 spheres)");
   EXPECT_EQ(checks[1].path, damaged);
   EXPECT_EQ(checks[1].problem, "its checksum does not match its bytes (changed or cut short)");
+  EXPECT_EQ(checks[2].path, plain);
+  EXPECT_THAT(checks[2].problem.value_or(""),
+              testing::StartsWith("not a sphere-tree cache entry of this sphys"));
 
-  EXPECT_EQ(clear_cache(dir.path()), 2u);
+  EXPECT_EQ(clear_cache(dir.path()), 3u);
   EXPECT_TRUE(check_cache(dir.path()).empty());
   EXPECT_TRUE(fs::exists(dir.path() / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir.path() / "mine.sph"));
 }
 
 }  // namespace
