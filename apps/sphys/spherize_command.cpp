@@ -2,9 +2,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "progress.h"
 #include "sphys/tools/interrupt.h"
+#include "sphys/tools/note.h"
 #include "sphys/tools/robot.h"
 #include "sphys/tools/spherize.h"
 #include "standard_output.h"
@@ -125,8 +126,10 @@ void run(const SpherizeArguments& args) {
   for (const tools::LinkGeometry& link : robot.links) {
     const double size = link.mesh.bounds().diagonal().norm();
     if (size > kLargeLink || size < kSmallLink) {
-      std::cerr << "sphys: note: link \"" << link.link << "\" is " << size
-                << " m across: check the mesh's units (a scale in the URDF fixes them)\n";
+      std::ostringstream text;
+      text << "link \"" << link.link << "\" is " << size
+           << " m across: check the mesh's units (a scale in the URDF fixes them)";
+      tools::note(text.str());
     }
   }
   tools::SpherizeOptions options;
