@@ -2,6 +2,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "commands.h"
 #include "sphys/error.h"
