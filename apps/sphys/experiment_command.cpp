@@ -1,6 +1,5 @@
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -21,6 +20,7 @@
 #include "sphys/tools/scene.h"
 #include "sphys/tools/text_file.h"
 #include "sphys/tools/tree_cache.h"
+#include "standard_output.h"
 #include "viewer/frame_drawer.h"
 #include "viewer/window.h"
 
@@ -165,7 +165,7 @@ void run(const ExperimentCommandOptions& options) {
     json["statistics"] =
         nlohmann::ordered_json::parse(tools::statistics_json(tools::compute_statistics(summaries)));
     json["report"] = report.string();
-    std::cout << json.dump(2) << '\n';
+    print_output(json.dump(2) + "\n");
     return;
   }
   std::printf("%s", tools::comparison_text(results, experiment.mode).c_str());

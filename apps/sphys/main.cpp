@@ -1,9 +1,13 @@
 #include <exception>
 #include <iostream>
+#include <new>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "sphys/error.h"
 #include "sphys/tools/interrupt.h"
+#include "standard_output.h"
 
 namespace {
 
@@ -15,6 +19,12 @@ constexpr int kInternalError = 1;
 int report_interruption(const sphys::tools::Interrupted& interrupted) {
   std::cerr << "sphys: " << interrupted.what() << '\n';
   return interrupted.exit_code();
+}
+
+// "sphys simulate", the command that was running; "sphys" before one was chosen.
+std::string running_command(const CLI::App& app) {
+  const std::vector<CLI::App*> commands = app.get_subcommands();
+  return commands.empty() ? "sphys" : "sphys " + commands.front()->get_name();
 }
 
 }  // namespace
@@ -32,6 +42,7 @@ int main(int argc, char** argv) {
   sphys::cli::add_export_command(app);
   sphys::cli::add_view_command(app);
   sphys::cli::add_spherize_command(app);
+  sphys::cli::add_cache_command(app);
 
   try {
     app.parse(argc, argv);
@@ -39,6 +50,7 @@ int main(int argc, char** argv) {
       std::cerr << "sphys: error: no command given\n" << app.help();
       return kBadInput;
     }
+    sphys::cli::finish_output();
   } catch (const CLI::ParseError& e) {
     // --help and --version are "errors" that succeed: CLI11 prints them.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
@@ -52,6 +64,11 @@ int main(int argc, char** argv) {
     }
     std::cerr << "sphys: error: " << e.what() << '\n';
     return kBadInput;
+  } catch (const std::bad_alloc&) {
+    // Never bad input, whichever file was being read when memory ran out.
+    std::cerr << "sphys: internal error: out of memory while running " << running_command(app)
+              << '\n';
+    return kInternalError;
   } catch (const std::exception& e) {
     if (const int signal = sphys::tools::interruption_signal()) {
       return report_interruption(sphys::tools::Interrupted(signal));

@@ -1,5 +1,4 @@
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +10,7 @@
 #include "sphys/tools/mass_properties.h"
 #include "sphys/tools/model.h"
 #include "sphys/tools/normalize.h"
+#include "standard_output.h"
 
 namespace sphys::cli {
 namespace {
@@ -95,7 +95,7 @@ void print_json(const tools::TriangleMesh& mesh, const tools::MeshReport& report
       {"principal_moments", to_json(mass.principal_moments)},
       {"principal_axes", to_json(mass.principal_axes)},
   };
-  std::cout << out.dump(2) << '\n';
+  print_output(out.dump(2) + "\n");
 }
 
 void run(const MeshInfoOptions& options) {

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +26,7 @@
 #include "sphys/tools/scenarios.h"
 #include "sphys/tools/scene_file.h"
 #include "sphys/tools/tree_cache.h"
+#include "standard_output.h"
 
 namespace sphys::cli {
 namespace {
@@ -330,7 +330,7 @@ void run(const SimulateOptions& options) {
   summary["csv"] = csv_path.string();
   summary["recording"] = recording_path.string();
   if (options.json) {
-    std::cout << summary.dump(2) << '\n';
+    print_output(summary.dump(2) + "\n");
     return;
   }
   print_summary(summary);

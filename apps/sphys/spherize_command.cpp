@@ -2,9 +2,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -13,8 +13,10 @@
 #include "commands.h"
 #include "progress.h"
 #include "sphys/tools/interrupt.h"
+#include "sphys/tools/note.h"
 #include "sphys/tools/robot.h"
 #include "sphys/tools/spherize.h"
+#include "standard_output.h"
 
 namespace sphys::cli {
 namespace {
@@ -124,8 +126,10 @@ void run(const SpherizeArguments& args) {
   for (const tools::LinkGeometry& link : robot.links) {
     const double size = link.mesh.bounds().diagonal().norm();
     if (size > kLargeLink || size < kSmallLink) {
-      std::cerr << "sphys: note: link \"" << link.link << "\" is " << size
-                << " m across: check the mesh's units (a scale in the URDF fixes them)\n";
+      std::ostringstream text;
+      text << "link \"" << link.link << "\" is " << size
+           << " m across: check the mesh's units (a scale in the URDF fixes them)";
+      tools::note(text.str());
     }
   }
   tools::SpherizeOptions options;
@@ -138,7 +142,7 @@ void run(const SpherizeArguments& args) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (args.json) {
-    std::cout << report_json(args, robot, links, seconds).dump(2) << '\n';
+    print_output(report_json(args, robot, links, seconds).dump(2) + "\n");
   } else {
     print_report(args, robot, links, seconds);
   }

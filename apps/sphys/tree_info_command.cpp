@@ -1,5 +1,4 @@
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +11,7 @@
 #include "sphys/tools/model.h"
 #include "sphys/tools/sph_file.h"
 #include "sphys/tools/tree_quality.h"
+#include "standard_output.h"
 
 namespace sphys::cli {
 namespace {
@@ -60,7 +60,7 @@ void run(const TreeInfoOptions& options) {
                           {"spheres", file.nodes.size()},
                           {"levels", entries}};
     if (mesh) out["mesh"] = mesh->name;
-    std::cout << out.dump(2) << '\n';
+    print_output(out.dump(2) + "\n");
     return;
   }
 

@@ -10,12 +10,23 @@
 #include <gtest/gtest.h>
 
 #include "support/run_command.h"
+#include "support/temp_file.h"
 
 namespace sphys::test {
 
 // The sphys program built with the tests (its path comes from CMake).
 inline CommandResult sphys_cli(const std::vector<std::string>& args) {
   return run_command(SPHYS_CLI_PATH, args);
+}
+
+// The sphys program started by /bin/sh after `setup`: shell commands that put in a fault the way a
+// user would (`ulimit -n 4`, `exec >/dev/full`, `trap '' XFSZ`), which reach sphys through exec.
+inline CommandResult sphys_cli_after(const std::string& setup,
+                                     const std::vector<std::string>& args) {
+  std::vector<std::string> shell_args = {"-c", "set -e\n" + setup + "\nexec \"$0\" \"$@\"",
+                                         SPHYS_CLI_PATH};
+  shell_args.insert(shell_args.end(), args.begin(), args.end());
+  return run_command("/bin/sh", shell_args);
 }
 
 // Bad input: one line on standard error naming the file and the problem, exit code 2.
@@ -38,6 +49,15 @@ inline std::vector<std::string> read_lines(const std::filesystem::path& path) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
+}
+
+// Temporary files the atomic writers left in `dir`.
+inline std::vector<std::filesystem::path> temporary_files_in(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> found;
+  for (const std::filesystem::path& file : files_in(dir)) {
+    if (file.extension() == ".tmp") found.push_back(file);
+  }
+  return found;
 }
 
 // Points the command line at one sphere-tree cache for the whole test program (never the user's),

@@ -41,4 +41,15 @@ TEST(FuzzFindings, AnEmptyRecordingOfBillionsOfBodiesAllocatesNoFrame) {
                      "end of input; expected '[', '{', or a literal\n");
 }
 
+// Found by fuzz_stl while out-of-memory errors were told from assimp's messages by their text: an
+// STL file whose own words hold "bad_alloc" was reported as sphys running out of memory (and
+// aborted the fuzzer). assimp's caught exception itself now decides.
+TEST(FuzzFindings, AMeshThatSaysBadAllocIsBadInput) {
+  const test::TempDir dir;
+  const std::string stl = dir.write("named.stl", "solid bad_alloc\nendsolid bad_alloc\n").string();
+  expect_refused(
+      {"mesh-info", stl},
+      "sphys: error: " + stl + ": Validation failed: The mesh bad_alloc contains no vertices\n");
+}
+
 }  // namespace sphys::fuzz_findings_test

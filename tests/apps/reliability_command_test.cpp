@@ -105,15 +105,6 @@ TEST(ReliabilityCommand, ReplayFramesPastTheRecordingAreRefused) {
       "sphys: error: " + recording + ": --frames 999999 is past the recording's last frame, 5\n");
 }
 
-// Temporary files the atomic writers left in `dir`.
-std::vector<fs::path> temporaries(const fs::path& dir) {
-  std::vector<fs::path> found;
-  for (const fs::path& file : test::files_in(dir)) {
-    if (file.extension() == ".tmp") found.push_back(file);
-  }
-  return found;
-}
-
 // Runs a long simulation into a folder that holds an earlier run's outputs, sends `signal` once
 // the recording's temporary file exists (the frame loop is about to run or running), and checks
 // the exit: the code, one line, no temporary file, the earlier outputs untouched.
@@ -134,16 +125,17 @@ void expect_clean_interruption(int signal, int exit_code) {
   test::RunningCommand command(SPHYS_CLI_PATH, long_run);
   constexpr auto kPatience = std::chrono::seconds(30);
   const auto start = std::chrono::steady_clock::now();
-  while (temporaries(dir.path()).empty() && std::chrono::steady_clock::now() - start < kPatience) {
+  while (test::temporary_files_in(dir.path()).empty() &&
+         std::chrono::steady_clock::now() - start < kPatience) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  ASSERT_FALSE(temporaries(dir.path()).empty()) << "the run never started recording";
+  ASSERT_FALSE(test::temporary_files_in(dir.path()).empty()) << "the run never started recording";
   kill(command.pid(), signal);
   const test::CommandResult r = command.wait();
 
   EXPECT_EQ(r.exit_code, exit_code);
   EXPECT_EQ(r.err, "sphys: interrupted\n");
-  EXPECT_TRUE(temporaries(dir.path()).empty());
+  EXPECT_TRUE(test::temporary_files_in(dir.path()).empty());
   EXPECT_EQ(test::read_whole(dir.path() / "frames.csv"), csv);
   EXPECT_EQ(test::read_whole(dir.path() / "recording.sphysrec"), recording);
   EXPECT_EQ(tools::read_recording(dir.path() / "recording.sphysrec").frame_count, 6u);

@@ -41,6 +41,9 @@ RunningCommand::RunningCommand(const std::string& program, const std::vector<std
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, out_fd_, STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, err_fd_, STDERR_FILENO);
+  // The program gets its three streams and nothing else (neither the capture files nor what the
+  // test runner left open), so that a test may count on the descriptors it has (`ulimit -n`).
+  posix_spawn_file_actions_addclosefrom_np(&actions, STDERR_FILENO + 1);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
 
   std::vector<char*> argv;

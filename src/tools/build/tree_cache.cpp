@@ -1,86 +1,203 @@
 #include "sphys/tools/tree_cache.h"
 
-#include <cstdio>
+#include <algorithm>
+#include <cerrno>
 #include <cstdlib>
-#include <cstring>
+#include <fcntl.h>
+#include <mutex>
+#include <set>
 #include <string>
+#include <sys/stat.h>
+#include <system_error>
+#include <unistd.h>
 
+#include "io/input_file.h"
+#include "io/temporary_files.h"
 #include "sphys/error.h"
-#include "sphys/tools/sph_file.h"
+#include "sphys/tools/note.h"
+#include "sphys/tools/system_reason.h"
+#include "sphys/tools/text_file.h"
+#include "tree_cache_entry.h"
 
 namespace sphys::tools {
 namespace {
 
-// Bumped whenever a builder changes what it produces, so old cache entries are not reused.
-constexpr int kBuilderVersion = 2;
+namespace fs = std::filesystem;
 
-// FNV-1a, 64 bits: stable across platforms and runs, unlike std::hash.
-class Fnv1a {
+// A cache is an optimisation: a folder that cannot be read or written is given up for the rest
+// of the process, with one note, and every tree is built.
+class UnusableFolders {
  public:
-  void add(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3ULL;
+  [[nodiscard]] bool contains(const fs::path& dir) {
+    const std::scoped_lock lock(mutex_);
+    return folders_.contains(dir);
   }
-  template <typename T>
-  void add(const T& value) {
-    add(&value, sizeof value);
+  void give_up(const fs::path& dir, const std::string& reason) {
+    const std::scoped_lock lock(mutex_);
+    if (folders_.insert(dir).second) {
+      note("the sphere-tree cache " + dir.string() + " cannot be used (" + reason +
+           "); going on without it");
+    }
   }
-  [[nodiscard]] std::uint64_t value() const { return hash_; }
 
  private:
-  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+  std::mutex mutex_;
+  std::set<fs::path> folders_;
 };
+
+UnusableFolders& unusable_folders() {
+  static UnusableFolders folders;
+  return folders;
+}
+
+// The entry's bytes, or the errno of the failure to read them (ENOENT: no entry). Not a regular
+// file, or larger than any entry may be: read as an empty, so damaged, entry.
+int read_entry(const fs::path& path, std::string& bytes) {
+  // O_NONBLOCK: a named pipe under an entry's name must not stop the run.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return errno;
+  struct stat info {};
+  int error = 0;
+  if (::fstat(fd, &info) != 0) {
+    error = errno;
+  } else if (S_ISREG(info.st_mode) &&
+             static_cast<std::uint64_t>(info.st_size) <= kMaxSphereTreeFileBytes) {
+    bytes.resize(static_cast<std::size_t>(info.st_size));
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) error = errno;
+      if (n <= 0) break;
+      done += static_cast<std::size_t>(n);
+    }
+    bytes.resize(done);
+  }
+  ::close(fd);
+  return error;
+}
+
+// An entry's error without the entry's path in front, for messages that name the entry already.
+std::string problem_of(const Error& error, const fs::path& path) {
+  const std::string text = error.what();
+  const std::string prefix = path.string() + ": ";
+  return text.starts_with(prefix) ? text.substr(prefix.size()) : text;
+}
+
+// The tree of a usable entry at `path` made for `origin`; nothing when there is none, the
+// entry is damaged (noted, to be replaced) or the folder cannot be read (given up).
+std::optional<SphereTree> load_entry(const fs::path& dir, const fs::path& path,
+                                     const TreeOrigin& origin) {
+  std::string bytes;
+  if (const int error = read_entry(path, bytes)) {
+    if (error != ENOENT) unusable_folders().give_up(dir, system_reason(error));
+    return std::nullopt;
+  }
+  std::string problem;
+  try {
+    DecodedEntry entry = decode_entry(bytes, path);
+    // The name is a hash of the origin, so this differs only where hashes collide.
+    if (entry.origin == origin) return std::move(entry.tree);
+    problem = "made for another mesh or other parameters";
+  } catch (const Error& error) {
+    problem = problem_of(error, path);
+  }
+  note(path.string() + ": a damaged sphere-tree cache entry (" + problem +
+       "); rebuilding and replacing it");
+  return std::nullopt;
+}
+
+void store_entry(const fs::path& dir, const fs::path& path, const TreeOrigin& origin,
+                 const SphereTree& tree) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    unusable_folders().give_up(dir, system_reason(ec.value()));
+    return;
+  }
+  try {
+    write_text_file(path, encode_entry(origin, tree));
+  } catch (const Error& error) {
+    unusable_folders().give_up(dir, error.what());
+  }
+}
 
 }  // namespace
 
-std::filesystem::path default_cache_dir() {
+fs::path default_cache_dir() {
   if (const char* dir = std::getenv("SPHYS_CACHE_DIR"); dir && *dir) return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
-    return std::filesystem::path(xdg) / "sphys";
+    return fs::path(xdg) / "sphys";
   }
   if (const char* home = std::getenv("HOME"); home && *home) {
-    return std::filesystem::path(home) / ".cache" / "sphys";
+    return fs::path(home) / ".cache" / "sphys";
   }
-  return std::filesystem::temp_directory_path() / "sphys-cache";
+  return fs::temp_directory_path() / "sphys-cache";
 }
 
-std::filesystem::path cache_path(const std::filesystem::path& dir, const TriangleMesh& mesh,
-                                 const BuildOptions& options) {
-  Fnv1a hash;
-  for (const Vec3d& v : mesh.vertices) hash.add(v.data(), 3 * sizeof(double));
-  for (const Triangle& t : mesh.triangles) hash.add(t.data(), 3 * sizeof(std::uint32_t));
-  hash.add(kBuilderVersion);
-  hash.add(static_cast<int>(options.method));
-  hash.add(options.branching);
-  hash.add(options.depth);
-  hash.add(options.seed);
-  char name[64];
-  std::snprintf(name, sizeof name, "%s-b%d-d%d-%016llx.sph",
-                std::string(method_name(options.method)).c_str(), options.branching, options.depth,
-                static_cast<unsigned long long>(hash.value()));
-  return dir / name;
+fs::path cache_path(const fs::path& dir, const TriangleMesh& mesh, const BuildOptions& options) {
+  return dir / entry_name(origin_of(mesh, options));
 }
 
 CachedTree build_sphere_tree_cached(const TriangleMesh& mesh, const BuildOptions& options,
-                                    const std::optional<std::filesystem::path>& dir) {
-  if (!dir) return {build_sphere_tree(mesh, options), false};
-  const std::filesystem::path path = cache_path(*dir, mesh, options);
-  if (std::filesystem::exists(path)) {
-    try {
-      return {read_sph(path), true};
-    } catch (const Error&) {
-      // A damaged entry (an interrupted disk, a foreign file): rebuild and overwrite it.
-    }
+                                    const std::optional<fs::path>& dir) {
+  if (!dir || unusable_folders().contains(*dir)) return {build_sphere_tree(mesh, options), false};
+  const TreeOrigin origin = origin_of(mesh, options);
+  const fs::path path = *dir / entry_name(origin);
+  if (std::optional<SphereTree> cached = load_entry(*dir, path, origin)) {
+    return {std::move(*cached), true};
   }
   CachedTree built{build_sphere_tree(mesh, options), false};
-  std::error_code ec;
-  std::filesystem::create_directories(*dir, ec);
-  try {
-    write_sph(path, built.tree);
-  } catch (const Error&) {
-    // A read-only or full cache only costs the next run a rebuild.
-  }
+  if (!unusable_folders().contains(*dir)) store_entry(*dir, path, origin, built.tree);
   return built;
+}
+
+std::vector<CacheEntryCheck> check_cache(const fs::path& dir) {
+  std::vector<CacheEntryCheck> checks;
+  std::error_code ec;
+  if (!fs::exists(dir, ec) && !ec) return checks;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!is_entry_name(it->path().filename().native())) continue;
+    CacheEntryCheck& check = checks.emplace_back();
+    check.path = it->path();
+    std::string bytes;
+    if (const int error = read_entry(check.path, bytes)) {
+      check.problem = "cannot be read: " + system_reason(error);
+      continue;
+    }
+    check.bytes = bytes.size();
+    try {
+      const DecodedEntry entry = decode_entry(bytes, check.path);
+      check.description = entry.origin.method + ", branching " +
+                          std::to_string(entry.tree.branching()) + ", depth " +
+                          std::to_string(entry.tree.depth()) + " (" +
+                          std::to_string(entry.tree.size()) + " spheres)";
+    } catch (const Error& error) {
+      check.problem = problem_of(error, check.path);
+    }
+  }
+  if (ec) throw Error::in_file(dir, "cannot read the cache folder: " + system_reason(ec.value()));
+  std::sort(checks.begin(), checks.end(),
+            [](const CacheEntryCheck& a, const CacheEntryCheck& b) { return a.path < b.path; });
+  return checks;
+}
+
+std::size_t clear_cache(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec) && !ec) return 0;
+  remove_orphaned_temporaries(dir);
+  std::size_t removed = 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!is_entry_name(it->path().filename().native())) continue;
+    std::error_code failed;
+    fs::remove(it->path(), failed);
+    if (failed) {
+      throw Error::in_file(it->path(), "cannot remove the file: " + system_reason(failed.value()));
+    }
+    ++removed;
+  }
+  if (ec) throw Error::in_file(dir, "cannot read the cache folder: " + system_reason(ec.value()));
+  return removed;
 }
 
 }  // namespace sphys::tools

@@ -1,14 +1,14 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
-#include <cstdint>
 #include <cstdlib>
 #include <fcntl.h>
 #include <fstream>
+#include <iterator>
 #include <optional>
-#include <random>
 #include <span>
 #include <spawn.h>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <sys/wait.h>
@@ -17,8 +17,11 @@
 #include <utility>
 #include <vector>
 
+#include "io/temporary_files.h"
 #include "sphys/error.h"
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/system_reason.h"
+#include "sphys/tools/text_file.h"
 
 extern char** environ;
 
@@ -46,20 +49,6 @@ class ScratchFiles {
  private:
   std::vector<fs::path> paths_;
 };
-
-// "<path>.<random hex><suffix>": a scratch name next to `path` (so that a rename stays within one
-// file system) that runs sharing a directory do not both pick.
-fs::path tagged(const fs::path& path, std::string_view suffix) {
-  std::random_device random;
-  const std::uint64_t tag = (std::uint64_t{random()} << 32) ^ random();
-  std::array<char, 17> hex{};
-  const auto result = std::to_chars(hex.data(), hex.data() + hex.size(), tag, 16);
-  fs::path name = path;
-  name += ".";
-  name += std::string_view(hex.data(), static_cast<std::size_t>(result.ptr - hex.data()));
-  name += suffix;
-  return name;
-}
 
 // The program as found on PATH (an empty entry is the current directory), or nothing.
 std::optional<fs::path> find_on_path(std::string_view program) {
@@ -107,25 +96,19 @@ std::string number(double value) {
   return {buffer.data(), result.ptr};
 }
 
-std::ofstream open_scratch(const fs::path& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error::in_file(path, "cannot create a file in the plot directory");
-  return out;
-}
-
 // One block per row, "frame step_ms contacts" per line; gnuplot's `index` picks a block, blocks
 // being separated by two blank lines.
 void write_data(const fs::path& path, const std::vector<const RowResult*>& rows) {
-  std::ofstream out = open_scratch(path);
+  std::string text;
   for (const RowResult* result : rows) {
     for (std::size_t i = 0; i < result->frames.size(); ++i) {
       const FrameSample& frame = result->frames[i];
-      out << i + 1 << ' ' << number(frame.step_ms) << ' ' << frame.contacts << '\n';
+      text += std::to_string(i + 1) + ' ' + number(frame.step_ms) + ' ' +
+              std::to_string(frame.contacts) + '\n';
     }
-    out << "\n\n";
+    text += "\n\n";
   }
-  out.close();
-  if (!out) throw Error::in_file(path, "cannot write the plot data (is the disk full?)");
+  write_text_file(path, text);
 }
 
 struct Drawing {
@@ -136,7 +119,7 @@ struct Drawing {
 
 void write_script(const fs::path& path, const fs::path& data,
                   const std::vector<Drawing>& drawings) {
-  std::ofstream out = open_scratch(path);
+  std::ostringstream out;
   // noenhanced: titles are printed as written, with no markup in underscores or carets.
   out << "set terminal pngcairo size 960,540 noenhanced\n"
          "set grid\n"
@@ -156,8 +139,23 @@ void write_script(const fs::path& path, const fs::path& data,
   }
   // Closes the last PNG.
   out << "unset output\n";
-  out.close();
-  if (!out) throw Error::in_file(path, "cannot write the gnuplot script (is the disk full?)");
+  write_text_file(path, out.str());
+}
+
+// A scratch file's bytes (a PNG of a few tens of kilobytes); empty if it cannot be read.
+std::string read_whole_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The errno of appending a block to the file, 0 if that succeeds.
+int append_error(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd < 0) return errno;
+  static const std::array<char, 1 << 16> kBlock{};
+  const int error = ::write(fd, kBlock.data(), kBlock.size()) < 0 ? errno : 0;
+  ::close(fd);
+  return error;
 }
 
 // The last line gnuplot printed that says something: where its script went wrong.
@@ -188,8 +186,7 @@ void run_gnuplot(const fs::path& gnuplot, const fs::path& script, const fs::path
       posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawn_error != 0) {
-    throw Error("gnuplot could not be started (" + program +
-                "): " + std::generic_category().message(spawn_error));
+    throw Error("gnuplot could not be started (" + program + "): " + system_reason(spawn_error));
   }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
@@ -202,10 +199,32 @@ void run_gnuplot(const fs::path& gnuplot, const fs::path& script, const fs::path
   throw Error("gnuplot " + how + ": " + last_message(log));
 }
 
+// gnuplot exits 0 even when it could not write its PNG (a full disk leaves it cut short), so each
+// PNG is checked for its end chunk. The system's reason is found by trying to write there once
+// more: the same write fails the same way.
+void check_whole_png(const fs::path& png, const fs::path& target) {
+  // The last 12 bytes of every PNG: IEND's zero length, its type and its CRC.
+  static constexpr std::string_view kEnd("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+  std::error_code ec;
+  if (!fs::exists(png, ec))
+    throw Error::in_file(target, "gnuplot finished without drawing the plot");
+  const std::string bytes = read_whole_file(png);
+  if (bytes.ends_with(kEnd)) return;
+  const std::string cut = "gnuplot stopped at " + std::to_string(bytes.size()) + " bytes";
+  if (const int reason = append_error(png)) {
+    throw Error::in_file(target,
+                         "cannot write the file: " + system_reason(reason) + " (" + cut + ")");
+  }
+  throw Error::in_file(target, "gnuplot did not draw the whole plot (" + cut + ", no PNG end)");
+}
+
 void create_plot_directory(const fs::path& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
-  if (ec) throw Error::in_file(directory, "cannot create the plot directory: " + ec.message());
+  if (ec) {
+    throw Error::in_file(directory,
+                         "cannot create the plot directory: " + system_reason(ec.value()));
+  }
 }
 
 }  // namespace
@@ -230,15 +249,16 @@ std::vector<fs::path> write_plots(const fs::path& directory, std::span<const Row
   // Absolute, so that the script's path cannot be taken for one of gnuplot's options.
   const fs::path base = fs::absolute(directory) / ".plots";
   ScratchFiles scratch;
-  const fs::path data = scratch.add(tagged(base, ".dat"));
-  const fs::path script = scratch.add(tagged(base, ".gp"));
-  const fs::path log = scratch.add(tagged(base, ".log"));
+  remove_orphaned_temporaries(directory);
+  const fs::path data = scratch.add(temporary_sibling(base.string() + "-data"));
+  const fs::path script = scratch.add(temporary_sibling(base.string() + "-script"));
+  const fs::path log = scratch.add(temporary_sibling(base.string() + "-log"));
 
   std::vector<Drawing> drawings;
   std::vector<std::pair<fs::path, fs::path>> renames;  // temporary name, final name
   const auto staged = [&](const std::string& name) {
     const fs::path target = directory / name;
-    fs::path temporary = scratch.add(tagged(target, ".tmp"));
+    fs::path temporary = scratch.add(temporary_sibling(target));
     renames.emplace_back(temporary, target);
     return temporary;
   };
@@ -251,14 +271,13 @@ std::vector<fs::path> write_plots(const fs::path& directory, std::span<const Row
   write_script(script, data, drawings);
   run_gnuplot(gnuplot, script, log);
 
+  // Every plot checked before any replaces an earlier run's.
+  for (const auto& [temporary, target] : renames) check_whole_png(temporary, target);
   std::vector<fs::path> written;
   for (const auto& [temporary, target] : renames) {
     std::error_code ec;
-    if (fs::file_size(temporary, ec) == 0 || ec) {
-      throw Error::in_file(target, "gnuplot finished without drawing the plot");
-    }
     fs::rename(temporary, target, ec);
-    if (ec) throw Error::in_file(target, "cannot replace the file: " + ec.message());
+    if (ec) throw Error::in_file(target, "cannot replace the file: " + system_reason(ec.value()));
     written.push_back(target);
   }
   return written;

@@ -1,68 +1,74 @@
 #include "atomic_file.h"
 
-#include <array>
 #include <cassert>
-#include <charconv>
-#include <cstdint>
-#include <random>
-#include <string_view>
+#include <cerrno>
+#include <fcntl.h>
 #include <system_error>
 #include <utility>
 
+#include "file_write_buffer.h"
 #include "sphys/error.h"
+#include "sphys/tools/system_reason.h"
+#include "temporary_files.h"
 
 namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh name next to `target`, so that the final rename stays within one file system.
-fs::path temporary_sibling(const fs::path& target) {
-  std::random_device random;
-  const std::uint64_t tag = (std::uint64_t{random()} << 32) ^ random();
-  std::array<char, 17> hex{};
-  const auto result = std::to_chars(hex.data(), hex.data() + hex.size(), tag, 16);
-  fs::path sibling = target;
-  sibling += ".";
-  sibling += std::string_view(hex.data(), static_cast<std::size_t>(result.ptr - hex.data()));
-  sibling += ".tmp";
-  return sibling;
+fs::path directory_of(const fs::path& path) {
+  return path.has_parent_path() ? path.parent_path() : fs::path(".");
+}
+
+// A name for the temporary file, in a directory cleared of the temporaries of ended processes.
+fs::path fresh_temporary(const fs::path& target) {
+  remove_orphaned_temporaries(directory_of(target));
+  return temporary_sibling(target);
+}
+
+// The temporary file, new and open for writing; else sphys::Error naming the target.
+int create_temporary(const fs::path& target, const fs::path& temporary) {
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd >= 0) return fd;
+  const int reason = errno;
+  std::error_code ec;
+  if (reason == ENOENT && !fs::is_directory(directory_of(target), ec)) {
+    throw Error::in_file(target, "cannot write: the directory does not exist");
+  }
+  throw Error::in_file(target, "cannot create a file in its directory: " + system_reason(reason));
 }
 
 }  // namespace
 
 AtomicFile::AtomicFile(fs::path path)
     : path_(std::move(path)),
-      temporary_(temporary_sibling(path_)),
-      out_(temporary_, std::ios::binary) {
-  if (!out_) {
-    const fs::path directory = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
-    std::error_code ec;
-    throw Error::in_file(path_, fs::is_directory(directory, ec)
-                                    ? "cannot create a file in its directory"
-                                    : "cannot write: the directory does not exist");
-  }
-}
+      temporary_(fresh_temporary(path_)),
+      buffer_(std::make_unique<FileWriteBuffer>(create_temporary(path_, temporary_))),
+      out_(buffer_.get()) {}
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;
-  out_.close();
+  buffer_->close();
   std::error_code ignored;
   fs::remove(temporary_, ignored);
 }
 
 void AtomicFile::check_written() const {
-  if (!out_) throw Error::in_file(path_, "cannot write the file (is the disk full?)");
+  if (buffer_->error() != 0) {
+    throw Error::in_file(path_, "cannot write the file: " + system_reason(buffer_->error()));
+  }
+  // A stream error without a system error: a writer's own formatting failed.
+  if (!out_) throw Error::in_file(path_, "cannot write the file");
 }
 
 void AtomicFile::commit() {
   assert(!committed_);
-  // Closing flushes the last buffered bytes, which is where a full disk often shows.
-  out_.close();
+  // Closing writes the last buffered bytes, which is where a full disk often shows.
+  buffer_->close();
   check_written();
   std::error_code ec;
   fs::rename(temporary_, path_, ec);
-  if (ec) throw Error::in_file(path_, "cannot replace the file: " + ec.message());
+  if (ec) throw Error::in_file(path_, "cannot replace the file: " + system_reason(ec.value()));
   committed_ = true;
 }
 

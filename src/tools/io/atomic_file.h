@@ -1,23 +1,28 @@
 #pragma once
 
 // Files that appear whole or not at all: the bytes go to a temporary file next to the target
-// (`<name>.<random hex>.tmp`, on the same file system), which is renamed over the target once
-// everything was written. A reader never sees a half-written file, and a failure (or an
-// exception thrown while writing) leaves neither the temporary nor a partial target behind.
+// (temporary_files.h: its name carries the process id, so that a later run can remove it should
+// this process be killed), which is renamed over the target once everything was written. A
+// reader never sees a half-written file, and a failure (or an exception thrown while writing)
+// leaves neither the temporary nor a partial target behind.
 
 #include <filesystem>
-#include <fstream>
 #include <functional>
+#include <memory>
 #include <ostream>
 
 namespace sphys::tools {
 
+class FileWriteBuffer;
+
 // For writers that stream more than they should hold in memory. Errors are sphys::Error naming
-// the target: "cannot write: the directory does not exist", "cannot create a file in its
-// directory", "cannot write the file (is the disk full?)", "cannot replace the file: ...".
+// the target and ending with the system's reason: "cannot write: the directory does not exist",
+// "cannot create a file in its directory: Too many open files", "cannot write the file: No space
+// left on device", "cannot replace the file: Permission denied".
 class AtomicFile {
  public:
-  // Creates the temporary file, opened in binary mode.
+  // Creates the temporary file, having first removed the temporary files of ended processes
+  // from the target's directory.
   explicit AtomicFile(std::filesystem::path path);
   // Removes the temporary file unless commit() moved it into place.
   ~AtomicFile();
@@ -38,7 +43,8 @@ class AtomicFile {
  private:
   std::filesystem::path path_;
   std::filesystem::path temporary_;
-  std::ofstream out_;
+  std::unique_ptr<FileWriteBuffer> buffer_;
+  std::ostream out_;
   bool committed_ = false;
 };
 

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <exception>
+#include <new>
 #include <sstream>
 #include <unordered_map>
 
@@ -30,6 +32,20 @@ std::string importer_message(const Assimp::Importer& importer) {
   }
   if (message.find("contains no faces") != std::string::npos) return "the mesh has no triangles";
   return message.empty() ? "the file could not be read as a mesh" : message;
+}
+
+// assimp catches every exception a reader throws and reports it as the file's error. Running out
+// of memory is no fault of the file and must stay an internal error, so that one is thrown again
+// (by the exception itself: the text could as well be the file's own words).
+void rethrow_if_out_of_memory(const Assimp::Importer& importer) {
+  const std::exception_ptr& caught = importer.GetException();
+  if (!caught) return;
+  try {
+    std::rethrow_exception(caught);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (...) {  // any other failure is the file's, reported with assimp's message
+  }
 }
 
 bool has_extension(const fs::path& path, std::string_view extension) {
@@ -78,7 +94,10 @@ TriangleMesh read_with_assimp(const fs::path& path) {
   const aiScene* scene = importer.ReadFile(
       path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
                          aiProcess_RemoveComponent | aiProcess_ValidateDataStructure);
-  if (scene == nullptr) throw Error::in_file(path, importer_message(importer));
+  if (scene == nullptr) {
+    rethrow_if_out_of_memory(importer);
+    throw Error::in_file(path, importer_message(importer));
+  }
   if (scene->mNumMeshes == 0) {
     throw Error::in_file(path, "no mesh found (not a mesh file, or an unreadable one)");
   }

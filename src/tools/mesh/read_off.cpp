@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "io/input_file.h"
@@ -101,7 +102,7 @@ TriangleMesh read_off(const std::filesystem::path& path) {
         std::size_t used = 0;
         v[k] = std::stod(word, &used);
         if (used != word.size()) throw std::invalid_argument(word);
-      } catch (const std::exception&) {
+      } catch (const std::logic_error&) {  // stod's invalid_argument and out_of_range
         throw reader.error("coordinate '" + word + "' is not a number");
       }
       if (!std::isfinite(v[k])) throw reader.error("non-finite coordinate '" + word + "'");

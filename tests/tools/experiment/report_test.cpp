@@ -406,5 +406,23 @@ TEST(ExperimentPlots, RefusesAGnuplotThatDrewNothing) {
   EXPECT_THAT(names_in(plots), IsEmpty());
 }
 
+// gnuplot exits 0 when its PNG could not be written whole (a full disk): a PNG without its end
+// chunk is refused, and no earlier plot is replaced by it.
+TEST(ExperimentPlots, RefusesAPlotCutShort) {
+  const test::TempDir dir;
+  const fs::path bin = dir.path() / "bin";
+  fs::create_directory(bin);
+  // The first 8 bytes of a PNG, its signature, into every file the script names.
+  install_fake_gnuplot(bin,
+                       "/bin/sed -n \"s/^set output '\\(.*\\)'$/\\1/p\" \"$1\" |\n"
+                       "  while read -r png; do printf '\\211PNG\\r\\n\\032\\n' > \"$png\"; done");
+  const PathOverride path(bin.string());
+  const fs::path plots = dir.path() / "plots";
+  EXPECT_THAT(plot_error(plots, sample_results()),
+              HasSubstr("-frame-time.png: gnuplot did not draw the whole plot (gnuplot stopped "
+                        "at 8 bytes, no PNG end)"));
+  EXPECT_THAT(names_in(plots), IsEmpty());
+}
+
 }  // namespace
 }  // namespace sphys::tools
