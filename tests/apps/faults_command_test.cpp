@@ -9,6 +9,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <sys/mount.h>
 #include <sys/stat.h>
 #include <thread>
 #include <unistd.h>
@@ -245,6 +246,50 @@ TEST(Faults, OutputOnAFullFileSystemFailsAndKeepsTheEarlierRun) {
   EXPECT_TRUE(test::temporary_files_in(dir.path()).empty());
   EXPECT_EQ(test::read_whole(dir.path() / "frames.csv"), csv);
   EXPECT_EQ(test::read_whole(dir.path() / "recording.sphysrec"), recording);
+}
+
+// A real file system that fills up: a 96 kB tmpfs mounted for the test, where it may mount one
+// (as root), unmounted when done.
+class SmallTmpfs {
+ public:
+  explicit SmallTmpfs(const fs::path& at) : at_(at) {
+    fs::create_directories(at);
+    mounted_ = ::mount("tmpfs", at.c_str(), "tmpfs", 0, "size=96k") == 0;
+  }
+  ~SmallTmpfs() {
+    if (mounted_) ::umount2(at_.c_str(), MNT_DETACH);
+  }
+  SmallTmpfs(const SmallTmpfs&) = delete;
+  SmallTmpfs& operator=(const SmallTmpfs&) = delete;
+  [[nodiscard]] bool mounted() const { return mounted_; }
+
+ private:
+  fs::path at_;
+  bool mounted_ = false;
+};
+
+// The run of 5,000 frames needs more than the 96 kB there are (its CSV and recording): the
+// system's own reason is given, no temporary file is left, and the earlier run's outputs stay.
+TEST(Faults, OutputOnAFullTmpfsSaysNoSpaceAndKeepsTheEarlierRun) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "small";
+  const SmallTmpfs disk(out);
+  if (!disk.mounted()) {
+    GTEST_SKIP() << "cannot mount a tmpfs here (it takes root); "
+                    "OutputOnAFullFileSystemFailsAndKeepsTheEarlierRun fills a file-size limit";
+  }
+  ASSERT_EQ(sphys_cli(quick_run(out, 5)).exit_code, 0);
+  const std::string csv = test::read_whole(out / "frames.csv");
+  const std::string recording = test::read_whole(out / "recording.sphysrec");
+
+  const test::CommandResult r = sphys_cli(quick_run(out, 5000));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("sphys: error: " + out.string() + "/"));
+  EXPECT_THAT(r.err, HasSubstr(": No space left on device\n"));
+  EXPECT_TRUE(test::temporary_files_in(out).empty());
+  EXPECT_EQ(test::read_whole(out / "frames.csv"), csv);
+  EXPECT_EQ(test::read_whole(out / "recording.sphysrec"), recording);
 }
 
 // Was exit 0 with a PNG cut at 16 kB: gnuplot does not report its failed writes. 12 blocks (6 kB
