@@ -73,7 +73,7 @@ void SoftStepSolver::use_portable_lanes(bool portable) {
 // mass, bodies at the same level, and piles no contact path ties to anything immovable keep their
 // own masses. (Scaled by the load the pair carried instead, a heap's supported bunnies turned so
 // heavy that falling ones went 19% of a bunny deep into the 1,000-bunny heap.)
-void SoftStepSolver::scale_supported() {
+void SoftStepSolver::find_support_levels() {
   const std::size_t slots = linear_.size();
   fill_buffer(immovable_, slots, std::uint8_t{0});
   for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
@@ -83,25 +83,17 @@ void SoftStepSolver::scale_supported() {
       pairs_.emplace_back(constraints_[k].a, constraints_[k].b);
     }
   }
-  const std::span<const std::uint32_t> level = levels_.compute(immovable_, pairs_);
-  for (std::size_t first = 0; first < constraints_.size();) {
-    std::size_t end = first;
-    while (end < constraints_.size() && same_bodies(constraints_[end], constraints_[first])) ++end;
-    const Constraint& c = constraints_[first];
-    float scale_a = 1.0f;
-    float scale_b = 1.0f;
-    if (c.a_moves && c.b_moves && level[c.a] != level[c.b]) {
-      const bool a_below = level[c.a] < level[c.b];
-      const float lower = mass_of(inverse_mass_[a_below ? c.a : c.b]);
-      const float upper = mass_of(inverse_mass_[a_below ? c.b : c.a]);
-      (a_below ? scale_a : scale_b) = std::min(1.0f, lower / upper);
-    }
-    for (std::size_t k = first; k < end; ++k) {
-      constraints_[k].scale_a = scale_a;
-      constraints_[k].scale_b = scale_b;
-    }
-    first = end;
-  }
+  support_level_ = levels_.compute(immovable_, pairs_);
+}
+
+void SoftStepSolver::scale_supported(Constraint& c) const {
+  c.scale_a = 1.0f;
+  c.scale_b = 1.0f;
+  if (!c.a_moves || !c.b_moves || support_level_[c.a] == support_level_[c.b]) return;
+  const bool a_below = support_level_[c.a] < support_level_[c.b];
+  const float lower = mass_of(inverse_mass_[a_below ? c.a : c.b]);
+  const float upper = mass_of(inverse_mass_[a_below ? c.b : c.a]);
+  (a_below ? c.scale_a : c.scale_b) = std::min(1.0f, lower / upper);
 }
 
 void SoftStepSolver::set_masses(Constraint& c) const {
@@ -184,10 +176,13 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
           constraints_[j] = c;
         }
       });
-  scale_supported();
+  find_support_levels();
   parallel.for_each_run(constraints_.size(), kConstraintsPerRun,
                         [&](std::size_t begin, std::size_t end) {
-                          for (std::size_t j = begin; j < end; ++j) set_masses(constraints_[j]);
+                          for (std::size_t j = begin; j < end; ++j) {
+                            scale_supported(constraints_[j]);
+                            set_masses(constraints_[j]);
+                          }
                         });
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());
 }

@@ -106,9 +106,12 @@ class SoftStepSolver {
   };
 
   void load_bodies(const BodyStore& bodies, const Parallel& parallel);
-  // Each body pair's supported body (the one fewer contacts from what cannot move) counts in
-  // their contacts as at least as heavy as the body it carries: Constraint::scale_a and scale_b.
-  void scale_supported();
+  // Each body's level in the contact graph (ContactLevels): how many contacts it is from what
+  // cannot move, into support_level_.
+  void find_support_levels();
+  // A pair's supported body (the lower level) counts in its contacts as at least as heavy as the
+  // body it carries: Constraint::scale_a and scale_b, from support_level_.
+  void scale_supported(Constraint& c) const;
   // A constraint's effective masses and spring from its bodies, as scaled.
   void set_masses(Constraint& c) const;
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
@@ -150,6 +153,7 @@ class SoftStepSolver {
   std::vector<ManifoldBodies> manifold_bodies_;
   ConstraintColouring colouring_;
   ContactLevels levels_;
+  std::span<const std::uint32_t> support_level_;                // per slot, levels_'s, this step's
   std::vector<std::uint8_t> immovable_;                         // per slot, for levels_
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // the constraints' body pairs
   std::vector<std::uint32_t> colours_;                          // per manifold
