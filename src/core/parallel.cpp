@@ -10,10 +10,6 @@
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <emmintrin.h>
-#endif
-
 namespace sphys {
 
 struct Parallel::Arena {
@@ -42,23 +38,14 @@ void Parallel::run(std::size_t count, void (*item)(const void*, std::size_t),
 namespace {
 
 // Spins this many times before yielding the processor: with more threads than cores a waiting
-// thread must let the one it waits for run, but a stage of a solver pass lasts a few microseconds,
-// and a thread that yielded at every wait came back late for the next one. Each spin pauses
-// (x86's PAUSE, tens of cycles), which also frees the core's other hardware thread.
-constexpr int kSpinsBeforeYield = 256;
+// thread must let the one it waits for run.
+constexpr int kSpinsBeforeYield = 64;
 
 // A stage's items are claimed in runs of about 1 / (this many x the threads) of them: few claims,
 // yet a thread that comes late or runs slow still finds some left.
 constexpr std::uint32_t kRunsPerThread = 2;
 
-void pause() {
-#if defined(__x86_64__) || defined(__i386__)
-  _mm_pause();
-#endif
-}
-
 void wait_a_little(int& spins) {
-  pause();
   if (++spins < kSpinsBeforeYield) return;
   spins = 0;
   std::this_thread::yield();
