@@ -203,7 +203,10 @@ class CollisionDetector {
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
-  [[nodiscard]] bool budget() const;
+  // Whether a time-critical budget is on.
+  [[nodiscard]] bool budget() const {
+    return settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
+  }
   // fn(i) for every i in [0, count): on the threads where the detector has them.
   template <class Fn>
   void for_each_item(std::size_t count, const Fn& fn) const {

@@ -91,10 +91,6 @@ void CollisionDetector::set_motion(std::uint32_t slot, const Vec3& displacement,
   body.turn_reach = turn_reach;
 }
 
-bool CollisionDetector::budget() const {
-  return settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
-}
-
 // The body's bound, grown by half the contact margin (two grown boxes meet when the bodies are
 // within the margin) and, with speculative contacts, by how far the body can move this step.
 Aabb CollisionDetector::broad_phase_box(std::uint32_t slot) const {
@@ -105,19 +101,6 @@ Aabb CollisionDetector::broad_phase_box(std::uint32_t slot) const {
   box.min.array() -= grow;
   box.max.array() += grow;
   return box;
-}
-
-// The gap up to which two bodies' spheres make contacts: the margin plus, with speculative
-// contacts, a bound on how much closer any two of their points can come in the step.
-float CollisionDetector::pair_margin(const Body& a, const Body& b) const {
-  if (!settings_.speculative) return settings_.contact_margin;
-  return settings_.contact_margin + (b.displacement - a.displacement).norm() + a.turn_reach +
-         b.turn_reach;
-}
-
-float CollisionDetector::plane_margin(const Body& body) const {
-  if (!settings_.speculative) return settings_.contact_margin;
-  return settings_.contact_margin + std::max(-body.displacement.y(), 0.0f) + body.turn_reach;
 }
 
 Aabb CollisionDetector::bounds(std::uint32_t slot) const {

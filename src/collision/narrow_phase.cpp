@@ -35,6 +35,19 @@ float pose_change(const Transform& from, const Transform& to, float extent) {
 
 }  // namespace
 
+// The gap up to which two bodies' spheres make contacts: the margin plus, with speculative
+// contacts, a bound on how much closer any two of their points can come in the step.
+float CollisionDetector::pair_margin(const Body& a, const Body& b) const {
+  if (!settings_.speculative) return settings_.contact_margin;
+  return settings_.contact_margin + (b.displacement - a.displacement).norm() + a.turn_reach +
+         b.turn_reach;
+}
+
+float CollisionDetector::plane_margin(const Body& body) const {
+  if (!settings_.speculative) return settings_.contact_margin;
+  return settings_.contact_margin + std::max(-body.displacement.y(), 0.0f) + body.turn_reach;
+}
+
 // What is left of the time-critical budgets after `spent_microseconds` and `spent_tests` sphere
 // tests in this call.
 DescentSettings CollisionDetector::descent_budget(double spent_microseconds,

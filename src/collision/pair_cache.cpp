@@ -140,8 +140,8 @@ void PairCache::carry_memory(const Record& record, std::span<const Contact> cont
   std::size_t hint = 0;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const Contact& contact = contacts[c];
-    memory[c] = ContactMemory{};
-    for (std::size_t tried = 0; tried < old_count; ++tried) {
+    std::size_t tried = 0;
+    for (; tried < old_count; ++tried) {
       const std::size_t i = (hint + tried) % old_count;
       const Contact& old = old_contacts[i];
       if (old.leaf_a == contact.leaf_a && old.leaf_b == contact.leaf_b) {
@@ -150,6 +150,7 @@ void PairCache::carry_memory(const Record& record, std::span<const Contact> cont
         break;
       }
     }
+    if (tried == old_count) memory[c] = ContactMemory{};
   }
 }
 
