@@ -9,8 +9,11 @@ import csv
 import hashlib
 import json
 import os
+import signal
 import subprocess
 import sys
+import threading
+import time
 
 import distributed
 import numpy as np
@@ -385,6 +388,43 @@ def test_run_sweep_numbers_joined_grids_by_place(client):
     result = sweep.run_sweep(runs, client=client, progress=False)
     assert [(r["run"], r["label"]) for r in result.runs] == [(0, "stacks:1x1"), (1, "stacks:1x2")]
     assert [r["run"] for r in runs] == [0, 0]  # the caller's runs are left as they were
+
+
+def test_a_worker_killed_mid_sweep_loses_no_run():
+    """A worker process SIGKILLed while it runs a simulation: Dask runs its work again on a
+    worker that lives (the nanny starts a new one), and the sweep reports every run, each the
+    same as the run made alone. A cluster of its own, so that no other test meets the kill."""
+    runs = sweep.grid(["stacks:8x20"], seeds=[1, 2, 3, 4], frames=800)
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    client = distributed.Client(cluster)
+    killed = []
+
+    def kill_a_busy_worker():
+        pids = client.run(os.getpid)
+        deadline = time.monotonic() + 60.0
+        while time.monotonic() < deadline:
+            busy = [worker for worker, tasks in client.processing().items() if tasks]
+            if busy:
+                time.sleep(0.2)  # into its run
+                os.kill(pids[busy[0]], signal.SIGKILL)
+                killed.append(pids[busy[0]])
+                return
+            time.sleep(0.01)
+
+    try:
+        killer = threading.Thread(target=kill_a_busy_worker)
+        killer.start()
+        result = sweep.run_sweep(runs, client=client, progress=False)
+        killer.join()
+    finally:
+        client.close()
+        cluster.close()
+    assert killed, "no worker was busy within a minute"
+    assert result.failed == []
+    assert [r["run"] for r in result.runs] == [0, 1, 2, 3]
+    for swept, run in zip(result.runs, runs):
+        assert_same_run(swept, alone(run))
 
 
 def test_sweep_argument_errors_raise_before_running(tmp_path):
