@@ -116,6 +116,7 @@ py::dict stats_dict(const StepStats& s) {
   d["contacts_ms"] = s.contacts_ms;
   d["response_ms"] = s.response_ms;
   d["integration_ms"] = s.integration_ms;
+  d["sleep_ms"] = s.sleep_ms;
   d["step_ms"] = s.step_ms;
   d["detection_ms"] = s.detection_ms();
   d["bodies"] = s.bodies;
@@ -213,6 +214,7 @@ void bind_world(py::module_& m) {
       .def_readonly("contacts_ms", &StepStats::contacts_ms)
       .def_readonly("response_ms", &StepStats::response_ms)
       .def_readonly("integration_ms", &StepStats::integration_ms)
+      .def_readonly("sleep_ms", &StepStats::sleep_ms)
       .def_readonly("step_ms", &StepStats::step_ms)
       .def_readonly("bodies", &StepStats::bodies)
       .def_readonly("candidate_pairs", &StepStats::candidate_pairs)

@@ -240,7 +240,11 @@ const StepStats& World::step(float dt) {
   stats.substeps = substeps;
   const float substep_dt = dt / static_cast<float>(substeps);
   // Islands whose bodies parted in the last step are built afresh, once a step.
-  if (settings_.response == ResponseMode::kPlausible) sleep_->split_islands(detector_.contacts());
+  if (settings_.response == ResponseMode::kPlausible) {
+    const StepClock::time_point split_start = StepClock::now();
+    sleep_->split_islands(detector_.contacts());
+    stats.sleep_ms += elapsed_ms(split_start);
+  }
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
   stats.movable_bodies = store_->dynamic_bodies();
   stats.bodies_asleep = stats.movable_bodies - static_cast<std::uint32_t>(store_->awake().size());

@@ -419,6 +419,7 @@ def test_step_steps_and_stats(sphere_tree):
     assert d["detection_ms"] == pytest.approx(
         stats.broad_phase_ms + stats.narrow_phase_ms + stats.contacts_ms)
     assert 0 <= stats.integration_ms <= stats.step_ms
+    assert 0 <= stats.sleep_ms <= stats.step_ms
     assert sphys.GROUND_PLANE_BODY == GROUND
     assert d["bodies"] == 1 and d["movable_bodies"] == 1 and d["substeps"] == 1
     assert d["contacts"] == 0 and d["non_finite_body"] is None

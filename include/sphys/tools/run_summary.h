@@ -20,7 +20,8 @@ struct RunTotals {
   double wall_s = 0.0;          // unit: s
   std::vector<double> step_ms;  // per frame. unit: ms
   // Phase times summed over the frames. unit: ms
-  double broad = 0, narrow = 0, contacts_time = 0, response = 0, integration = 0, step = 0;
+  double broad = 0, narrow = 0, contacts_time = 0, response = 0, integration = 0, sleep = 0,
+         step = 0;
   double contacts = 0;  // summed over the frames
   std::uint32_t max_contacts = 0;
   double substeps = 0;  // summed over the frames

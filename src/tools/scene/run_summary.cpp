@@ -79,6 +79,7 @@ void RunTotals::add(const StepStats& s, const SimulationSetup& setup) {
   contacts_time += s.contacts_ms;
   response += s.response_ms;
   integration += s.integration_ms;
+  sleep += s.sleep_ms;
   step += s.step_ms;
   contacts += s.contacts;
   max_contacts = std::max(max_contacts, s.contacts);
@@ -115,7 +116,8 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
                                    {"narrow_phase", totals.share(totals.narrow)},
                                    {"contacts", totals.share(totals.contacts_time)},
                                    {"response", totals.share(totals.response)},
-                                   {"integration", totals.share(totals.integration)}};
+                                   {"integration", totals.share(totals.integration)},
+                                   {"sleep", totals.share(totals.sleep)}};
   add_end_state(summary, scene, setup, totals.plausibility.result(), totals.lowest_center_y);
   return summary.dump(2);
 }
