@@ -207,15 +207,6 @@ class CollisionDetector {
   [[nodiscard]] bool budget() const {
     return settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
   }
-  // fn(i) for every i in [0, count): on the threads where the detector has them.
-  template <class Fn>
-  void for_each_item(std::size_t count, const Fn& fn) const {
-    if (parallel_ != nullptr) {
-      parallel_->for_each(count, fn);
-      return;
-    }
-    for (std::size_t i = 0; i < count; ++i) fn(i);
-  }
   // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();

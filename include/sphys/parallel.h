@@ -87,4 +87,15 @@ class Parallel {
   std::unique_ptr<Arena> arena_;  // none with one thread
 };
 
+// Parallel::for_each on `parallel`'s threads, or in order on the caller's thread where there is
+// none (a detector or broad phase used without a world).
+template <class Fn>
+void for_each_on(const Parallel* parallel, std::size_t count, const Fn& fn) {
+  if (parallel != nullptr) {
+    parallel->for_each(count, fn);
+    return;
+  }
+  for (std::size_t i = 0; i < count; ++i) fn(i);
+}
+
 }  // namespace sphys

@@ -257,11 +257,7 @@ void CellSweepAndPrune::update_cells(const Parallel* parallel) {
     }
     cell.sweep.update();
   };
-  if (parallel != nullptr) {
-    parallel->for_each(changed_cells_.size(), sort_cell);
-  } else {
-    for (std::size_t i = 0; i < changed_cells_.size(); ++i) sort_cell(i);
-  }
+  for_each_on(parallel, changed_cells_.size(), sort_cell);
   for (const std::uint32_t index : changed_cells_) {
     Cell& cell = cells_[index];
     cell_changed_[index] = 0;

@@ -229,7 +229,7 @@ void CollisionDetector::plan_chunks() {
 void CollisionDetector::run_jobs(std::size_t base) {
   plan_chunks();
   const auto for_each_chunk = [&](auto&& fn) {
-    for_each_item(chunks_.size(), [&](std::size_t c) { fn(*chunks_[c]); });
+    for_each_on(parallel_, chunks_.size(), [&](std::size_t c) { fn(*chunks_[c]); });
   };
 
   const StepClock::time_point narrow_start = StepClock::now();

@@ -53,11 +53,7 @@ std::uint32_t PairCache::follow(std::span<const ProxyPair> pairs, const LinksDyn
     }
     for (; old < old_end; ++old) drop(old_records_[old]);
   };
-  if (parallel != nullptr) {
-    parallel->for_each(runs, merge);
-  } else {
-    for (std::size_t run = 0; run < runs; ++run) merge(run);
-  }
+  for_each_on(parallel, runs, merge);
   std::uint32_t parted = 0;
   for (const std::uint32_t count : parted_in_run_) parted += count;
   return parted;

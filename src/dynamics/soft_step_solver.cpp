@@ -143,19 +143,21 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
   // The impulse that holds up a kilogram against gravity for a substep. unit: N s / kg
   const float weight_per_substep = gravity.norm() * substep;
   const bool warm = settings.warm_starting;
-  // The contacts with a moving body, in order: each becomes a constraint, on the threads.
-  sources_.clear();
+  // The contacts with a moving body, in order, each named by a constraint that is then made on
+  // the threads.
+  resize_buffer(constraints_, contacts.size());
+  std::size_t count = 0;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     if (!constrains(contacts[k], ground, inverse_mass_)) continue;
-    sources_.push_back(static_cast<std::uint32_t>(k));
+    constraints_[count++].contact = static_cast<std::uint32_t>(k);
     if (warm && memory[k].solved) ++stats.warm_started;
   }
-  resize_buffer(constraints_, sources_.size());
+  resize_buffer(constraints_, count);
   resize_buffer(anchors_, contacts.size());
   parallel.for_each_run(
-      sources_.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
+      constraints_.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
         for (std::size_t j = begin; j < end; ++j) {
-          const std::uint32_t k = sources_[j];
+          const std::uint32_t k = constraints_[j].contact;
           const Contact& contact = contacts[k];
           Constraint c;
           place_constraint(contact, ground, inverse_mass_, position_, c);

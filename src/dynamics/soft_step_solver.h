@@ -145,7 +145,6 @@ class SoftStepSolver {
   void keep_impulses(std::span<ContactMemory> memory, const Parallel& parallel) const;
   [[nodiscard]] LaneBodies lane_bodies();
 
-  std::vector<std::uint32_t> sources_;  // per constraint, its contact's index
   std::vector<Constraint> constraints_;
   // Per contact: static friction's anchors in each body's frame, as this step started them.
   std::vector<std::array<Vec3, 2>> anchors_;
