@@ -5,27 +5,87 @@
 // through spans, so no stage keeps a copy of a body to be brought up to date (the solvers load
 // the awake bodies' velocities into working arrays for one solve and write them back). The awake
 // bodies are also listed densely (awake()), so that the stages that work on moving bodies only
-// never pass over the sleeping and static ones.
+// never pass over the sleeping and static ones. The store is the one owner of per-slot arrays:
+// it says which body a slot holds (BodyId: the slot's generation and whether it is alive), and
+// it grows the per-slot arrays of other owners (SlotArrays) with its own.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "sphys/body_id.h"
 #include "sphys/math.h"
 #include "sphys/rigid_body.h"
 
 namespace sphys {
 
-class BodyStore {
+// Arrays indexed by body slot that another part of a world keeps (the sleep tracker's still
+// times, the detector's trees). Attached to a store, they grow with its own arrays, so that no
+// owner keeps its arrays in step with the store by hand.
+class SlotArrays {
  public:
+  // Every array is to have at least `slots` slots; a new slot's values are the owner's defaults.
+  virtual void grow_slots(std::uint32_t slots) = 0;
+
+ protected:
+  ~SlotArrays() = default;
+};
+
+namespace detail {
+
+// The state of a store's bodies, one array per quantity, indexed by slot: what copying a store
+// copies.
+struct BodyArrays {
+  std::vector<Transform> pose_;
+  std::vector<Vec3> linear_velocity_;
+  std::vector<Vec3> angular_velocity_;
+  std::vector<float> inverse_mass_;
+  std::vector<Mat3> inertia_body_;
+  std::vector<Mat3> inverse_inertia_body_;
+  std::vector<Mat3> inverse_inertia_world_;
+  std::vector<float> extent_;
+  std::vector<float> restitution_;
+  std::vector<float> friction_;
+  std::vector<std::uint8_t> alive_;
+  std::vector<std::uint8_t> dynamic_;
+  std::vector<std::uint8_t> moving_;
+  std::vector<std::uint32_t> generation_;  // from 1, moved on when the slot's body leaves
+  std::vector<std::uint32_t> free_;        // freed slots, the last freed last
+  std::uint32_t dynamic_bodies_ = 0;
+  std::vector<std::uint32_t> awake_;
+};
+
+}  // namespace detail
+
+class BodyStore : private detail::BodyArrays {
+ public:
+  BodyStore() = default;
+  // A copy is a snapshot of the bodies: the arrays attached to the store stay with it alone.
+  BodyStore(const BodyStore& other) : detail::BodyArrays(other) {}
+  // Takes the other's bodies; the arrays attached to this store grow to its slots.
+  BodyStore& operator=(const BodyStore& other);
+
   // Puts a body in a slot, the last one freed first, else a new one, and returns the slot. A
   // static body keeps no velocities and no inverse mass. `extent`: the farthest point of its
   // shape from the centre of mass. unit: m
   std::uint32_t add(const RigidBody& body, float extent);
-  // Frees the slot: not alive, and neither moving nor counted from then on.
+  // Frees the slot: not alive, and neither moving nor counted from then on. Its generation moves
+  // on, so that the removed body's id names nothing any more.
   void remove(std::uint32_t slot);
 
+  // Grows `arrays` to the store's slots now and with the store from then on, until detached. The
+  // owner detaches them before they are destroyed.
+  void attach(SlotArrays& arrays);
+  void detach(const SlotArrays& arrays);
+
   [[nodiscard]] std::uint32_t slots() const { return static_cast<std::uint32_t>(pose_.size()); }
+  // The id of a slot's body, or of the next one to be added there when the slot is free.
+  [[nodiscard]] BodyId id_of(std::uint32_t slot) const { return {slot, generation_[slot]}; }
+  // True for the id of a body in the store; false for the null id, a removed body's, or one
+  // never given.
+  [[nodiscard]] bool alive(BodyId id) const {
+    return id.index < slots() && generation_[id.index] == id.generation && alive_[id.index] != 0;
+  }
   // A copy of the body in a slot.
   [[nodiscard]] RigidBody body(std::uint32_t slot) const;
   [[nodiscard]] bool alive(std::uint32_t slot) const { return alive_[slot] != 0; }
@@ -35,8 +95,10 @@ class BodyStore {
   [[nodiscard]] bool asleep(std::uint32_t slot) const {
     return dynamic_[slot] != 0 && moving_[slot] == 0;
   }
-  // Puts a dynamic body to sleep (its velocities become zero) or wakes it.
-  void set_asleep(std::uint32_t slot, bool asleep);
+  // Puts dynamic bodies to sleep (their velocities become zero) or wakes them, and lists the
+  // awake ones again (once for all of them: a pass over the slots).
+  void set_asleep(std::span<const std::uint32_t> slots, bool asleep);
+  void set_asleep(std::uint32_t slot, bool asleep) { set_asleep({&slot, 1}, asleep); }
 
   // How many bodies are alive and not static (asleep or not).
   [[nodiscard]] std::uint32_t dynamic_bodies() const { return dynamic_bodies_; }
@@ -44,10 +106,8 @@ class BodyStore {
   [[nodiscard]] std::span<const std::uint8_t> dynamic() const { return dynamic_; }
   // Per slot, 1 for a dynamic body that is awake, else 0.
   [[nodiscard]] std::span<const std::uint8_t> moving() const { return moving_; }
-  // The slots of the awake dynamic bodies, in increasing order. Listed again at the first call
-  // after a change, so not to be called first from two threads at once (World lists it before
-  // each of its calls returns).
-  [[nodiscard]] std::span<const std::uint32_t> awake() const;
+  // The slots of the awake dynamic bodies, in increasing order, kept listed by every change.
+  [[nodiscard]] std::span<const std::uint32_t> awake() const { return awake_; }
 
   // The arrays, indexed by slot. Poses place the body frame, whose origin is the centre of mass.
   [[nodiscard]] std::span<Transform> poses() { return pose_; }
@@ -86,23 +146,8 @@ class BodyStore {
   }
 
  private:
-  std::vector<Transform> pose_;
-  std::vector<Vec3> linear_velocity_;
-  std::vector<Vec3> angular_velocity_;
-  std::vector<float> inverse_mass_;
-  std::vector<Mat3> inertia_body_;
-  std::vector<Mat3> inverse_inertia_body_;
-  std::vector<Mat3> inverse_inertia_world_;
-  std::vector<float> extent_;
-  std::vector<float> restitution_;
-  std::vector<float> friction_;
-  std::vector<std::uint8_t> alive_;
-  std::vector<std::uint8_t> dynamic_;
-  std::vector<std::uint8_t> moving_;
-  std::vector<std::uint32_t> free_;  // freed slots, the last freed last
-  std::uint32_t dynamic_bodies_ = 0;
-  mutable std::vector<std::uint32_t> awake_;  // awake(), valid while !awake_stale_
-  mutable bool awake_stale_ = false;
+  // The arrays attached to this store, not to its copies.
+  std::vector<SlotArrays*> attached_;
 };
 
 }  // namespace sphys

@@ -95,17 +95,20 @@ struct CollisionStats {
 
 class ContactReducer;
 
-class CollisionDetector {
+class CollisionDetector final : public SlotArrays {
  public:
   explicit CollisionDetector(const CollisionSettings& settings = {});
   ~CollisionDetector();
-  CollisionDetector(CollisionDetector&&) noexcept;
-  CollisionDetector& operator=(CollisionDetector&&) noexcept;
+  // The store it is attached to holds its address.
+  CollisionDetector(const CollisionDetector&) = delete;
+  CollisionDetector& operator=(const CollisionDetector&) = delete;
 
   // The bodies: their poses, whether they are static, asleep or alive, and their extents are
-  // read from the store, never copied (a static body must stay where it was added). `bodies`
-  // must outlive the detector or be replaced first.
-  void set_bodies(const BodyStore* bodies) { store_ = bodies; }
+  // read from the store, never copied (a static body must stay where it was added); the
+  // detector's own per-body arrays grow with the store's. `bodies` must outlive the detector or
+  // be replaced first.
+  void set_bodies(BodyStore& bodies);
+  void grow_slots(std::uint32_t slots) override;
   // The body in a slot of the store joins the broad phase with its sphere-tree, whose centres
   // are given in the body frame. Throws sphys::Error for a missing or empty tree or a
   // non-finite pose.
@@ -222,8 +225,8 @@ class CollisionDetector {
                                                float margin) const;
 
   CollisionSettings settings_;
-  const BodyStore* store_ = nullptr;
-  std::vector<Body> bodies_;  // per slot of the store
+  BodyStore* store_ = nullptr;  // read only, but for attaching the detector's arrays
+  std::vector<Body> bodies_;    // per slot of the store
   std::vector<std::uint32_t> body_of_proxy_;
   std::variant<SweepAndPrune, CellSweepAndPrune> broad_phase_;
   PairCache cache_;

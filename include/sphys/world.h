@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "sphys/body_id.h"
 #include "sphys/body_store.h"
 #include "sphys/collision_detector.h"
 #include "sphys/contact.h"
@@ -94,15 +95,6 @@ struct BodyDesc {
   bool is_static = false;
 };
 
-// A body: its slot in the world's body store and the slot's generation, so that the id of a
-// removed body never names the body added in its slot later. A handle, never a pointer: storage
-// may move.
-struct BodyId {
-  std::uint32_t index = 0;
-  std::uint32_t generation = 0;
-  friend bool operator==(const BodyId&, const BodyId&) = default;
-};
-
 class SoftStepSolver;
 class SleepTracker;
 
@@ -119,10 +111,10 @@ class World {
   BodyId add_body(const BodyDesc& desc);
   // The body leaves the world with its contacts, pair materials and sleep; the sleeping bodies
   // it touched wake. Its id, and every copy of it, is stale from then on. Every call taking a
-  // BodyId throws sphys::Error for a stale or unknown id.
+  // BodyId throws sphys::Error for a stale or unknown id, or the null one (BodyId{}).
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
-  [[nodiscard]] RigidBody body(BodyId body) const { return store_->body(checked(body)); }
+  [[nodiscard]] RigidBody body(BodyId body) const { return store_->body(slot_of(body)); }
   // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes, and the
   // sleeping bodies it touches wake as it moves them. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
@@ -134,12 +126,13 @@ class World {
   [[nodiscard]] bool asleep(BodyId body) const;
   // Body slots, alive or removed; id_of(i) is the id of slot i's body (or of its last one).
   [[nodiscard]] std::uint32_t body_slots() const { return store_->slots(); }
-  [[nodiscard]] BodyId id_of(std::uint32_t slot) const { return {slot, generation_.at(slot)}; }
-  // True for the id of a body in the world, false for a stale or unknown one.
-  [[nodiscard]] bool alive(BodyId body) const {
-    return body.index < store_->slots() && store_->alive(body.index) &&
-           generation_[body.index] == body.generation;
-  }
+  // Throws sphys::Error for a slot the world never had.
+  [[nodiscard]] BodyId id_of(std::uint32_t slot) const;
+  // True for the id of a body in the world, false for a stale or unknown one or the null one.
+  [[nodiscard]] bool alive(BodyId body) const { return store_->alive(body); }
+  // The slot of a body in the world (its row in bodies()); throws sphys::Error for a stale,
+  // unknown or null id.
+  [[nodiscard]] std::uint32_t slot_of(BodyId body) const;
 
   // Advances the world by dt (unit: s, positive and finite, else sphys::Error). Never throws
   // otherwise; when a body's state stops being finite the step reports it in
@@ -147,7 +140,7 @@ class World {
   const StepStats& step(float dt);
   [[nodiscard]] const StepStats& stats() const { return stats_; }
   // The contacts the last step (its last substep) responded to: after reduction, when reduced.
-  [[nodiscard]] std::span<const Contact> contacts() const { return detector_.contacts(); }
+  [[nodiscard]] std::span<const Contact> contacts() const { return detector_->contacts(); }
   [[nodiscard]] bool stopped() const { return stopped_; }
 
   // The time-critical narrow phase's budgets (CollisionSettings::max_sphere_tests and
@@ -156,13 +149,11 @@ class World {
   void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
 
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
-  [[nodiscard]] const CollisionDetector& detector() const { return detector_; }
+  [[nodiscard]] const CollisionDetector& detector() const { return *detector_; }
   // Every body's state by slot (id_of(slot) names it), e.g. all poses as one array.
   [[nodiscard]] const BodyStore& bodies() const { return *store_; }
 
  private:
-  // The slot of a body in the world; throws sphys::Error for a stale or unknown id.
-  [[nodiscard]] std::uint32_t checked(BodyId body) const;
   [[nodiscard]] std::uint32_t substeps_for(float dt) const;
   // The stages of a substep, in order, each in the file named for it (docs/architecture.md).
   void substep(float dt, StepStats& stats);
@@ -178,20 +169,17 @@ class World {
   void update_sleep(float dt, StepStats& stats);
   void measure_rest(StepStats& stats);
   void wake(std::uint32_t body);
-  // Lists the store's awake bodies after a change, so that readers of bodies() never do (the
-  // list is made at the first call after a change, and two threads must not make it at once).
-  void list_awake() const;
   // The key of a body pair in pair_materials_, the same in either order.
   [[nodiscard]] static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b);
 
   WorldSettings settings_;
-  // The one store of the bodies' state, on the heap so that the detector's pointer to it
-  // survives moving the world.
+  // The one store of the bodies' state and the owner of every per-slot array. The store, the
+  // detector and the sleep tracker hold each other's addresses, so each is on the heap, where
+  // moving the world leaves them; the store is declared first, to outlive what is attached to
+  // it.
   std::unique_ptr<BodyStore> store_;
-  CollisionDetector detector_;
-  std::vector<std::uint32_t> generation_;  // per slot: bumped when its body is removed
-  std::vector<PairMaterial> materials_;
-  std::vector<float> speeds_;
+  std::unique_ptr<CollisionDetector> detector_;
+  std::vector<PairMaterial> materials_;  // per contact
   std::vector<std::uint8_t> touching_;
   std::vector<std::uint32_t> sleep_changes_;       // bodies woken or fallen asleep, scratch
   std::vector<std::uint32_t> non_finite_in_run_;   // integrate_velocities' scratch, per run

@@ -79,13 +79,7 @@ std::vector<std::uint32_t> slots_of(const World& world,
                                     const std::optional<std::vector<BodyId>>& ids) {
   std::vector<std::uint32_t> slots;
   if (ids) {
-    for (const BodyId id : *ids) {
-      if (!world.alive(id)) {
-        throw Error("body " + std::to_string(id.index) + " (generation " +
-                    std::to_string(id.generation) + ") is not in the world");
-      }
-      slots.push_back(id.index);
-    }
+    for (const BodyId id : *ids) slots.push_back(world.slot_of(id));
     return slots;
   }
   for (std::uint32_t slot = 0; slot < world.body_slots(); ++slot) {
@@ -195,9 +189,13 @@ py::dict settings_dict(const WorldSettings& settings) {
 
 void bind_world(py::module_& m) {
   m.attr("GROUND_PLANE_BODY") = kGroundPlaneBody;
-  py::class_<BodyId>(m, "BodyId", "A body of a world: its slot and the slot's generation.")
+  py::class_<BodyId>(m, "BodyId",
+                     "A body of a world: its slot and the slot's generation (from 1). "
+                     "BodyId() is the null id, which names no body: a world refuses it.")
+      .def(py::init<>())
       .def_readonly("index", &BodyId::index)
       .def_readonly("generation", &BodyId::generation)
+      .def_property_readonly("is_null", &BodyId::is_null, "True for BodyId(), which names no body.")
       .def("__eq__", [](const BodyId& a, const BodyId& b) { return a == b; })
       .def("__hash__",
            [](const BodyId& id) { return (std::uint64_t{id.generation} << 32) | id.index; })

@@ -1,5 +1,6 @@
 #include "sphys/body_store.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sphys {
@@ -21,6 +22,8 @@ std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
     alive_.emplace_back();
     dynamic_.emplace_back();
     moving_.emplace_back();
+    generation_.push_back(1);
+    for (SlotArrays* arrays : attached_) arrays->grow_slots(slots());
   } else {
     slot = free_.back();
     free_.pop_back();
@@ -38,13 +41,16 @@ std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
   alive_[slot] = 1;
   dynamic_[slot] = moves ? 1 : 0;
   moving_[slot] = moves ? 1 : 0;
-  if (moves) ++dynamic_bodies_;
+  if (moves) {
+    ++dynamic_bodies_;
+    awake_.insert(std::lower_bound(awake_.begin(), awake_.end(), slot), slot);
+  }
   update_world_inertia(slot);
-  awake_stale_ = true;
   return slot;
 }
 
 void BodyStore::remove(std::uint32_t slot) {
+  if (moving_[slot] != 0) awake_.erase(std::lower_bound(awake_.begin(), awake_.end(), slot));
   linear_velocity_[slot].setZero();
   angular_velocity_[slot].setZero();
   inverse_mass_[slot] = 0.0f;
@@ -52,9 +58,23 @@ void BodyStore::remove(std::uint32_t slot) {
   if (dynamic_[slot] != 0) --dynamic_bodies_;
   dynamic_[slot] = 0;
   moving_[slot] = 0;
+  // Generation 0 is the null id's: a slot reused 2³² times starts again from 1.
+  if (++generation_[slot] == 0) generation_[slot] = 1;
   free_.push_back(slot);
-  awake_stale_ = true;
 }
+
+BodyStore& BodyStore::operator=(const BodyStore& other) {
+  detail::BodyArrays::operator=(other);
+  for (SlotArrays* arrays : attached_) arrays->grow_slots(slots());
+  return *this;
+}
+
+void BodyStore::attach(SlotArrays& arrays) {
+  attached_.push_back(&arrays);
+  arrays.grow_slots(slots());
+}
+
+void BodyStore::detach(const SlotArrays& arrays) { std::erase(attached_, &arrays); }
 
 RigidBody BodyStore::body(std::uint32_t slot) const {
   RigidBody body;
@@ -70,25 +90,22 @@ RigidBody BodyStore::body(std::uint32_t slot) const {
   return body;
 }
 
-void BodyStore::set_asleep(std::uint32_t slot, bool asleep) {
-  if (dynamic_[slot] == 0 || (moving_[slot] == 0) == asleep) return;
-  moving_[slot] = asleep ? 0 : 1;
-  if (asleep) {
-    linear_velocity_[slot].setZero();
-    angular_velocity_[slot].setZero();
-  }
-  awake_stale_ = true;
-}
-
-std::span<const std::uint32_t> BodyStore::awake() const {
-  if (awake_stale_) {
-    awake_.clear();
-    for (std::uint32_t i = 0; i < slots(); ++i) {
-      if (moving_[i] != 0) awake_.push_back(i);
+void BodyStore::set_asleep(std::span<const std::uint32_t> slots, bool asleep) {
+  bool changed = false;
+  for (const std::uint32_t slot : slots) {
+    if (dynamic_[slot] == 0 || (moving_[slot] == 0) == asleep) continue;
+    moving_[slot] = asleep ? 0 : 1;
+    if (asleep) {
+      linear_velocity_[slot].setZero();
+      angular_velocity_[slot].setZero();
     }
-    awake_stale_ = false;
+    changed = true;
   }
-  return awake_;
+  if (!changed) return;
+  awake_.clear();
+  for (std::uint32_t i = 0; i < this->slots(); ++i) {
+    if (moving_[i] != 0) awake_.push_back(i);
+  }
 }
 
 void BodyStore::update_world_inertia(std::uint32_t slot) {

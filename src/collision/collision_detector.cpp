@@ -46,17 +46,24 @@ constexpr std::size_t kBodiesPerChunk = 256;
 CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {
   if (settings.broad_phase == BroadPhaseKind::kCells) broad_phase_.emplace<CellSweepAndPrune>();
 }
-CollisionDetector::~CollisionDetector() = default;
-CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
-CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
+CollisionDetector::~CollisionDetector() {
+  if (store_ != nullptr) store_->detach(*this);
+}
+
+void CollisionDetector::set_bodies(BodyStore& bodies) {
+  if (store_ != nullptr) store_->detach(*this);
+  store_ = &bodies;
+  bodies.attach(*this);
+}
+
+void CollisionDetector::grow_slots(std::uint32_t slots) {
+  bodies_.resize(slots);
+  cache_.resize_ground(slots);
+}
 
 void CollisionDetector::add_body(std::uint32_t slot, std::shared_ptr<const SphereTree> tree) {
   if (!tree || tree->empty()) throw Error("a body needs a non-empty sphere-tree");
   if (!finite(pose_of(slot))) throw Error("a body's pose must be finite");
-  if (bodies_.size() <= slot) {
-    bodies_.resize(slot + 1);
-    cache_.resize_ground(slot + 1);
-  }
   Body& body = bodies_[slot];
   body = Body{};
   body.tree = std::move(tree);

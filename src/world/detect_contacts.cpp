@@ -30,7 +30,7 @@ void World::add_detection(const CollisionStats& detection, StepStats& stats) con
 }
 
 void World::detect_contacts(StepStats& stats) {
-  const CollisionStats& detection = detector_.detect();
+  const CollisionStats& detection = detector_->detect();
   stats.bodies = detection.bodies;
   add_detection(detection, stats);
   if (detection.parted_pairs > 0) sleep_->parted();
@@ -46,7 +46,7 @@ void World::wake_touched(float dt, StepStats& stats) {
   double woken_detection_ms = 0.0;  // counted in the narrow phase's and contacts' times
   for (;;) {
     sleep_changes_.clear();
-    sleep_->wake_disturbed(detector_.contacts(), settings_.sleep, sleep_changes_);
+    sleep_->wake_disturbed(detector_->contacts(), settings_.sleep, sleep_changes_);
     if (sleep_changes_.empty()) break;
     // This substep's gravity, as the bodies awake in stage 1 had: without it the warm start,
     // the impulses that held them against gravity when they fell asleep, threw them up at
@@ -55,12 +55,12 @@ void World::wake_touched(float dt, StepStats& stats) {
     for (const std::uint32_t body : sleep_changes_) {
       static_cast<void>(integrate_velocity(body, dt, true));
     }
-    const CollisionStats& woken = detector_.detect_woken();
+    const CollisionStats& woken = detector_->detect_woken();
     woken_detection_ms += woken.narrow_phase_ms + woken.contacts_ms;
     add_detection(woken, stats);
     if (woken.parted_pairs > 0) sleep_->parted();
   }
-  sleep_->link_islands(detector_.contacts());
+  sleep_->link_islands(detector_->contacts());
   stats.sleep_ms += elapsed_ms(start) - woken_detection_ms;
 }
 

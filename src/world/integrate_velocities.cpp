@@ -52,7 +52,7 @@ bool World::integrate_velocity(std::uint32_t body, float dt, bool plausible) {
   // Speeds whose squares overflow single precision leave no bound on the motion to detect
   // with: the simulation has gone non-finite in all but name.
   if (!std::isfinite(displacement.norm()) || !std::isfinite(turn_reach)) return false;
-  detector_.set_motion(body, displacement, turn_reach);
+  detector_->set_motion(body, displacement, turn_reach);
   return true;
 }
 

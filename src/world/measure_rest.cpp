@@ -13,7 +13,7 @@ constexpr float kSettlingFactor = 10.0f;
 
 void World::measure_rest(StepStats& stats) {
   touching_.assign(store_->slots(), 0);
-  for (const Contact& contact : detector_.contacts()) {
+  for (const Contact& contact : detector_->contacts()) {
     if (contact.body_a != kGroundPlaneBody) touching_[contact.body_a] = 1;
     touching_[contact.body_b] = 1;
   }

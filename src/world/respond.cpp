@@ -11,7 +11,7 @@ namespace sphys {
 
 // A pair's material: the one set for it, else the mix of its bodies' (sphys/material.h).
 void World::mix_materials() {
-  const std::span<const Contact> contacts = detector_.contacts();
+  const std::span<const Contact> contacts = detector_->contacts();
   const std::span<const float> friction = store_->frictions();
   const std::span<const float> restitution = store_->restitutions();
   resize_buffer(materials_, contacts.size());
@@ -35,7 +35,7 @@ void World::mix_materials() {
 
 void World::respond(float dt, bool plausible, StepStats& stats) {
   const StepClock::time_point start = StepClock::now();
-  const std::span<const Contact> contacts = detector_.contacts();
+  const std::span<const Contact> contacts = detector_->contacts();
   if (plausible) {
     mix_materials();
     // Every collision pass gets all the soft step's substeps, even when fast bodies split a frame
@@ -43,8 +43,8 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
     // 10% of a bunny deep, against 4% (stacks:4x50, depth 2).
     const SolverSettings& solver = settings_.solver;
     const ContactSolverStats solved =
-        solver_->solve(*store_, contacts, detector_.memory(), materials_, solver, settings_.gravity,
-                       dt, solver.soft_substeps, *parallel_);
+        solver_->solve(*store_, contacts, detector_->memory(), materials_, solver,
+                       settings_.gravity, dt, solver.soft_substeps, *parallel_);
     stats.impulses += solved.constraints;
     stats.warm_started += solved.warm_started;
     stats.bounces += solved.bounces;

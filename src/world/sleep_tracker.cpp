@@ -20,24 +20,33 @@ constexpr float kUnmeasured = std::numeric_limits<float>::infinity();
 
 }  // namespace
 
-void SleepTracker::resize(std::size_t bodies) {
+SleepTracker::SleepTracker(BodyStore& bodies) : store_(&bodies) { bodies.attach(*this); }
+
+SleepTracker::~SleepTracker() { store_->detach(*this); }
+
+void SleepTracker::grow_slots(std::uint32_t slots) {
   const std::size_t before = island_parent_.size();
-  island_parent_.resize(bodies);
-  still_time_.resize(bodies, 0.0f);
-  speed_.resize(bodies, kUnmeasured);
-  has_restless_.resize(bodies, 0);
-  for (std::size_t i = before; i < bodies; ++i) {
+  island_parent_.resize(slots);
+  still_time_.resize(slots, 0.0f);
+  speed_.resize(slots, kUnmeasured);
+  has_restless_.resize(slots, 0);
+  for (std::size_t i = before; i < slots; ++i) {
     island_parent_[i] = static_cast<std::uint32_t>(i);  // an island of its own
   }
+}
+
+void SleepTracker::keep_still_time(std::uint32_t body, const SleepSettings& settings,
+                                   std::vector<std::uint32_t>& woken) {
+  still_time_[body] = std::min(still_time_[body], kWokenStillShare * settings.time);
+  speed_[body] = 0.0f;  // it slept at rest
+  woken.push_back(body);
 }
 
 void SleepTracker::wake(std::uint32_t body, const SleepSettings& settings,
                         std::vector<std::uint32_t>& woken) {
   if (!store_->asleep(body)) return;
+  keep_still_time(body, settings, woken);
   store_->set_asleep(body, false);
-  still_time_[body] = std::min(still_time_[body], kWokenStillShare * settings.time);
-  speed_[body] = 0.0f;  // it slept at rest
-  woken.push_back(body);
 }
 
 void SleepTracker::unsettle(std::uint32_t body) {
@@ -84,6 +93,11 @@ std::span<const std::uint32_t> SleepTracker::islands() {
 
 void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                                   std::vector<std::uint32_t>& woken) {
+  // The store wakes them together after the pass (one listing of the awake bodies). A body
+  // woken in the pass wakes no other in it: its speed is 0 until update() measures one, slower
+  // than any positive sleep.speed (with sleep.speed 0 it wakes its neighbours in the world's
+  // next round of waking instead).
+  const std::size_t first = woken.size();
   const auto wakes = [&](std::uint32_t sleeper, std::uint32_t other) {
     return store_->asleep(sleeper) && store_->moving()[other] != 0 &&
            speed_[other] >= settings.speed;
@@ -92,13 +106,18 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
     if (contact.body_a == kGroundPlaneBody) continue;
     const std::uint32_t a = contact.body_a;
     const std::uint32_t b = contact.body_b;
-    if (wakes(a, b)) wake(a, settings, woken);
-    if (wakes(b, a)) wake(b, settings, woken);
+    if (wakes(a, b)) keep_still_time(a, settings, woken);
+    if (wakes(b, a)) keep_still_time(b, settings, woken);
   }
+  // A body touching several moving ones was listed once per contact.
+  const auto listed = woken.begin() + static_cast<std::ptrdiff_t>(first);
+  std::sort(listed, woken.end());
+  woken.erase(std::unique(listed, woken.end()), woken.end());
+  store_->set_asleep(std::span(woken).subspan(first), false);
 }
 
-std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<const Contact> contacts,
-                                   float dt, const SleepSettings& settings,
+std::uint32_t SleepTracker::update(std::span<const Contact> contacts, float dt,
+                                   const SleepSettings& settings,
                                    std::vector<std::uint32_t>& fell_asleep) {
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
   std::uint32_t islands = 0;
@@ -106,8 +125,8 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
     if (dynamic[i] == 0) continue;
     if (island(i) == i) ++islands;
     if (store_->asleep(i)) continue;
-    speed_[i] = speeds[i];
-    still_time_[i] = speeds[i] < settings.speed ? still_time_[i] + dt : 0.0f;
+    speed_[i] = store_->fastest_point_speed(i);
+    still_time_[i] = speed_[i] < settings.speed ? still_time_[i] + dt : 0.0f;
   }
   if (!settings.enabled) return islands;
   // Who settles: awake, still for long enough and touching no restless body. A restless body
@@ -130,11 +149,11 @@ std::uint32_t SleepTracker::update(std::span<const float> speeds, std::span<cons
     if (restless(contact.body_b, settings)) settles_[contact.body_a] = 0;
     if (restless(contact.body_a, settings)) settles_[contact.body_b] = 0;
   }
+  const std::size_t first = fell_asleep.size();
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
-    if (settles_[i] == 0) continue;
-    store_->set_asleep(i, true);
-    fell_asleep.push_back(i);
+    if (settles_[i] != 0) fell_asleep.push_back(i);
   }
+  store_->set_asleep(std::span(fell_asleep).subspan(first), true);
   return islands;
 }
 

@@ -15,13 +15,16 @@
 
 namespace sphys {
 
-class SleepTracker {
+class SleepTracker final : public SlotArrays {
  public:
-  // Sleep is the store's: the tracker puts its bodies to sleep and wakes them there. `bodies`
-  // must outlive the tracker.
-  explicit SleepTracker(BodyStore* bodies) : store_(bodies) {}
-  // Slots for `bodies` bodies.
-  void resize(std::size_t bodies);
+  // Sleep is the store's: the tracker puts its bodies to sleep and wakes them there, and its
+  // per-body arrays grow with the store's. `bodies` must outlive the tracker.
+  explicit SleepTracker(BodyStore& bodies);
+  ~SleepTracker();
+  SleepTracker(const SleepTracker&) = delete;
+  SleepTracker& operator=(const SleepTracker&) = delete;
+
+  void grow_slots(std::uint32_t slots) override;
   // Wakes a sleeping body, appending it to `woken`. Being asleep is being still: it keeps its
   // still time, up to half of settings.time, so that it sleeps again after half the sleep time
   // still rather than a whole one (or twice that while its island holds a restless body,
@@ -49,17 +52,21 @@ class SleepTracker {
   // settings.speed at the last update()), appending them to `woken`.
   void wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                       std::vector<std::uint32_t>& woken);
-  // Counts how long each awake moving body has been still (`speeds[i]`: its fastest point's
-  // speed, unit: m/s), then puts to sleep every body still for long enough (settings.time, or
-  // more in an island with a restless body) that touches no restless body, appending them to
+  // Measures each awake body's speed (its fastest point's) and counts how long it has been
+  // still, then puts to sleep every body still for long enough (settings.time, or more in an
+  // island with a restless body) that touches no restless body, appending them to
   // `fell_asleep`. Returns the number of islands.
-  std::uint32_t update(std::span<const float> speeds, std::span<const Contact> contacts, float dt,
-                       const SleepSettings& settings, std::vector<std::uint32_t>& fell_asleep);
+  std::uint32_t update(std::span<const Contact> contacts, float dt, const SleepSettings& settings,
+                       std::vector<std::uint32_t>& fell_asleep);
 
  private:
   // Union-find over body slots: path halving, the smaller slot the root of a set.
   [[nodiscard]] std::uint32_t island(std::uint32_t body);
   void join(std::uint32_t a, std::uint32_t b);
+  // Keeps a sleeping body's still time (see wake()) and counts it as measured at rest, appending
+  // it to `woken`; the caller wakes it in the store.
+  void keep_still_time(std::uint32_t body, const SleepSettings& settings,
+                       std::vector<std::uint32_t>& woken);
   // An awake dynamic body not still for settings.time yet.
   [[nodiscard]] bool restless(std::uint32_t body, const SleepSettings& settings) const {
     return store_->moving()[body] != 0 && still_time_[body] < settings.time;
@@ -68,9 +75,10 @@ class SleepTracker {
   BodyStore* store_;
   std::vector<std::uint32_t> island_parent_;  // the islands
   bool split_ = false;
-  std::vector<std::uint32_t> island_;       // islands(), scratch
-  std::vector<float> still_time_;           // unit: s
-  std::vector<float> speed_;                // the fastest point's, at the last update(). unit: m/s
+  std::vector<std::uint32_t> island_;  // islands(), scratch
+  std::vector<float> still_time_;      // unit: s
+  // The fastest point's, measured by update(), the one place a body's speed is kept. unit: m/s
+  std::vector<float> speed_;
   std::vector<std::uint8_t> has_restless_;  // per island root, scratch
   std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch
 };

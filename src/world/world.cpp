@@ -82,13 +82,13 @@ void check_body(const BodyDesc& desc) {
 World::World(const WorldSettings& settings)
     : settings_(settings),
       store_(std::make_unique<BodyStore>()),
-      detector_(collision_settings(settings)),
+      detector_(std::make_unique<CollisionDetector>(collision_settings(settings))),
       solver_(std::make_unique<SoftStepSolver>()),
-      sleep_(std::make_unique<SleepTracker>(store_.get())) {
+      sleep_(std::make_unique<SleepTracker>(*store_)) {
   check_world_settings(settings);
   parallel_ = std::make_unique<Parallel>(settings.threads);
-  detector_.set_parallel(parallel_.get());
-  detector_.set_bodies(store_.get());
+  detector_->set_parallel(parallel_.get());
+  detector_->set_bodies(*store_);
 }
 
 World::~World() = default;
@@ -100,12 +100,21 @@ std::uint64_t World::pair_key(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t{a} << 32) | b;
 }
 
-std::uint32_t World::checked(BodyId id) const {
+std::uint32_t World::slot_of(BodyId id) const {
+  if (id.is_null()) throw Error("the null body id (BodyId{}) names no body");
   if (!alive(id)) {
     throw Error("no body with id " + std::to_string(id.index) + "." +
                 std::to_string(id.generation) + " in the world (removed, or never added)");
   }
   return id.index;
+}
+
+BodyId World::id_of(std::uint32_t slot) const {
+  if (slot >= store_->slots()) {
+    throw Error("no body slot " + std::to_string(slot) + " in the world, which has " +
+                std::to_string(store_->slots()));
+  }
+  return store_->id_of(slot);
 }
 
 BodyId World::add_body(const BodyDesc& desc) {
@@ -126,18 +135,13 @@ BodyId World::add_body(const BodyDesc& desc) {
   }
   const std::uint32_t slot = store_->add(body, tree_extent(*desc.tree));
   try {
-    if (generation_.size() <= slot) {
-      generation_.resize(slot + 1, 0);
-      sleep_->resize(slot + 1);
-    }
     sleep_->unsettle(slot);  // a slot used before keeps its last body's still time
-    detector_.add_body(slot, desc.tree);
+    detector_->add_body(slot, desc.tree);
   } catch (...) {
     store_->remove(slot);  // no half-added body: the slot is free again
     throw;
   }
-  list_awake();
-  return {slot, generation_[slot]};
+  return store_->id_of(slot);
 }
 
 void World::wake(std::uint32_t index) {
@@ -146,21 +150,17 @@ void World::wake(std::uint32_t index) {
   sleep_->unsettle(index);
 }
 
-void World::list_awake() const { (void)store_->awake(); }
-
 void World::remove_body(BodyId id) {
-  const std::uint32_t index = checked(id);
+  const std::uint32_t index = slot_of(id);
   // The sleeping bodies it touched (which may rest on it, asleep, awake or static) lose a
   // support.
   wake(index);
   removed_neighbours_.clear();
-  detector_.paired_bodies(index, removed_neighbours_);
+  detector_->paired_bodies(index, removed_neighbours_);
   for (const std::uint32_t neighbour : removed_neighbours_) wake(neighbour);
-  detector_.remove_body(index);
+  detector_->remove_body(index);
   store_->remove(index);
   sleep_->parted();
-  list_awake();
-  ++generation_[index];
   std::erase_if(pair_materials_, [&](const auto& entry) {
     return static_cast<std::uint32_t>(entry.first >> 32) == index ||
            static_cast<std::uint32_t>(entry.first) == index;
@@ -173,11 +173,11 @@ void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_micr
   settings.collision.max_microseconds = max_microseconds;
   check_world_settings(settings);
   settings_ = settings;
-  detector_.set_settings(collision_settings(settings_));
+  detector_->set_settings(collision_settings(settings_));
 }
 
 void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
-  const std::uint32_t index = checked(id);
+  const std::uint32_t index = slot_of(id);
   if (!linear.allFinite() || !angular.allFinite()) {
     throw Error("a body's velocities must be finite");
   }
@@ -185,11 +185,10 @@ void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
   wake(index);
   store_->linear_velocities()[index] = linear;
   store_->angular_velocities()[index] = angular;
-  list_awake();
 }
 
 void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
-  const std::uint32_t index = checked(id);
+  const std::uint32_t index = slot_of(id);
   if (!impulse.allFinite() || !point.allFinite()) {
     throw Error("an impulse and its point must be finite");
   }
@@ -199,17 +198,16 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
   store.linear_velocities()[index] += store.inverse_masses()[index] * impulse;
   store.angular_velocities()[index] += store.inverse_inertias_world()[index] *
                                        (point - store.poses()[index].translation).cross(impulse);
-  list_awake();
 }
 
 void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
-  const std::uint32_t ia = checked(a);
-  const std::uint32_t ib = checked(b);
+  const std::uint32_t ia = slot_of(a);
+  const std::uint32_t ib = slot_of(b);
   check_material(material.restitution, material.friction);
   pair_materials_[pair_key(ia, ib)] = material;
 }
 
-bool World::asleep(BodyId id) const { return store_->asleep(checked(id)); }
+bool World::asleep(BodyId id) const { return store_->asleep(slot_of(id)); }
 
 std::uint32_t World::substeps_for(float dt) const {
   const std::uint32_t fewest = settings_.substeps;
@@ -242,7 +240,7 @@ const StepStats& World::step(float dt) {
   // Islands whose bodies parted in the last step are built afresh, once a step.
   if (settings_.response == ResponseMode::kPlausible) {
     const StepClock::time_point split_start = StepClock::now();
-    sleep_->split_islands(detector_.contacts());
+    sleep_->split_islands(detector_->contacts());
     stats.sleep_ms += elapsed_ms(split_start);
   }
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);

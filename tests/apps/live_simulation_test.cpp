@@ -43,9 +43,9 @@ TEST(LiveSimulation, ADroppedBodyCopiesTheFirstAndFallsFromAboveTheHighest) {
   // Same mass and inertia as the scene's first body.
   const World& world = simulation.world();
   std::uint32_t first_moving = 0;
-  while (world.body(BodyId{first_moving}).is_static) ++first_moving;  // the ground comes first
-  const RigidBody& first = world.body(BodyId{first_moving});
-  const RigidBody& copy = world.body(BodyId{world.body_slots() - 1});
+  while (world.body(world.id_of(first_moving)).is_static) ++first_moving;  // the ground comes first
+  const RigidBody& first = world.body(world.id_of(first_moving));
+  const RigidBody& copy = world.body(world.id_of(world.body_slots() - 1));
   EXPECT_FLOAT_EQ(copy.mass(), first.mass());
   EXPECT_TRUE(copy.inertia_body.isApprox(first.inertia_body));
   // It falls: after 0.2 s it has dropped by g t² / 2 (the integrator's known small excess
@@ -61,7 +61,8 @@ TEST(LiveSimulation, AShotBodyLeavesWithTheGivenVelocity) {
   std::mt19937 random(7);
   simulation.shoot_body(Vec3(10.0f, 5.0f, 0.0f), Vec3(-25.0f, 0.0f, 0.0f), random);
   ASSERT_EQ(simulation.body_count(), 3u);
-  const RigidBody& shot = simulation.world().body(BodyId{simulation.world().body_slots() - 1});
+  const RigidBody& shot =
+      simulation.world().body(simulation.world().id_of(simulation.world().body_slots() - 1));
   EXPECT_TRUE(shot.linear_velocity.isApprox(Vec3(-25.0f, 0.0f, 0.0f)));
   EXPECT_TRUE(shot.pose.translation.isApprox(Vec3(10.0f, 5.0f, 0.0f)));
 }

@@ -98,6 +98,77 @@ TEST(BodyStore, ListsTheAwakeBodiesInSlotOrderAndStopsThoseThatSleep) {
   EXPECT_EQ(store.linear_velocities()[2], Vec3(1.0f, 2.0f, 3.0f));
 }
 
+TEST(BodyStore, PutsManyBodiesToSleepOrWakesThemAtOnce) {
+  BodyStore store;
+  for (int i = 0; i < 6; ++i) store.add(moving_box(Vec3::Zero()), 0.5f);
+  const std::vector<std::uint32_t> some{4, 1, 2};
+  store.set_asleep(some, true);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 3, 5}));
+  // Waking a body already awake changes nothing of it.
+  const std::vector<std::uint32_t> wake{2, 3, 4};
+  store.set_asleep(wake, false);
+  EXPECT_EQ(awake_of(store), (std::vector<std::uint32_t>{0, 2, 3, 4, 5}));
+  EXPECT_EQ(store.linear_velocities()[3], Vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(store.linear_velocities()[2], Vec3::Zero());
+}
+
+// The store says which body a slot holds: generations count from 1, so the default id names no
+// body, and a slot's generation moves on when its body leaves.
+TEST(BodyStore, IdsCountGenerationsFromOneSoTheDefaultIdNamesNothing) {
+  BodyStore store;
+  const std::uint32_t slot = store.add(moving_box(Vec3::Zero()), 0.5f);
+  const BodyId first = store.id_of(slot);
+  EXPECT_EQ(first, (BodyId{0, 1}));
+  EXPECT_TRUE(store.alive(first));
+  EXPECT_FALSE(store.alive(BodyId{}));
+  EXPECT_FALSE(store.alive(BodyId{1, 1}));  // no such slot
+  store.remove(slot);
+  EXPECT_FALSE(store.alive(first));
+  EXPECT_FALSE(store.alive(store.id_of(slot)));  // free: the next body's id, not alive yet
+  ASSERT_EQ(store.add(moving_box(Vec3::Zero()), 0.5f), slot);
+  EXPECT_EQ(store.id_of(slot), (BodyId{0, 2}));
+  EXPECT_TRUE(store.alive(store.id_of(slot)));
+  EXPECT_FALSE(store.alive(first));
+}
+
+// Another owner's per-slot arrays, grown by the store.
+class Column final : public SlotArrays {
+ public:
+  void grow_slots(std::uint32_t slots) override {
+    ++grown;
+    values.resize(slots, -1);
+  }
+  std::vector<int> values;
+  int grown = 0;
+};
+
+TEST(BodyStore, AttachedArraysGrowWithTheStoreUntilDetached) {
+  BodyStore store;
+  store.add(moving_box(Vec3::Zero()), 0.5f);
+  store.add(moving_box(Vec3::Zero()), 0.5f);
+  Column column;
+  store.attach(column);
+  EXPECT_EQ(column.values.size(), 2u);  // grown to the store at once
+  column.values[1] = 7;
+  store.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_EQ(column.values, (std::vector<int>{-1, 7, -1}));
+  store.remove(0);
+  const int grown = column.grown;
+  store.add(moving_box(Vec3::Zero()), 0.5f);  // slot 0 again: nothing to grow
+  EXPECT_EQ(column.grown, grown);
+  // A copy is a snapshot of the bodies: what it adds grows nothing attached to the original.
+  BodyStore copy = store;
+  copy.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_EQ(column.values.size(), 3u);
+  // Given more bodies, the store grows what is attached to it.
+  store = copy;
+  EXPECT_EQ(column.values.size(), 4u);
+  store.detach(column);
+  store.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_EQ(store.slots(), 5u);
+  EXPECT_EQ(column.values.size(), 4u);
+}
+
 TEST(BodyStore, WorldInertiaAndEnergyFollowThePose) {
   BodyStore store;
   const std::uint32_t slot = store.add(moving_box(Vec3::Zero()), 0.5f);

@@ -87,7 +87,7 @@ struct Detection {
   CollisionDetector detector;
 
   explicit Detection(const CollisionSettings& settings = {}) : detector(settings) {
-    detector.set_bodies(&store);
+    detector.set_bodies(store);
   }
   Detection(const Detection&) = delete;
   Detection& operator=(const Detection&) = delete;

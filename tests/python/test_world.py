@@ -111,7 +111,7 @@ def test_add_remove_alive_body_ids_len(sphere_tree):
     a = world.add_body(sphere_tree(), position=(0, 0, 0))
     b = world.add_body(sphere_tree(), position=(3, 0, 0))
     c = world.add_body(sphere_tree(), position=(6, 0, 0))
-    assert (a.index, a.generation) == (0, 0)
+    assert (a.index, a.generation) == (0, 1) and not a.is_null
     assert (b.index, c.index) == (1, 2)
     assert world.body_ids() == [a, b, c] and len(world) == 3
     assert all(world.alive(x) for x in (a, b, c))
@@ -643,16 +643,37 @@ def test_removed_body_id_raises(sphere_tree):
     keep = world.add_body(sphere_tree())
     gone = world.add_body(sphere_tree(), position=(3, 0, 0))
     world.remove_body(gone)
-    for call in (lambda: world.remove_body(gone),
-                 lambda: world.asleep(gone),
-                 lambda: world.set_velocity(gone, (1, 0, 0)),
-                 lambda: world.apply_impulse(gone, (1, 0, 0), (0, 0, 0))):
-        with pytest.raises(sphys.Error, match=f"no body with id {gone.index}"):
+    # The slot is reused: the old id still names nothing.
+    again = world.add_body(sphere_tree(), position=(6, 0, 0))
+    assert again.index == gone.index and again != gone
+    for call in _calls_taking_an_id(world, gone, keep):
+        with pytest.raises(sphys.Error,
+                           match=f"no body with id {gone.index}.{gone.generation} in the world"):
             call()
-    for call in (lambda: world.poses([keep, gone]), lambda: world.velocities([gone])):
-        with pytest.raises(sphys.Error, match=f"body {gone.index} .*not in the world"):
+    assert world.body_ids() == [keep, again]
+
+
+def _calls_taking_an_id(world, body, other):
+    return (lambda: world.remove_body(body),
+            lambda: world.asleep(body),
+            lambda: world.set_velocity(body, (1, 0, 0)),
+            lambda: world.apply_impulse(body, (1, 0, 0), (0, 0, 0)),
+            lambda: world.set_pair_material(body, other, friction=0.5, restitution=0.5),
+            lambda: world.set_pair_material(other, body, friction=0.5, restitution=0.5),
+            lambda: world.poses([other, body]),
+            lambda: world.velocities([body]))
+
+
+def test_the_null_body_id_names_no_body(sphere_tree):
+    world = sphys.World()
+    first = world.add_body(sphere_tree())
+    none = sphys.BodyId()
+    assert none.is_null and (none.index, none.generation) == (0, 0)
+    assert none != first and not world.alive(none)
+    for call in _calls_taking_an_id(world, none, first):
+        with pytest.raises(sphys.Error, match=r"the null body id \(BodyId\{\}\) names no body"):
             call()
-    assert world.body_ids() == [keep]
+    assert world.alive(first) and world.body_ids() == [first]
 
 
 # ---------------------------------------------------------------------------------------------

@@ -20,7 +20,7 @@ Contact touching(std::uint32_t a, std::uint32_t b) {
 // Five dynamic bodies and a static one (slot 5).
 struct Bodies {
   BodyStore store;
-  SleepTracker tracker{&store};
+  SleepTracker tracker{store};
 
   Bodies() {
     RigidBody body;
@@ -28,7 +28,13 @@ struct Bodies {
     for (int i = 0; i < 5; ++i) store.add(body, 0.5f);
     body.is_static = true;
     store.add(body, 0.5f);
-    tracker.resize(store.slots());
+  }
+
+  // Each awake body's speed (`speeds[i]`, m/s), as the tracker measures it from the store.
+  void move_at(const std::vector<float>& speeds) {
+    for (const std::uint32_t i : store.awake()) {
+      store.linear_velocities()[i] = Vec3(speeds[i], 0.0f, 0.0f);
+    }
   }
 
   // The bodies of each island, by the island's name.
@@ -76,8 +82,8 @@ TEST(SleepTracker, IslandsPersistUntilBodiesPartThenSplitOnce) {
 std::vector<std::uint32_t> settle(Bodies& bodies, const std::vector<float>& speeds,
                                   const std::vector<Contact>& contacts) {
   std::vector<std::uint32_t> fell_asleep;
-  (void)bodies.tracker.update(speeds, contacts, 2.0f * SleepSettings{}.time, SleepSettings{},
-                              fell_asleep);
+  bodies.move_at(speeds);
+  (void)bodies.tracker.update(contacts, 2.0f * SleepSettings{}.time, SleepSettings{}, fell_asleep);
   return fell_asleep;
 }
 
@@ -122,12 +128,14 @@ TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMoves) {
   std::vector<std::uint32_t> fell_asleep;
   speeds[0] = 0.5f * settings.speed;
   speeds[3] = 0.0f;
-  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, fell_asleep);
+  bodies.move_at(speeds);
+  (void)bodies.tracker.update({}, 0.0f, settings, fell_asleep);
   bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_TRUE(woken.empty());
   // Body 0 moves: body 1 wakes, body 2 beyond it sleeps on.
   speeds[0] = 2.0f * settings.speed;
-  (void)bodies.tracker.update(speeds, {}, 0.0f, settings, fell_asleep);
+  bodies.move_at(speeds);
+  (void)bodies.tracker.update({}, 0.0f, settings, fell_asleep);
   bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_EQ(woken, (std::vector<std::uint32_t>{1}));
   EXPECT_TRUE(bodies.store.asleep(2));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -69,12 +71,64 @@ TEST(WorldBodies, TheIdOfARemovedBodyIsStaleEvenWhenItsSlotIsReused) {
   EXPECT_THROW(world.set_pair_material(first, second, PairMaterial{}), Error);
   EXPECT_THROW((void)world.asleep(first), Error);
   EXPECT_THROW(world.remove_body(first), Error);
-  EXPECT_THROW((void)world.body(BodyId{7, 0}), Error);  // never added
+  EXPECT_THROW((void)world.body(BodyId{7, 1}), Error);  // never added
+  EXPECT_THROW((void)world.id_of(7), Error);
   EXPECT_FLOAT_EQ(world.body(second).pose.translation.x(), 3.0f);
   try {
     (void)world.body(first);
   } catch (const Error& error) {
-    EXPECT_STREQ(error.what(), "no body with id 0.0 in the world (removed, or never added)");
+    EXPECT_STREQ(error.what(), "no body with id 0.1 in the world (removed, or never added)");
+  }
+}
+
+// The default id names no body, not the first one added (which sits in slot 0): every call
+// taking an id refuses it, saying so.
+TEST(WorldBodies, TheDefaultIdNamesNoBody) {
+  World world(on_plane());
+  const BodyId first = world.add_body(cube(Vec3(0.0f, 2.0f, 0.0f)));
+  const BodyId second = world.add_body(cube(Vec3(3.0f, 2.0f, 0.0f)));
+  ASSERT_EQ(first.index, 0u);
+  EXPECT_FALSE(first.is_null());
+  const BodyId none;
+  EXPECT_TRUE(none.is_null());
+  EXPECT_NE(none, first);
+  EXPECT_FALSE(world.alive(none));
+  const auto refused = [](const auto& call) {
+    try {
+      call();
+    } catch (const Error& error) {
+      return std::string(error.what()) == "the null body id (BodyId{}) names no body";
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused([&] { (void)world.body(none); }));
+  EXPECT_TRUE(refused([&] { world.set_velocity(none, Vec3::UnitX(), Vec3::Zero()); }));
+  EXPECT_TRUE(refused([&] { world.apply_impulse(none, Vec3::UnitX(), Vec3::Zero()); }));
+  EXPECT_TRUE(refused([&] { world.set_pair_material(none, second, PairMaterial{}); }));
+  EXPECT_TRUE(refused([&] { world.set_pair_material(second, none, PairMaterial{}); }));
+  EXPECT_TRUE(refused([&] { (void)world.asleep(none); }));
+  EXPECT_TRUE(refused([&] { world.remove_body(none); }));
+  // None of them touched the first body.
+  EXPECT_TRUE(world.alive(first));
+  EXPECT_EQ(world.body(first).linear_velocity, Vec3::Zero());
+}
+
+// A slot's generations move on with each body it holds, so that no earlier id of the slot
+// answers to a later body, however often the slot is reused.
+TEST(WorldBodies, NoEarlierIdOfAReusedSlotAnswers) {
+  World world(on_plane());
+  std::vector<BodyId> earlier;
+  BodyId current = world.add_body(cube(Vec3(0.0f, 2.0f, 0.0f)));
+  for (int reuse = 0; reuse < 20; ++reuse) {
+    earlier.push_back(current);
+    world.remove_body(current);
+    current = world.add_body(cube(Vec3(static_cast<float>(reuse), 2.0f, 0.0f)));
+    ASSERT_EQ(current.index, earlier.front().index);
+    EXPECT_EQ(world.id_of(current.index), current);
+    for (const BodyId old : earlier) {
+      EXPECT_FALSE(world.alive(old));
+      EXPECT_THROW((void)world.body(old), Error);
+    }
   }
 }
 

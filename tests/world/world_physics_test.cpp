@@ -63,7 +63,8 @@ WorldSettings zero_gravity() {
 
 double kinetic_energy(const World& world) {
   double energy = 0.0;
-  for (std::uint32_t i = 0; i < world.body_slots(); ++i) energy += world.body({i}).kinetic_energy();
+  for (std::uint32_t i = 0; i < world.body_slots(); ++i)
+    energy += world.body(world.id_of(i)).kinetic_energy();
   return energy;
 }
 
@@ -278,7 +279,7 @@ struct Momenta {
 Momenta momenta(const World& world) {
   Momenta sum;
   for (std::uint32_t i = 0; i < world.body_slots(); ++i) {
-    const RigidBody& body = world.body({i});
+    const RigidBody& body = world.body(world.id_of(i));
     if (body.is_static) continue;
     const double mass = 1.0 / static_cast<double>(body.inverse_mass);
     const Eigen::Vector3d momentum = mass * body.linear_velocity.cast<double>();

@@ -123,9 +123,10 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
 }
 
 std::string non_finite_message(const SimulationSetup& setup, std::uint32_t world_index, int frame) {
-  const auto found = std::find(setup.bodies.begin(), setup.bodies.end(), BodyId{world_index});
+  const BodyId id = setup.world->id_of(world_index);
+  const auto found = std::find(setup.bodies.begin(), setup.bodies.end(), id);
   const auto body = static_cast<std::size_t>(found - setup.bodies.begin());
-  const RigidBody& state = setup.world->body({world_index});
+  const RigidBody& state = setup.world->body(id);
   char detail[256];
   std::snprintf(detail, sizeof detail,
                 "position (%g, %g, %g), velocity (%g, %g, %g), angular velocity (%g, %g, %g)",

@@ -39,10 +39,19 @@ class StateHash {
   std::uint64_t hash_ = 0xcbf29ce484222325u;
 };
 
+// The committed figures (see the tests at the end): each mode's final state after its frames,
+// and the frame after which every body of the plausible pile sleeps.
+constexpr int kPlausibleFrames = 540;
+constexpr std::uint64_t kPlausibleState = 0xc9c8251212adb15eu;
+constexpr int kPlausibleAllAsleepFrame = 507;
+constexpr int kPaperFrames = 200;
+constexpr std::uint64_t kPaperState = 0x1c564bdeeb9b1152u;
+
 struct ThreadedRun {
   std::uint64_t final_state = 0;  // every body's pose and velocities at the end
   std::uint64_t steps = 0;        // every step's counts and contacts
   std::uint32_t asleep = 0;
+  int all_asleep_frame = -1;  // the first frame after which every body sleeps; -1: none did
 };
 
 ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
@@ -67,6 +76,10 @@ ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
     steps.add(std::uint64_t{stats.substeps});
     steps.add(std::uint64_t{stats.bodies_asleep});
     steps.add(stats.deepest_penetration);
+    if (result.all_asleep_frame < 0 && stats.movable_bodies > 0 &&
+        stats.bodies_asleep == stats.movable_bodies) {
+      result.all_asleep_frame = frame;
+    }
     for (const Contact& contact : world.contacts()) {
       steps.add((std::uint64_t{contact.body_a} << 32) | contact.body_b);
       steps.add(contact.point);
@@ -91,50 +104,54 @@ ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
   return result;
 }
 
-// Returns the two-thread run.
-ThreadedRun expect_same_on_one_and_two_threads(const Scene& scene, int frames) {
-  // The trees are built once and read back for the later runs.
-  const test::TempDir tree_cache;
-  const ThreadedRun one = run_scene(scene, 1, frames, tree_cache.path());
-  const ThreadedRun two = run_scene(scene, 2, frames, tree_cache.path());
-  EXPECT_EQ(two.steps, one.steps) << "a step's contacts or counts differ";
-  EXPECT_EQ(two.final_state, one.final_state) << "the final poses or velocities differ";
-  EXPECT_EQ(two.asleep, one.asleep);
-  // Two runs of one thread agree too (nothing depends on addresses or the clock).
-  EXPECT_EQ(run_scene(scene, 1, frames, tree_cache.path()).final_state, one.final_state);
-  return two;
-}
-
-// The soft step: its contacts coloured into blocks of SIMD lanes, the blocks of a colour and the
-// bodies' integration threaded. One, two and four threads end in the same bits, and those bits are
-// the committed ones (as Box2D's determinism test does): a change of the arithmetic shows here,
-// and must come with a new hash and a reason. The lanes' width does not enter: a colour's lanes
-// share no body, and each does the same arithmetic (contact_lanes_test.cpp).
-TEST(Determinism, SoftStepPilesAreBitIdenticalOnOneTwoAndFourThreadsAndAsCommitted) {
-  Scene scene = bunny_stacks_scene(8, 6, 3);
-  scene.ground.kind = GroundSpec::Kind::kPlane;
-  const int frames = test::sanitized_run() ? 25 : 300;
-  const test::TempDir tree_cache;
+// What a scene's run on one thread gives, and the same on two and four.
+ThreadedRun expect_the_same_on_one_two_and_four_threads(const Scene& scene, int frames) {
+  const test::TempDir tree_cache;  // the trees are built once and read back for the later runs
   const ThreadedRun one = run_scene(scene, 1, frames, tree_cache.path());
   for (const std::uint32_t threads : {2u, 4u}) {
     const ThreadedRun many = run_scene(scene, threads, frames, tree_cache.path());
     EXPECT_EQ(many.steps, one.steps) << threads << " threads: a step's contacts or counts differ";
     EXPECT_EQ(many.final_state, one.final_state) << threads << " threads: the final state differs";
+    EXPECT_EQ(many.all_asleep_frame, one.all_asleep_frame) << threads << " threads";
   }
+  // Two runs of one thread agree too (nothing depends on addresses or the clock).
+  EXPECT_EQ(run_scene(scene, 1, frames, tree_cache.path()).final_state, one.final_state);
+  return one;
+}
+
+// Each mode's results are committed (as Box2D's determinism test commits its hash and the step
+// at which everything sleeps): the optimised build's state at the end, and the frame after which
+// every body sleeps. A change that alters a result shows here, and must come with new figures
+// and the reason (the sanitizer's build runs fewer frames and checks only that the thread
+// counts agree). The lanes' width does not enter: a colour's lanes share no body, and each does
+// the same arithmetic (contact_lanes_test.cpp).
+
+// The soft step: its contacts coloured into blocks of SIMD lanes, the blocks of a colour and the
+// bodies' integration threaded; 48 bunnies on the plane, run until they all sleep.
+TEST(Determinism, PlausibleModeIsBitIdenticalOnOneTwoAndFourThreadsAndAsCommitted) {
+  Scene scene = bunny_stacks_scene(8, 6, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  const int frames = test::sanitized_run() ? 25 : kPlausibleFrames;
+  const ThreadedRun one = expect_the_same_on_one_two_and_four_threads(scene, frames);
   if (!test::sanitized_run()) {
-    // The optimised build's state after 300 frames (the sanitizer's build runs fewer). Changed
-    // when the soft step became the only solver: six substeps, rigid within the slop, static
-    // friction's anchors, rolling resistance in the relax pass, the integrator that keeps spin,
-    // the effective masses summed body by body.
-    EXPECT_EQ(one.final_state, 0xb28780d4fe63af7eu) << std::hex << one.final_state;
+    // The state after 300 frames was committed since the soft step became the only solver
+    // (0xb28780d4fe63af7e, unchanged); the run goes on to the frame where all sleep.
+    EXPECT_EQ(one.final_state, kPlausibleState) << std::hex << one.final_state;
+    EXPECT_EQ(one.all_asleep_frame, kPlausibleAllAsleepFrame);
   }
 }
 
-// The paper's octree ground, a static body in the broad phase, and the paper's response.
-TEST(Determinism, PaperModeOnTheOctreeGroundIsBitIdenticalOnOneAndTwoThreads) {
+// The paper's octree ground, a static body in the broad phase, and the paper's response. Paper
+// mode never sleeps.
+TEST(Determinism, PaperModeIsBitIdenticalOnOneTwoAndFourThreadsAndAsCommitted) {
   Scene scene = bunny_stacks_scene(4, 5, 3);
   scene.response = ResponseMode::kPaper;
-  expect_same_on_one_and_two_threads(scene, test::sanitized_run() ? 15 : 200);
+  const int frames = test::sanitized_run() ? 15 : kPaperFrames;
+  const ThreadedRun one = expect_the_same_on_one_two_and_four_threads(scene, frames);
+  EXPECT_EQ(one.all_asleep_frame, -1);
+  if (!test::sanitized_run()) {
+    EXPECT_EQ(one.final_state, kPaperState) << std::hex << one.final_state;
+  }
 }
 
 // The broad phases list the same pairs in the same order, so plausible mode runs the same with
