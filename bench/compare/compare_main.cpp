@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <exception>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -17,6 +19,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine_rows.h"
+#include "results_csv.h"
 #include "run_engine.h"
 #include "sphys/error.h"
 #include "sphys/tools/machine.h"
@@ -36,18 +40,14 @@ struct Options {
   std::string command;  // as typed, for the report
 };
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  if (values.size() % 2 == 1) return *middle;
-  return 0.5 * (*middle + *std::max_element(values.begin(), middle));
-}
-
-double mean(const std::vector<double>& values) {
-  double sum = 0.0;
-  for (const double value : values) sum += value;
-  return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
+// Today's date in UTC, YYYY-MM-DD.
+std::string utc_date() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[16];
+  std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
+  return text;
 }
 
 std::string memory_text(std::optional<double> mib) {
@@ -68,65 +68,20 @@ std::pair<int, int> parse_layout(const std::string& layout) {
   return {stacks, per_stack};
 }
 
-// All runs of one engine on one scene, pooled.
-struct Pooled {
-  std::vector<double> step_ms;
-  std::vector<RunResult> runs;
-};
-
-// printf's formatting into a string.
-std::string formatted(const char* pattern, auto... values) {
-  const int size = std::snprintf(nullptr, 0, pattern, values...);
-  if (size <= 0) return {};
-  std::string text(static_cast<std::size_t>(size), '\0');
-  std::snprintf(text.data(), text.size() + 1, pattern, values...);
-  return text;
-}
-
-// The engine the × sphys columns divide by: single-threaded sphys, else the first sphys:T listed
-// (e.g. a scale series on two threads); empty if neither runs.
-std::string reference_engine(const std::vector<std::string>& engines) {
-  if (std::find(engines.begin(), engines.end(), "sphys") != engines.end()) return "sphys";
-  for (const std::string& engine : engines) {
-    if (engine.starts_with("sphys:")) return engine;
-  }
-  return {};
-}
-
-// The frames every run of these engines ran (a run that failed counts none): all of them, unless
-// one stopped at the time limit.
-std::size_t common_frames(const Pooled& a, const Pooled& b) {
-  std::size_t frames = std::numeric_limits<std::size_t>::max();
-  for (const Pooled* pooled : {&a, &b}) {
-    for (const RunResult& run : pooled->runs) frames = std::min(frames, run.step_ms.size());
-  }
-  return frames;
-}
-
-// Each run's first `frames` step times, pooled.
-std::vector<double> first_frames(const Pooled& pooled, std::size_t frames) {
-  std::vector<double> step_ms;
-  for (const RunResult& run : pooled.runs) {
-    step_ms.insert(step_ms.end(), run.step_ms.begin(),
-                   run.step_ms.begin() + static_cast<std::ptrdiff_t>(frames));
-  }
-  return step_ms;
-}
-
-// A run's step times summed. unit: s
-double seconds_of_steps(const RunResult& run) {
-  return std::accumulate(run.step_ms.begin(), run.step_ms.end(), 0.0) / 1000.0;
-}
-
 constexpr int kColumns = 17;
 
-std::string table(const std::string& layout, int depth, const std::vector<std::string>& engines,
-                  const std::map<std::string, Pooled>& results, int frames, double time_limit) {
+std::string ratio_text(const std::optional<double>& ratio, const EngineRow& row, int frames) {
+  if (!ratio) return {};
+  const bool all = row.ratio_frames == static_cast<std::size_t>(frames);
+  return formatted("%.2f", *ratio) + (all ? "" : formatted(" (1–%zu)", row.ratio_frames));
+}
+
+std::string table(const SceneRows& scene, double time_limit) {
   std::ostringstream out;
-  out << formatted("\n### %s, depth %d, %d frames\n\n", layout.c_str(), depth, frames);
-  const std::string reference = reference_engine(engines);
-  if (!reference.empty() && reference != "sphys") {
-    out << "× sphys: over `" << reference << "` (single-threaded sphys did not run).\n\n";
+  const int frames = scene.frames;
+  out << formatted("\n### %s, depth %d, %d frames\n\n", scene.layout.c_str(), scene.depth, frames);
+  if (!scene.reference.empty() && scene.reference != "sphys") {
+    out << "× sphys: over `" << scene.reference << "` (single-threaded sphys did not run).\n\n";
   }
   out << "| engine | frames run | median ms/step | steps/s | × sphys median | mean ms/step | "
          "× sphys mean | mean µs/body/step | contacts/step | deepest (m) | "
@@ -134,85 +89,28 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
          "asleep at end | below plane | peak memory (MiB) |\n"
       << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
          "---: | ---: | ---: | ---: | ---: |\n";
-  const Pooled* reference_runs =
-      reference.empty() ? nullptr : &results.at(reference);  // every engine listed has an entry
-  std::vector<std::string> stops;                            // the runs stopped at the time limit
   bool partial_ratios = false;
-  for (const std::string& engine : engines) {
-    const Pooled& pooled = results.at(engine);
-    if (pooled.step_ms.empty()) {
-      out << "| " << engine << " | " << pooled.runs.front().warnings << " |";
+  for (const EngineRow& row : scene.rows) {
+    const RunResult& worst = row.worst;
+    if (!row.ran) {
+      out << "| " << row.engine << " | " << worst.warnings << " |";
       for (int column = 2; column < kColumns; ++column) out << " |";
       out << "\n";
       continue;
     }
-    const double ms = median(pooled.step_ms);
-    const double mean_ms = mean(pooled.step_ms);
-    // The plausibility figures are the worst over the runs.
-    RunResult worst = pooled.runs.front();
-    double contacts = 0.0;
-    std::size_t fewest_frames = pooled.runs.front().step_ms.size();
-    std::size_t most_frames = fewest_frames;
-    bool stopped = false;
-    for (std::size_t r = 0; r < pooled.runs.size(); ++r) {
-      const RunResult& run = pooled.runs[r];
-      worst.deepest = std::max(worst.deepest, run.deepest);
-      worst.deepest_last_second = std::max(worst.deepest_last_second, run.deepest_last_second);
-      worst.end_overlap = std::max(worst.end_overlap, run.end_overlap);
-      worst.kinetic_energy = std::max(worst.kinetic_energy, run.kinetic_energy);
-      worst.moving = std::max(worst.moving, run.moving);
-      worst.below = std::max(worst.below, run.below);
-      if (worst.asleep && run.asleep) {
-        worst.asleep = std::min(*worst.asleep, *run.asleep);
-      } else {
-        worst.asleep = std::nullopt;
-      }
-      if (run.peak_memory_mib) {
-        worst.peak_memory_mib = std::max(worst.peak_memory_mib.value_or(0.0), *run.peak_memory_mib);
-      }
-      contacts += run.contacts_per_step;
-      if (!run.warnings.empty()) worst.warnings = run.warnings;
-      fewest_frames = std::min(fewest_frames, run.step_ms.size());
-      most_frames = std::max(most_frames, run.step_ms.size());
-      if (run.stopped) {
-        stops.push_back(formatted("%s at frame %zu of %d (%.4g s of steps)", engine.c_str(),
-                                  run.step_ms.size(), frames, seconds_of_steps(run)));
-        if (pooled.runs.size() > 1) stops.back() += formatted(" in run %zu", r + 1);
-        stopped = true;
-      }
-    }
-    contacts /= static_cast<double>(pooled.runs.size());
-
-    std::string frames_run = std::to_string(fewest_frames);
-    if (most_frames != fewest_frames) frames_run += "–" + std::to_string(most_frames);
-    if (stopped) frames_run += formatted(" of %d (time limit)", frames);
-
-    // Over the reference's times, over the frames both ran: a ratio over fewer than all the
-    // frames says which (a run that stopped at the time limit ran only the first ones, and the
-    // first frames of a fall cost differently from the pile at rest).
-    std::string median_ratio;
-    std::string mean_ratio;
-    const std::size_t common =
-        reference_runs == nullptr ? 0 : common_frames(pooled, *reference_runs);
-    if (common > 0) {
-      const bool all = common == static_cast<std::size_t>(frames);
-      const std::vector<double> ours = all ? pooled.step_ms : first_frames(pooled, common);
-      const std::vector<double> theirs =
-          all ? reference_runs->step_ms : first_frames(*reference_runs, common);
-      const std::string span = all ? "" : formatted(" (1–%zu)", common);
-      partial_ratios = partial_ratios || !all;
-      if (median(theirs) > 0.0)
-        median_ratio = formatted("%.2f", median(ours) / median(theirs)) + span;
-      if (mean(theirs) > 0.0) mean_ratio = formatted("%.2f", mean(ours) / mean(theirs)) + span;
-    }
-    const double us_per_body =
-        worst.bodies > 0 ? 1000.0 * mean_ms / static_cast<double>(worst.bodies) : 0.0;
-
-    out << "| " << engine << " | " << frames_run << " | "
-        << formatted("%.3f | %.0f | ", ms, ms > 0.0 ? 1000.0 / ms : 0.0) << median_ratio << " | "
-        << formatted("%.3f | ", mean_ms) << mean_ratio << " | "
-        << formatted("%.2f | %.1f | %.4f | %.4f | %.4f | %.3g | %u of %u | ", us_per_body, contacts,
-                     static_cast<double>(worst.deepest),
+    std::string frames_run = std::to_string(row.fewest_frames);
+    if (row.most_frames != row.fewest_frames) frames_run += "–" + std::to_string(row.most_frames);
+    if (row.stopped) frames_run += formatted(" of %d (time limit)", frames);
+    // A ratio over fewer than all the frames says which.
+    partial_ratios = partial_ratios ||
+                     (row.ratio_frames > 0 && row.ratio_frames != static_cast<std::size_t>(frames));
+    const double ms = row.median_ms;
+    out << "| " << row.engine << " | " << frames_run << " | "
+        << formatted("%.3f | %.0f | ", ms, ms > 0.0 ? 1000.0 / ms : 0.0)
+        << ratio_text(row.median_ratio, row, frames) << " | " << formatted("%.3f | ", row.mean_ms)
+        << ratio_text(row.mean_ratio, row, frames) << " | "
+        << formatted("%.2f | %.1f | %.4f | %.4f | %.4f | %.3g | %u of %u | ", row.us_per_body,
+                     row.contacts_per_step, static_cast<double>(worst.deepest),
                      static_cast<double>(worst.deepest_last_second),
                      static_cast<double>(worst.end_overlap), worst.kinetic_energy, worst.moving,
                      worst.bodies)
@@ -220,9 +118,11 @@ std::string table(const std::string& layout, int depth, const std::vector<std::s
         << memory_text(worst.peak_memory_mib) << " |"
         << (worst.warnings.empty() ? "" : " " + worst.warnings) << "\n";
   }
-  if (!stops.empty()) {
+  if (!scene.stops.empty()) {
     out << formatted("\nStopped at the time limit (%g s of steps): ", time_limit);
-    for (std::size_t i = 0; i < stops.size(); ++i) out << (i > 0 ? ", " : "") << stops[i];
+    for (std::size_t i = 0; i < scene.stops.size(); ++i) {
+      out << (i > 0 ? ", " : "") << scene.stops[i];
+    }
     out << formatted(
         ". A stopped run's times, µs/body/step and contacts/step are over the frames it ran, and "
         "its columns at end and for the last second describe the frame it stopped at, not frame "
@@ -247,6 +147,7 @@ int run(const Options& options) {
                                         options.time_limit)
                             : std::string("none")) +
                        "\n";
+  std::vector<SceneRows> scenes;
   for (const std::string& layout : options.layouts) {
     const auto [stacks, per_stack] = parse_layout(layout);
     for (const int depth : options.depths) {
@@ -274,14 +175,20 @@ int run(const Options& options) {
                        r + 1, stopped.c_str());
         }
       }
-      const std::string part =
-          table(layout, depth, options.engines, results, options.frames, options.time_limit);
+      scenes.push_back(scene_rows(layout, depth, options.frames, options.engines, results));
+      const std::string part = table(scenes.back(), options.time_limit);
       std::fputs(part.c_str(), stdout);
       std::fflush(stdout);
       report += part;
     }
   }
-  if (!options.out.empty()) tools::write_text_file(options.out, report);
+  if (!options.out.empty()) {
+    tools::write_text_file(options.out, report);
+    const RunDescription description{utc_date(), options.command, SPHYS_BUILD_OPTIONS, options.runs,
+                                     options.time_limit};
+    write_results_csv(std::filesystem::path(options.out).replace_extension(".csv"), description,
+                      scenes);
+  }
   return 0;
 }
 
@@ -305,8 +212,17 @@ int main(int argc, char** argv) {
   app.add_option("--time-limit", options.time_limit,
                  "Seconds of steps after which a run of an engine stops (0: no limit)")
       ->capture_default_str();
-  app.add_option("--out", options.out, "Also write the tables (Markdown) to this file");
+  app.add_option("--out", options.out,
+                 "Also write the tables (Markdown) to this file, and the rows as CSV beside it "
+                 "(the same name, .csv)");
+  bool print_folder = false;
+  app.add_flag("--machine-folder", print_folder,
+               "Print this machine's folder name under bench/results/ and exit");
   CLI11_PARSE(app, argc, argv);
+  if (print_folder) {
+    std::printf("%s\n", sphys::tools::machine_folder().c_str());
+    return 0;
+  }
   options.command = "sphys-compare";
   for (int i = 1; i < argc; ++i) options.command += std::string(" ") + argv[i];
   try {

@@ -6,8 +6,18 @@
 
 namespace sphys::tools {
 
-// The "model name" of the first processor in /proc/cpuinfo and the hardware threads, e.g.
-// "AMD EPYC 7B13, 2 hardware threads".
+struct Machine {
+  std::string cpu;  // the "model name" of the first processor in /proc/cpuinfo
+  unsigned hardware_threads = 0;
+};
+
+[[nodiscard]] Machine this_machine();
+
+// E.g. "AMD EPYC 7B13, 2 hardware threads".
 [[nodiscard]] std::string machine_description();
+
+// The machine as a folder name for its benchmark results: the processor's name in lower case,
+// its runs of other characters as one '-', then the hardware threads, e.g. "amd-epyc-7b13-2t".
+[[nodiscard]] std::string machine_folder();
 
 }  // namespace sphys::tools

@@ -18,20 +18,20 @@ namespace fs = std::filesystem;
 // Every integer below this magnitude is a double exactly, so it can be written as one.
 constexpr double kExactIntegers = 0x1p53;
 
-void append_name(std::string& line, std::string_view name) {
-  if (name.find_first_of(",\"\r\n") == std::string_view::npos) {
-    line += name;
+void append_text(std::string& line, std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
+    line += text;
     return;
   }
   line += '"';
-  for (const char c : name) {
+  for (const char c : text) {
     if (c == '"') line += '"';
     line += c;
   }
   line += '"';
 }
 
-void append_number(std::string& line, double value) {
+void append_cell(std::string& line, double value) {
   // to_chars alone gives "nan" or "-nan" depending on the sign bit, which means nothing here.
   if (std::isnan(value)) {
     line += "nan";
@@ -47,10 +47,17 @@ void append_number(std::string& line, double value) {
   line.append(first, result.ptr);
 }
 
-}  // namespace
+void append_cell(std::string& line, const CsvCell& cell) {
+  if (const double* number = std::get_if<double>(&cell)) {
+    append_cell(line, *number);
+  } else {
+    append_text(line, std::get<std::string>(cell));
+  }
+}
 
-void write_csv(const fs::path& path, std::span<const std::string> columns,
-               std::span<const std::vector<double>> rows) {
+template <class Cell>
+void write_table(const fs::path& path, std::span<const std::string> columns,
+                 std::span<const std::vector<Cell>> rows) {
   if (columns.empty()) throw Error::in_file(path, "a CSV table needs at least one column");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (rows[i].size() != columns.size()) {
@@ -63,20 +70,32 @@ void write_csv(const fs::path& path, std::span<const std::string> columns,
     std::string line;
     for (std::size_t k = 0; k < columns.size(); ++k) {
       if (k > 0) line += ',';
-      append_name(line, columns[k]);
+      append_text(line, columns[k]);
     }
     line += '\n';
     out << line;
-    for (const std::vector<double>& row : rows) {
+    for (const std::vector<Cell>& row : rows) {
       line.clear();
       for (std::size_t k = 0; k < row.size(); ++k) {
         if (k > 0) line += ',';
-        append_number(line, row[k]);
+        append_cell(line, row[k]);
       }
       line += '\n';
       out << line;
     }
   });
+}
+
+}  // namespace
+
+void write_csv(const fs::path& path, std::span<const std::string> columns,
+               std::span<const std::vector<double>> rows) {
+  write_table(path, columns, rows);
+}
+
+void write_csv(const fs::path& path, std::span<const std::string> columns,
+               std::span<const std::vector<CsvCell>> rows) {
+  write_table(path, columns, rows);
 }
 
 }  // namespace sphys::tools

@@ -152,6 +152,23 @@ TEST(CsvFile, ColumnNamesAreQuotedWhenNeeded) {
   EXPECT_EQ(table[0], columns);
 }
 
+// Text and numbers in one table: text as the column names are, numbers as in a numeric table.
+TEST(CsvFile, MixedCellsKeepTextAndNumbers) {
+  const test::TempDir dir;
+  const fs::path file = dir.path() / "mixed.csv";
+  const std::vector<std::string> columns = {"engine", "median_ms", "command"};
+  const std::vector<std::vector<CsvCell>> rows = {
+      {std::string("sphys:2"), 0.125, std::string("sphys-compare --layouts 4x25,8x10")},
+      {std::string("say \"ode\""), 880.0, std::string("")}};
+  write_csv(file, columns, rows);
+  EXPECT_EQ(read_whole(file),
+            "engine,median_ms,command\n"
+            "sphys:2,0.125,\"sphys-compare --layouts 4x25,8x10\"\n"
+            "\"say \"\"ode\"\"\",880,\n");
+  const std::vector<std::vector<CsvCell>> short_row = {{std::string("sphys")}};
+  EXPECT_THROW(write_csv(file, columns, short_row), Error);
+}
+
 TEST(CsvFile, HeaderOnly) { EXPECT_EQ(written({"frame", "time"}, {}), "frame,time\n"); }
 
 TEST(CsvFile, ReplacesAnExistingFile) {
