@@ -2,22 +2,20 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "input_file.h"
+#include "io/json_values.h"
 #include "io/setting_json.h"
+#include "io/shown_text.h"
 #include "sphys/error.h"
 #include "sphys/material.h"
 #include "sphys/settings_table.h"
@@ -27,9 +25,6 @@ namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
-// Objects keep their keys in document order, so that a written scene reads in the order of
-// docs/scenes.md.
-using Json = nlohmann::ordered_json;
 
 constexpr std::string_view kFormat = "sphys-scene";
 constexpr long long kVersion = 1;
@@ -45,11 +40,6 @@ constexpr long long kMaxTreeDepth = 6;
 // simulation forms from them (a mass from density and volume, an inertia from mass and size
 // squared, a step's travel from speed and time step) stays finite and normal in single precision,
 // so nothing accepted here fails later (docs/scenes.md lists them).
-struct PhysicalRange {
-  double min;
-  double max;
-  std::string_view unit;
-};
 constexpr PhysicalRange kTimeStepRange{1e-6, 1.0, "s"};
 constexpr PhysicalRange kBodySizeRange{1e-3, 1e3, "m"};
 constexpr PhysicalRange kDensityRange{1e-3, 1e6, "kg/m³"};
@@ -60,18 +50,10 @@ constexpr PhysicalRange kGroundThicknessRange{1e-3, 1e4, "m"};
 constexpr double kMaxCoordinate = 1e5;
 // Beyond any rigid body's speed (a rifle bullet: 1,000 m/s). unit: m/s; rad/s for spin
 constexpr double kMaxSpeed = 1e4;
-// A double from here on rounds to infinity as a float: FLT_MAX plus half its ulp.
-constexpr double kFloatOverflow = 0x1.ffffffp127;
 // A quaternion whose length is within this of 1 is kept as written: dividing floats that already
 // make a unit quaternion by their length would move their last bits, and a written scene must
 // read back exactly. Anything further from 1 is normalised.
 constexpr double kUnitTolerance = 1e-6;
-// Longer values are cut short in messages.
-constexpr std::size_t kMaxShown = 40;
-// Arrays and objects nested deeper are refused as they open. A scene's deepest value, a body's
-// orientation axis, is 5 deep; each open container keeps its JSON pointer, so without a bound
-// 10^5 unclosed '[' (100 kB) took 30 s and 9.8 GB.
-constexpr std::size_t kMaxNesting = 16;
 
 // The keys of the top level and of "ground" besides the world's settings, which the settings
 // table lists (sphys/settings_table.h).
@@ -148,466 +130,34 @@ const std::vector<std::string_view>& setting_keys(std::string_view object) {
   return object == "solver" ? solver : sleep;
 }
 
-std::string joined(const auto& names) {
-  std::string out;
-  for (const std::string_view name : names) {
-    if (!out.empty()) out += ", ";
-    out += name;
-  }
-  return out;
-}
-
-// A JSON pointer reference token (RFC 6901); control characters become '?' so that a message
-// stays on one line.
-std::string pointer_token(std::string_view key) {
-  std::string out;
-  for (const char c : key) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += std::iscntrl(static_cast<unsigned char>(c)) != 0 ? '?' : c;
-    }
-  }
-  return out;
-}
-
-// The line and column (both from 1) of the character at `offset`, or of the last one when the
-// offset is past the end.
-std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t offset) {
-  if (text.empty()) return {1, 1};
-  offset = std::min(offset, text.size() - 1);
-  const std::string_view before = text.substr(0, offset);
-  const std::size_t line =
-      1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-  const std::size_t newline = before.rfind('\n');
-  const std::size_t line_start = newline == std::string_view::npos ? 0 : newline + 1;
-  return {line, offset - line_start + 1};
-}
-
-// The word of letters around `offset` with the sign before it, and where it begins: what a writer
-// of "NaN" or "-Infinity" meant as a number.
-struct Word {
-  std::size_t begin = 0;
-  std::string text;
-};
-
-Word word_at(std::string_view text, std::size_t offset) {
-  const auto is_letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
-  std::size_t begin = std::min(offset, text.size());
-  while (begin > 0 && is_letter(text[begin - 1])) --begin;
-  if (begin > 0 && (text[begin - 1] == '-' || text[begin - 1] == '+')) --begin;
-  std::size_t end = std::min(offset, text.size());
-  while (end < text.size() && is_letter(text[end])) ++end;
-  return {begin, std::string(text.substr(begin, end - begin))};
-}
-
-bool names_non_finite(std::string word) {
-  if (!word.empty() && (word.front() == '-' || word.front() == '+')) word.erase(0, 1);
-  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return word == "nan" || word == "inf" || word == "infinity";
-}
-
-// nlohmann's explanation without its "[json.exception...] parse error at line L, column C: "
-// prefix, which our message replaces.
-std::string nlohmann_reason(std::string_view what) {
-  if (what.starts_with('[')) what.remove_prefix(std::min(what.find("] ") + 2, what.size()));
-  if (what.starts_with("parse error")) {
-    const std::size_t colon = what.find(": ");
-    if (colon != std::string_view::npos) what.remove_prefix(colon + 2);
-  }
-  return std::string(what);
-}
-
-// Builds the document as nlohmann's own parser does, and in addition refuses duplicate keys
-// (JSON leaves their meaning open and nlohmann keeps the last one silently) and reports every
-// syntax error, NaN and Infinity included, and every number beyond a double with its line and
-// column.
-class DocumentBuilder final : public nlohmann::json_sax<Json> {
- public:
-  DocumentBuilder(std::string_view text, const fs::path& name) : text_(text), name_(name) {}
-
-  [[nodiscard]] Json take() { return std::move(root_); }
-
-  bool null() override { return add(nullptr); }
-  bool boolean(bool value) override { return add(value); }
-  bool number_integer(number_integer_t value) override { return add(value); }
-  bool number_unsigned(number_unsigned_t value) override { return add(value); }
-  bool number_float(number_float_t value, const string_t& /*text*/) override { return add(value); }
-  bool string(string_t& value) override { return add(std::move(value)); }
-  bool binary(binary_t& value) override { return add(std::move(value)); }
-  bool start_object(std::size_t /*size*/) override { return open(Json::object()); }
-  bool start_array(std::size_t /*size*/) override { return open(Json::array()); }
-  bool end_object() override { return close(); }
-  bool end_array() override { return close(); }
-
-  bool key(string_t& key) override {
-    const Container& object = open_.back();
-    if (object.value->contains(key)) {
-      throw Error::at_json_path(name_, object.pointer + "/" + pointer_token(key), "duplicate key");
-    }
-    key_ = std::move(key);
-    return true;
-  }
-
-  bool parse_error(std::size_t position, const std::string& token,
-                   const Json::exception& error) override {
-    constexpr int kNumberOverflow = 406;
-    // nlohmann's position counts the characters read, the offending one included; for a number
-    // beyond a double it is the index of the character after the number.
-    std::size_t offset = position == 0 ? 0 : position - 1;
-    std::string reason;
-    if (error.id == kNumberOverflow) {
-      offset = position >= token.size() ? position - token.size() : 0;
-      reason = "the number " + token + " is beyond the range of a double";
-    } else if (const Word word = word_at(text_, offset); names_non_finite(word.text)) {
-      offset = word.begin;
-      reason = word.text + " is not a number in JSON; every number must be finite";
-    } else {
-      reason = "not valid JSON: " + nlohmann_reason(error.what());
-    }
-    const auto [line, column] = line_and_column(text_, offset);
-    throw Error::at_line(name_, line, "column " + std::to_string(column) + ": " + reason);
-  }
-
- private:
-  struct Container {
-    Json* value;
-    std::string pointer;
-  };
-
-  // Puts a value where the parser is: the root, the next element of the innermost array or the
-  // value of the key just read; returns it with its JSON pointer.
-  Container place(Json value) {
-    if (open_.empty()) {
-      root_ = std::move(value);
-      return {&root_, ""};
-    }
-    const Container& parent = open_.back();
-    if (parent.value->is_array()) {
-      // Counted as they are read, so that a file of millions of bodies stops here, at once.
-      if (parent.pointer == "/bodies" && parent.value->size() == kMaxSceneBodies) {
-        throw Error::at_json_path(name_, parent.pointer,
-                                  "more than " + std::to_string(kMaxSceneBodies) +
-                                      " bodies; a scene holds at most that many");
-      }
-      const std::string pointer = parent.pointer + "/" + std::to_string(parent.value->size());
-      parent.value->push_back(std::move(value));
-      return {&parent.value->back(), pointer};
-    }
-    Json& slot = (*parent.value)[key_];
-    slot = std::move(value);
-    return {&slot, parent.pointer + "/" + pointer_token(key_)};
-  }
-
-  bool add(Json value) {
-    place(std::move(value));
-    return true;
-  }
-  // Only the innermost container grows, so the pointers to the enclosing ones stay valid.
-  bool open(Json container) {
-    Container placed = place(std::move(container));
-    if (open_.size() == kMaxNesting) {
-      throw Error::at_json_path(
-          name_, placed.pointer,
-          "arrays and objects nested more than " + std::to_string(kMaxNesting) + " deep");
-    }
-    open_.push_back(std::move(placed));
-    return true;
-  }
-  bool close() {
-    open_.pop_back();
-    return true;
-  }
-
-  std::string_view text_;
-  const fs::path& name_;
-  Json root_;
-  std::vector<Container> open_;
-  std::string key_;
-};
-
-// Where relative paths in the document resolve and which file messages name.
-struct Source {
-  fs::path name;
-  fs::path base_directory;
-};
-
-// A value in the document with its JSON pointer, for messages.
-class Node {
- public:
-  Node(const Json& value, std::string pointer, const Source& source)
-      : value_(value), pointer_(std::move(pointer)), source_(source) {}
-
-  [[nodiscard]] const Json& json() const { return value_; }
-  [[nodiscard]] const Source& source() const { return source_; }
-  [[nodiscard]] Node child(const std::string& key) const {
-    return {value_.at(key), pointer_ + "/" + pointer_token(key), source_};
-  }
-  [[nodiscard]] Node element(std::size_t index) const {
-    return {value_.at(index), pointer_ + "/" + std::to_string(index), source_};
-  }
-  // The member `key` of this object, if present.
-  [[nodiscard]] std::optional<Node> find(const std::string& key) const {
-    if (!value_.contains(key)) return std::nullopt;
-    return child(key);
-  }
-  [[noreturn]] void fail(std::string_view problem) const {
-    throw Error::at_json_path(source_.name, pointer_, problem);
-  }
-  // For a key that must be present in this object.
-  [[noreturn]] void fail_missing(std::string_view key, std::string_view why) const {
-    throw Error::at_json_path(source_.name, pointer_ + "/" + std::string(key),
-                              "missing; " + std::string(why));
-  }
-
- private:
-  const Json& value_;
-  std::string pointer_;
-  const Source& source_;
-};
-
-// The value as a message shows it: "-2", "\"octree\"", cut short when long.
-std::string shown(const Json& value) {
-  std::string text = value.dump();
-  if (text.size() <= kMaxShown) return text;
-  std::size_t cut = kMaxShown;
-  // Not inside a UTF-8 sequence.
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) --cut;
-  text.resize(cut);
-  return text + "...";
-}
-
-// "a string \"abc\"", "an object", "null", for "expected ..., got ..." messages.
-std::string described(const Json& value) {
-  if (value.is_null()) return "null";
-  std::string kind;
-  if (value.is_object()) {
-    kind = "an object";
-  } else if (value.is_array()) {
-    kind = "an array";
-  } else if (value.is_string()) {
-    kind = "a string";
-  } else if (value.is_boolean()) {
-    kind = "a boolean";
-  } else {
-    kind = "a number";
-  }
-  return kind + " " + shown(value);
-}
-
-[[noreturn]] void fail_type(const Node& node, std::string_view expected) {
-  node.fail("expected " + std::string(expected) + ", got " + described(node.json()));
-}
-
-// Edit distance, for suggesting the key a misspelt one meant.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
-      diagonal = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitution});
-    }
-  }
-  return row[b.size()];
-}
-
-// The valid key a misspelt or shortened one most likely meant ("yaw" for "yaw_degrees",
-// "densty" for "density"), if any is close enough.
-std::optional<std::string_view> meant_key(std::string_view key, const auto& valid) {
-  constexpr std::size_t kMinPrefix = 3;
-  if (key.size() >= kMinPrefix) {
-    const auto extended = std::find_if(
-        valid.begin(), valid.end(), [&](std::string_view name) { return name.starts_with(key); });
-    if (extended != valid.end()) return *extended;
-  }
-  const auto nearest = std::min_element(valid.begin(), valid.end(), [&](auto a, auto b) {
-    return edit_distance(key, a) < edit_distance(key, b);
-  });
-  // A slip of about one character in three; more makes another word.
-  const std::size_t slip = std::max<std::size_t>(1, key.size() / 3);
-  if (edit_distance(key, *nearest) <= slip) return *nearest;
-  return std::nullopt;
-}
-
-// Requires an object whose keys are all among `valid`.
-void check_keys(const Node& node, const auto& valid) {
-  if (!node.json().is_object()) fail_type(node, "an object");
-  for (const auto& item : node.json().items()) {
-    const std::string& key = item.key();
-    if (std::find(valid.begin(), valid.end(), key) != valid.end()) continue;
-    const std::optional<std::string_view> meant = meant_key(key, valid);
-    node.child(key).fail(meant ? "unknown key; did you mean \"" + std::string(*meant) + "\"?"
-                               : "unknown key (valid: " + joined(valid) + ")");
-  }
-}
-
-double read_number(const Node& node) {
-  if (!node.json().is_number()) fail_type(node, "a number");
-  // Finite: the document builder refuses everything else.
-  return node.json().get<double>();
-}
-
-double read_positive(const Node& node) {
-  const double value = read_number(node);
-  if (value <= 0.0) node.fail("must be positive, got " + shown(node.json()));
-  return value;
-}
-
-// A positive figure within `range`.
-double read_physical(const Node& node, const PhysicalRange& range) {
-  const double value = read_positive(node);
-  if (value < range.min || value > range.max) {
-    node.fail("must be between " + number_text(range.min) + " and " + number_text(range.max) + " " +
-              std::string(range.unit) + ", got " + shown(node.json()));
-  }
-  return value;
-}
-
-double read_non_negative(const Node& node) {
-  const double value = read_number(node);
-  if (value < 0.0) node.fail("must not be negative, got " + shown(node.json()));
-  return value;
-}
-
-double read_between(const Node& node, double low, double high) {
-  const double value = read_number(node);
-  if (value < low || value > high) {
-    node.fail("must be between " + number_text(low) + " and " + number_text(high) + ", got " +
-              shown(node.json()));
-  }
-  return value;
-}
-
-float to_single(const Node& node, double value) {
-  if (std::abs(value) >= kFloatOverflow) {
-    node.fail("does not fit in single precision, got " + shown(node.json()));
-  }
-  return static_cast<float>(value);
-}
-
-// A friction coefficient, a speed, a length: a single-precision figure that must not be negative.
-float read_non_negative_single(const Node& node) {
-  return to_single(node, read_non_negative(node));
-}
-
-// A restitution or another fraction from 0 to 1, in single precision.
-float read_fraction(const Node& node) { return static_cast<float>(read_between(node, 0.0, 1.0)); }
-
-// An integral number (2 and 2.0 alike, as JSON Schema has it) within [low, high].
-long long read_integer(const Node& node, long long low, long long high) {
-  const double value = read_number(node);
-  if (value != std::floor(value)) node.fail("must be an integer, got " + shown(node.json()));
-  // Compared as doubles: the bounds are exact in a double, the value may be beyond a long long.
-  if (value < static_cast<double>(low) || value > static_cast<double>(high)) {
-    node.fail("must be between " + std::to_string(low) + " and " + std::to_string(high) + ", got " +
-              shown(node.json()));
-  }
-  return static_cast<long long>(value);
-}
-
-std::string read_string(const Node& node) {
-  if (!node.json().is_string()) fail_type(node, "a string");
-  return node.json().get<std::string>();
-}
-
-bool read_bool(const Node& node) {
-  if (!node.json().is_boolean()) fail_type(node, "true or false");
-  return node.json().get<bool>();
-}
-
-// The index of the name among `names`.
-std::size_t read_choice_index(const Node& node, std::span<const std::string_view> names) {
-  const std::string name = read_string(node);
-  std::string valid;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return i;
-    valid += (valid.empty() ? "\"" : ", \"") + std::string(names[i]) + "\"";
-  }
-  node.fail("unknown value " + shown(node.json()) + " (valid: " + valid + ")");
-}
+constexpr std::array<ArrayLimit, 1> kArrayLimits = {
+    {{"/bodies", kMaxSceneBodies, "bodies; a scene holds at most that many"}}};
 
 template <typename Enum, std::size_t N>
-Enum read_choice(const Node& node, const NameTable<Enum, N>& table) {
+Enum read_choice(const JsonNode& node, const NameTable<Enum, N>& table) {
   std::array<std::string_view, N> names{};
   for (std::size_t i = 0; i < N; ++i) names[i] = table[i].second;
   return table[read_choice_index(node, names)].first;
 }
 
-std::array<double, 3> read_triple(const Node& node) {
-  if (!node.json().is_array()) fail_type(node, "an array of 3 numbers");
-  if (node.json().size() != 3) {
-    node.fail("expected 3 numbers [x, y, z], got " + std::to_string(node.json().size()));
-  }
-  return {read_number(node.element(0)), read_number(node.element(1)), read_number(node.element(2))};
-}
-
-Vec3 read_vec3(const Node& node) {
-  const std::array<double, 3> values = read_triple(node);
-  Vec3 out;
-  for (std::size_t k = 0; k < 3; ++k) {
-    out[static_cast<int>(k)] = to_single(node.element(k), values[k]);
-  }
-  return out;
-}
-
-// A number within [-limit, limit] (unit).
-double read_bounded(const Node& node, double limit, std::string_view unit) {
-  const double value = read_number(node);
-  if (std::abs(value) > limit) {
-    node.fail("must be between " + number_text(-limit) + " and " + number_text(limit) + " " +
-              std::string(unit) + ", got " + shown(node.json()));
-  }
-  return value;
-}
-
-// Three numbers each within [-limit, limit] (unit).
-Vec3 read_bounded_vec3(const Node& node, double limit, std::string_view unit) {
-  const Vec3 out = read_vec3(node);
-  for (std::size_t k = 0; k < 3; ++k) (void)read_bounded(node.element(k), limit, unit);
-  return out;
-}
-
-// The path of a file that must exist, as written; it resolves against the scene's folder. The
-// input gate's checks run now, so a named pipe or an oversized file is named at its JSON path.
-fs::path read_existing_file(const Node& node, std::string_view what, InputKind kind) {
-  const std::string written = read_string(node);
-  if (written.empty()) node.fail("expected the path of " + std::string(what) + ", got \"\"");
-  const fs::path resolved = node.source().base_directory / fs::path(written);
-  if (const auto problem = input_file_problem(resolved, kind)) {
-    node.fail(*problem + ": " + resolved.string());
-  }
-  return written;
-}
-
-std::string read_mesh(const Node& node) {
+std::string read_mesh(const JsonNode& node) {
   if (node.json().is_string() && node.json().get<std::string>() == kBunnyName) {
     return std::string(kBunnyName);
   }
   return read_existing_file(node, "a mesh file", InputKind::kMesh).string();
 }
 
-std::optional<std::size_t> read_triangles(const Node& node) {
+std::optional<std::size_t> read_triangles(const JsonNode& node) {
   if (node.json().is_null()) return std::nullopt;
   const long long triangles = read_integer(node, 0, kMaxTriangles);
   if (triangles > 0 && triangles < kMinTriangles) {
     node.fail("must be 0 (keep every triangle) or at least " + std::to_string(kMinTriangles) +
-              ", got " + shown(node.json()));
+              ", got " + shown_value(node.json()));
   }
   return static_cast<std::size_t>(triangles);
 }
 
-std::optional<double> read_optional_physical(const Node& node, const PhysicalRange& range) {
-  if (node.json().is_null()) return std::nullopt;
-  return read_physical(node, range);
-}
-
-TreeSpec read_tree(const Node& node, const TreeSpec& start) {
+TreeSpec read_tree(const JsonNode& node, const TreeSpec& start) {
   if (node.json().is_string()) {
     TreeSpec tree;
     tree.sph_file = read_existing_file(node, "a .sph file", InputKind::kSphereTree);
@@ -670,17 +220,7 @@ Quat rotation_about(const std::array<double, 3>& unit_axis, double degrees) {
   return quaternion(std::cos(half), unit_axis[0] * s, unit_axis[1] * s, unit_axis[2] * s);
 }
 
-bool has_any(const Node& node, const auto& keys) {
-  return std::any_of(keys.begin(), keys.end(),
-                     [&](std::string_view key) { return node.json().contains(key); });
-}
-
-Node required(const Node& node, const std::string& key, std::string_view why) {
-  if (const auto child = node.find(key)) return *child;
-  node.fail_missing(key, why);
-}
-
-Quat read_orientation(const Node& node) {
+Quat read_orientation(const JsonNode& node) {
   check_keys(node, kOrientationKeys);
   const bool as_quaternion = has_any(node, kQuaternionKeys);
   const bool as_yaw = has_any(node, kYawKeys);
@@ -697,8 +237,8 @@ Quat read_orientation(const Node& node) {
     return rotation_about({0.0, 1.0, 0.0}, read_number(node.child("yaw_degrees")));
   }
   if (as_axis_angle) {
-    const Node axis = required(node, "axis", "an angle needs an axis");
-    const Node angle = required(node, "angle_degrees", "an axis needs an angle");
+    const JsonNode axis = node.required("axis", "an angle needs an axis");
+    const JsonNode angle = node.required("angle_degrees", "an axis needs an angle");
     const auto unit_axis = normalised(read_triple(axis));
     if (!unit_axis) axis.fail("a zero-length axis has no direction");
     return rotation_about(*unit_axis, read_number(angle));
@@ -706,7 +246,7 @@ Quat read_orientation(const Node& node) {
   std::array<double, 4> wxyz{};
   for (std::size_t k = 0; k < 4; ++k) {
     const std::string key(kQuaternionKeys[k]);
-    wxyz[k] = read_number(required(node, key, "a quaternion needs w, x, y and z"));
+    wxyz[k] = read_number(node.required(key, "a quaternion needs w, x, y and z"));
   }
   const auto unit = normalised(wxyz);
   if (!unit) node.fail("a zero-length quaternion is no rotation");
@@ -716,7 +256,7 @@ Quat read_orientation(const Node& node) {
 }
 
 // Applies the keys of a body over `body`, which holds the defaults.
-void read_body(const Node& node, BodySpec& body) {
+void read_body(const JsonNode& node, BodySpec& body) {
   check_keys(node, kBodyKeys);
   if (const auto n = node.find("mesh")) body.mesh = read_mesh(*n);
   if (const auto n = node.find("triangles")) body.triangles = read_triangles(*n);
@@ -740,7 +280,7 @@ void read_body(const Node& node, BodySpec& body) {
 }
 
 // "defaults": the keys of a body but those set per body.
-BodySpec read_defaults(const Node& node) {
+BodySpec read_defaults(const JsonNode& node) {
   check_keys(node, kBodyKeys);
   for (const std::string_view key : kPerBodyKeys) {
     if (const auto child = node.find(std::string(key))) {
@@ -753,7 +293,7 @@ BodySpec read_defaults(const Node& node) {
 }
 
 // The ground's own keys; its material is among the world's settings (read_settings).
-GroundSpec read_ground(const Node& node) {
+GroundSpec read_ground(const JsonNode& node) {
   check_keys(node, ground_keys());
   GroundSpec ground;
   if (const auto n = node.find("type")) ground.kind = read_choice(*n, kGroundKinds);
@@ -785,13 +325,14 @@ std::string range_requirement(const SettingRange& range) {
 
 // A setting's figure. Scene files carry floats only: the range is checked on the value as stored,
 // so that a positive figure that rounds to 0 in single precision is refused here, not by World.
-double read_setting_number(const Node& node, const SettingRange& range) {
+double read_setting_number(const JsonNode& node, const SettingRange& range) {
   const float value = to_single(node, read_number(node));
-  if (!range.contains(value)) node.fail(range_requirement(range) + ", got " + shown(node.json()));
+  if (!range.contains(value))
+    node.fail(range_requirement(range) + ", got " + shown_value(node.json()));
   return value;
 }
 
-void read_setting(const Node& node, const Setting& setting, WorldSettings& settings) {
+void read_setting(const JsonNode& node, const Setting& setting, WorldSettings& settings) {
   switch (setting.kind) {
     case SettingKind::kVector3: {
       const Vec3 value = read_vec3(node);
@@ -818,7 +359,7 @@ void read_setting(const Node& node, const Setting& setting, WorldSettings& setti
 
 // Applies the world settings that `object` ("" for the top level, "solver", ...) carries over
 // `settings`.
-void read_settings(const Node& node, std::string_view object, WorldSettings& settings) {
+void read_settings(const JsonNode& node, std::string_view object, WorldSettings& settings) {
   for (const Setting& setting : settings_table()) {
     if (!setting.in_scene || setting.object != object) continue;
     if (const auto n = node.find(std::string(setting.key))) read_setting(*n, setting, settings);
@@ -826,7 +367,7 @@ void read_settings(const Node& node, std::string_view object, WorldSettings& set
 }
 
 // "solver" and "sleep": objects of world settings only.
-void read_settings_object(const Node& node, std::string_view object, WorldSettings& settings) {
+void read_settings_object(const JsonNode& node, std::string_view object, WorldSettings& settings) {
   if (node.json().is_object()) {
     for (const auto& item : node.json().items()) {
       const std::string field = std::string(object) + "." + item.key();
@@ -840,7 +381,7 @@ void read_settings_object(const Node& node, std::string_view object, WorldSettin
 }
 
 // An index into the scene's bodies.
-std::size_t read_body_index(const Node& node, std::size_t body_count) {
+std::size_t read_body_index(const JsonNode& node, std::size_t body_count) {
   const auto index = static_cast<std::size_t>(read_integer(node, 0, kMaxExactInteger));
   if (index >= body_count) {
     node.fail("no body " + std::to_string(index) + "; /bodies has " + std::to_string(body_count) +
@@ -849,27 +390,28 @@ std::size_t read_body_index(const Node& node, std::size_t body_count) {
   return index;
 }
 
-std::array<std::size_t, 2> read_body_pair(const Node& node, std::size_t body_count) {
+std::array<std::size_t, 2> read_body_pair(const JsonNode& node, std::size_t body_count) {
   if (!node.json().is_array()) fail_type(node, "an array of 2 body indices [i, j]");
   if (node.json().size() != 2) {
     node.fail("expected 2 body indices [i, j], got " + std::to_string(node.json().size()));
   }
   const std::array<std::size_t, 2> pair = {read_body_index(node.element(0), body_count),
                                            read_body_index(node.element(1), body_count)};
-  if (pair[0] == pair[1]) node.fail("a pair needs two different bodies, got " + shown(node.json()));
+  if (pair[0] == pair[1])
+    node.fail("a pair needs two different bodies, got " + shown_value(node.json()));
   return pair;
 }
 
 // Each pair's material, defaulting to the mix of the two bodies' own. A pair given twice (in
 // either order) is refused: the runtime would keep the last silently, hiding a slip.
-std::vector<PairMaterialSpec> read_pair_materials(const Node& node,
+std::vector<PairMaterialSpec> read_pair_materials(const JsonNode& node,
                                                   const std::vector<BodySpec>& bodies) {
   if (!node.json().is_array()) fail_type(node, "an array of pair materials");
   std::vector<PairMaterialSpec> pairs;
   for (std::size_t k = 0; k < node.json().size(); ++k) {
-    const Node entry = node.element(k);
+    const JsonNode entry = node.element(k);
     check_keys(entry, kPairMaterialKeys);
-    const Node bodies_node = required(entry, "bodies", "a pair material names its two bodies");
+    const JsonNode bodies_node = entry.required("bodies", "a pair material names its two bodies");
     PairMaterialSpec pair;
     pair.bodies = read_body_pair(bodies_node, bodies.size());
     const auto same_pair = [&](const PairMaterialSpec& other) {
@@ -893,26 +435,26 @@ std::vector<PairMaterialSpec> read_pair_materials(const Node& node,
   return pairs;
 }
 
-void read_header(const Node& root) {
-  const Node format =
-      required(root, "format", "a scene file starts with \"format\": \"sphys-scene\"");
+void read_header(const JsonNode& root) {
+  const JsonNode format =
+      root.required("format", "a scene file starts with \"format\": \"sphys-scene\"");
   if (!format.json().is_string() || format.json().get<std::string>() != kFormat) {
     fail_type(format, "\"" + std::string(kFormat) + "\"");
   }
-  const Node version = required(root, "version", "this build reads \"version\": 1");
+  const JsonNode version = root.required("version", "this build reads \"version\": 1");
   if (read_number(version) != static_cast<double>(kVersion)) {
-    version.fail("unsupported version " + shown(version.json()) + "; this build reads version " +
-                 std::to_string(kVersion));
+    version.fail("unsupported version " + shown_value(version.json()) +
+                 "; this build reads version " + std::to_string(kVersion));
   }
 }
 
 Scene read_scene(const Json& document, const fs::path& name) {
-  const Source source{name, name.parent_path()};
+  const JsonSource source{name, name.parent_path()};
   if (!document.is_object()) {
     throw Error::in_file(name,
                          "expected a JSON object at the top level, got " + described(document));
   }
-  const Node root(document, "", source);
+  const JsonNode root(document, "", source);
   read_header(root);
   check_keys(root, scene_keys());
 
@@ -937,7 +479,8 @@ Scene read_scene(const Json& document, const fs::path& name) {
 
   const BodySpec defaults =
       root.find("defaults") ? read_defaults(root.child("defaults")) : BodySpec{};
-  const Node bodies = required(root, "bodies", "a scene lists its bodies (the list may be empty)");
+  const JsonNode bodies =
+      root.required("bodies", "a scene lists its bodies (the list may be empty)");
   if (!bodies.json().is_array()) fail_type(bodies, "an array of bodies");
   for (std::size_t i = 0; i < bodies.json().size(); ++i) {
     BodySpec body = defaults;
@@ -1025,21 +568,14 @@ std::size_t parse_name(std::string_view name, const Setting& setting, std::strin
   throw Error(message);
 }
 
-// The JSON document of a scene's text; errors name `name` and the line and column.
-Json parse_document(std::string_view json_text, const fs::path& name) {
-  DocumentBuilder builder(json_text, name);
-  Json::sax_parse(json_text.begin(), json_text.end(), &builder);
-  return builder.take();
-}
-
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const fs::path& name) {
-  return read_scene(parse_document(json_text, name), name);
+  return read_scene(parse_json(json_text, name, kArrayLimits), name);
 }
 
 Scene parse_recorded_scene(std::string_view json_text, const fs::path& name) {
-  Json document = parse_document(json_text, name);
+  Json document = parse_json(json_text, name, kArrayLimits);
   // A recording made before a setting was removed carries it, written out with all the others: it
   // says how the recording was made, and replaying or exporting needs the shapes and the poses.
   if (document.is_object() && document.contains("solver") && document["solver"].is_object()) {
