@@ -1,10 +1,10 @@
-#include "sphys/tools/scene_file.h"
+// The scene reader: a scene file's document, read strictly (json_document.h), checked key by key
+// against the scene's manifest (scene_schema.h) into a Scene.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -13,122 +13,25 @@
 #include <vector>
 
 #include "input_file.h"
-#include "io/json_values.h"
+#include "io/scene_schema.h"
 #include "io/setting_json.h"
-#include "io/shown_text.h"
 #include "sphys/error.h"
 #include "sphys/material.h"
 #include "sphys/settings_table.h"
 #include "sphys/tools/model.h"
+#include "sphys/tools/scene_file.h"
 
 namespace sphys::tools {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::string_view kFormat = "sphys-scene";
-constexpr long long kVersion = 1;
-
-constexpr long long kMaxFrames = 10'000'000;
-constexpr long long kMaxTriangles = 4'294'967'295;  // 2^32 - 1, beyond any mesh sphys loads
-constexpr long long kMinTriangles = 4;              // a tetrahedron, the smallest closed mesh
-constexpr long long kMaxGroundDepth = 7;
-constexpr long long kMaxTreeDepth = 6;
-
-// The physical figures a scene may give, [min, max] in `unit`: wide enough for any rigid body
-// from a grain (1 mm, 1 mg) to a building (1 km, 10^9 kg), narrow enough that every product the
-// simulation forms from them (a mass from density and volume, an inertia from mass and size
-// squared, a step's travel from speed and time step) stays finite and normal in single precision,
-// so nothing accepted here fails later (docs/scenes.md lists them).
-constexpr PhysicalRange kTimeStepRange{1e-6, 1.0, "s"};
-constexpr PhysicalRange kBodySizeRange{1e-3, 1e3, "m"};
-constexpr PhysicalRange kDensityRange{1e-3, 1e6, "kg/m³"};
-constexpr PhysicalRange kMassRange{kMinBodyMass, kMaxBodyMass, "kg"};
-constexpr PhysicalRange kGroundSizeRange{1e-2, 1e5, "m"};
-constexpr PhysicalRange kGroundThicknessRange{1e-3, 1e4, "m"};
-// Coordinates beyond this lose centimetres in single precision. unit: m
-constexpr double kMaxCoordinate = 1e5;
-// Beyond any rigid body's speed (a rifle bullet: 1,000 m/s). unit: m/s; rad/s for spin
-constexpr double kMaxSpeed = 1e4;
 // A quaternion whose length is within this of 1 is kept as written: dividing floats that already
 // make a unit quaternion by their length would move their last bits, and a written scene must
 // read back exactly. Anything further from 1 is normalised.
 constexpr double kUnitTolerance = 1e-6;
-
-// The keys of the top level and of "ground" besides the world's settings, which the settings
-// table lists (sphys/settings_table.h).
-constexpr std::array<std::string_view, 10> kSceneOwnKeys = {
-    "format", "version", "time_step", "frames", "solver",
-    "sleep",  "ground",  "defaults",  "bodies", "pair_materials"};
-constexpr std::array<std::string_view, 5> kGroundOwnKeys = {"type", "height", "size", "thickness",
-                                                            "depth"};
 // Every integer up to here is exact in a double, as a JSON number is read.
 constexpr long long kMaxExactInteger = 9'007'199'254'740'992;  // 2^53
-constexpr std::array<std::string_view, 3> kPairMaterialKeys = {"bodies", "friction", "restitution"};
-constexpr std::array<std::string_view, 13> kBodyKeys = {"mesh",
-                                                        "triangles",
-                                                        "size",
-                                                        "sphere_tree",
-                                                        "position",
-                                                        "orientation",
-                                                        "linear_velocity",
-                                                        "angular_velocity",
-                                                        "density",
-                                                        "mass",
-                                                        "restitution",
-                                                        "friction",
-                                                        "static"};
-// Set per body only: a shared position or orientation would stack every body in one place.
-constexpr std::array<std::string_view, 2> kPerBodyKeys = {"position", "orientation"};
-constexpr std::array<std::string_view, 3> kTreeKeys = {"method", "branching", "depth"};
-constexpr std::array<std::string_view, 4> kQuaternionKeys = {"w", "x", "y", "z"};
-constexpr std::array<std::string_view, 1> kYawKeys = {"yaw_degrees"};
-constexpr std::array<std::string_view, 2> kAxisAngleKeys = {"axis", "angle_degrees"};
-constexpr std::array<std::string_view, 7> kOrientationKeys = {
-    "w", "x", "y", "z", "yaw_degrees", "axis", "angle_degrees"};
-
-template <typename Enum, std::size_t N>
-using NameTable = std::array<std::pair<Enum, std::string_view>, N>;
-
-constexpr NameTable<GroundSpec::Kind, 3> kGroundKinds{{
-    {GroundSpec::Kind::kOctreeBox, "octree-box"},
-    {GroundSpec::Kind::kPlane, "plane"},
-    {GroundSpec::Kind::kNone, "none"},
-}};
-
-template <typename Enum, std::size_t N>
-std::string_view name_of(Enum value, const NameTable<Enum, N>& table) {
-  for (const auto& [entry, name] : table) {
-    if (entry == value) return name;
-  }
-  return "unknown";
-}
-
-// The keys of an object of the document: its own and the world settings it carries.
-std::vector<std::string_view> keys_of(std::string_view object,
-                                      std::span<const std::string_view> own) {
-  std::vector<std::string_view> keys(own.begin(), own.end());
-  for (const Setting& setting : settings_table()) {
-    if (setting.in_scene && setting.object == object) keys.push_back(setting.key);
-  }
-  return keys;
-}
-
-const std::vector<std::string_view>& scene_keys() {
-  static const std::vector<std::string_view> keys = keys_of("", kSceneOwnKeys);
-  return keys;
-}
-
-const std::vector<std::string_view>& ground_keys() {
-  static const std::vector<std::string_view> keys = keys_of("ground", kGroundOwnKeys);
-  return keys;
-}
-
-const std::vector<std::string_view>& setting_keys(std::string_view object) {
-  static const std::vector<std::string_view> solver = keys_of("solver", {});
-  static const std::vector<std::string_view> sleep = keys_of("sleep", {});
-  return object == "solver" ? solver : sleep;
-}
 
 constexpr std::array<ArrayLimit, 1> kArrayLimits = {
     {{"/bodies", kMaxSceneBodies, "bodies; a scene holds at most that many"}}};
@@ -308,78 +211,6 @@ GroundSpec read_ground(const JsonNode& node) {
   return ground;
 }
 
-// "must not be negative", "must be positive", "must be between 0 and 1": what a figure in
-// `range` must be, as the messages of the other figures say it.
-std::string range_requirement(const SettingRange& range) {
-  if (range.has_min() && range.has_max()) {
-    return "must be between " + number_text(range.min) + " and " + number_text(range.max);
-  }
-  if (range.has_min() && range.min == 0.0) {
-    return range.min_inclusive ? "must not be negative" : "must be positive";
-  }
-  if (range.has_min()) {
-    return (range.min_inclusive ? "must be at least " : "must be above ") + number_text(range.min);
-  }
-  return "must be at most " + number_text(range.max);
-}
-
-// A setting's figure. Scene files carry floats only: the range is checked on the value as stored,
-// so that a positive figure that rounds to 0 in single precision is refused here, not by World.
-double read_setting_number(const JsonNode& node, const SettingRange& range) {
-  const float value = to_single(node, read_number(node));
-  if (!range.contains(value))
-    node.fail(range_requirement(range) + ", got " + shown_value(node.json()));
-  return value;
-}
-
-void read_setting(const JsonNode& node, const Setting& setting, WorldSettings& settings) {
-  switch (setting.kind) {
-    case SettingKind::kVector3: {
-      const Vec3 value = read_vec3(node);
-      for (std::size_t k = 0; k < 3; ++k) (void)read_setting_number(node.element(k), setting.range);
-      setting.set_vector(settings, value);
-      return;
-    }
-    case SettingKind::kBool:
-      setting.set(settings, read_bool(node) ? 1.0 : 0.0);
-      return;
-    case SettingKind::kEnum:
-      setting.set(settings, static_cast<double>(read_choice_index(node, setting.choices)));
-      return;
-    case SettingKind::kInteger:
-      setting.set(settings,
-                  static_cast<double>(read_integer(node, static_cast<long long>(setting.range.min),
-                                                   static_cast<long long>(setting.range.max))));
-      return;
-    case SettingKind::kNumber:
-      setting.set(settings, read_setting_number(node, setting.range));
-      return;
-  }
-}
-
-// Applies the world settings that `object` ("" for the top level, "solver", ...) carries over
-// `settings`.
-void read_settings(const JsonNode& node, std::string_view object, WorldSettings& settings) {
-  for (const Setting& setting : settings_table()) {
-    if (!setting.in_scene || setting.object != object) continue;
-    if (const auto n = node.find(std::string(setting.key))) read_setting(*n, setting, settings);
-  }
-}
-
-// "solver" and "sleep": objects of world settings only.
-void read_settings_object(const JsonNode& node, std::string_view object, WorldSettings& settings) {
-  if (node.json().is_object()) {
-    for (const auto& item : node.json().items()) {
-      const std::string field = std::string(object) + "." + item.key();
-      if (const RemovedSetting* removed = removed_setting(field)) {
-        node.child(item.key()).fail(removed_setting_message(*removed));
-      }
-    }
-  }
-  check_keys(node, setting_keys(object));
-  read_settings(node, object, settings);
-}
-
 // An index into the scene's bodies.
 std::size_t read_body_index(const JsonNode& node, std::size_t body_count) {
   const auto index = static_cast<std::size_t>(read_integer(node, 0, kMaxExactInteger));
@@ -397,8 +228,9 @@ std::array<std::size_t, 2> read_body_pair(const JsonNode& node, std::size_t body
   }
   const std::array<std::size_t, 2> pair = {read_body_index(node.element(0), body_count),
                                            read_body_index(node.element(1), body_count)};
-  if (pair[0] == pair[1])
+  if (pair[0] == pair[1]) {
     node.fail("a pair needs two different bodies, got " + shown_value(node.json()));
+  }
   return pair;
 }
 
@@ -438,13 +270,13 @@ std::vector<PairMaterialSpec> read_pair_materials(const JsonNode& node,
 void read_header(const JsonNode& root) {
   const JsonNode format =
       root.required("format", "a scene file starts with \"format\": \"sphys-scene\"");
-  if (!format.json().is_string() || format.json().get<std::string>() != kFormat) {
-    fail_type(format, "\"" + std::string(kFormat) + "\"");
+  if (!format.json().is_string() || format.json().get<std::string>() != kSceneFormat) {
+    fail_type(format, "\"" + std::string(kSceneFormat) + "\"");
   }
   const JsonNode version = root.required("version", "this build reads \"version\": 1");
-  if (read_number(version) != static_cast<double>(kVersion)) {
+  if (read_number(version) != static_cast<double>(kSceneVersion)) {
     version.fail("unsupported version " + shown_value(version.json()) +
-                 "; this build reads version " + std::to_string(kVersion));
+                 "; this build reads version " + std::to_string(kSceneVersion));
   }
 }
 
@@ -493,81 +325,6 @@ Scene read_scene(const Json& document, const fs::path& name) {
   return scene;
 }
 
-// Floats are written in their shortest decimal form (shortest_double), so that 0.3f is written
-// "0.3" rather than "0.30000001192092896" and reads back bit for bit.
-Json vec3_json(const Vec3& v) {
-  return Json::array({shortest_double(v.x()), shortest_double(v.y()), shortest_double(v.z())});
-}
-
-template <typename T>
-Json optional_json(const std::optional<T>& value) {
-  return value ? Json(*value) : Json(nullptr);
-}
-
-Json tree_json(const TreeSpec& tree) {
-  if (tree.sph_file) return tree.sph_file->generic_string();
-  Json out = Json::object();
-  out["method"] = method_name(tree.method);
-  out["branching"] = tree.branching;
-  out["depth"] = tree.depth;
-  return out;
-}
-
-Json body_json(const BodySpec& body) {
-  Json out = Json::object();
-  out["mesh"] = body.mesh;
-  out["triangles"] = optional_json(body.triangles);
-  out["size"] = optional_json(body.size);
-  out["sphere_tree"] = tree_json(body.tree);
-  out["position"] = vec3_json(body.position);
-  const Quat& q = body.orientation;
-  out["orientation"] = {{"w", shortest_double(q.w())},
-                        {"x", shortest_double(q.x())},
-                        {"y", shortest_double(q.y())},
-                        {"z", shortest_double(q.z())}};
-  out["linear_velocity"] = vec3_json(body.linear_velocity);
-  out["angular_velocity"] = vec3_json(body.angular_velocity);
-  out["density"] = body.density;
-  out["mass"] = optional_json(body.mass);
-  out["restitution"] = shortest_double(body.restitution);
-  out["friction"] = shortest_double(body.friction);
-  out["static"] = body.is_static;
-  return out;
-}
-
-Json ground_json(const GroundSpec& ground) {
-  Json out = Json::object();
-  out["type"] = name_of(ground.kind, kGroundKinds);
-  out["height"] = ground.height;
-  out["size"] = ground.size;
-  out["thickness"] = ground.thickness;
-  out["depth"] = ground.depth;
-  return out;
-}
-
-Json pair_material_json(const PairMaterialSpec& pair) {
-  return {{"bodies", Json::array({pair.bodies[0], pair.bodies[1]})},
-          {"friction", shortest_double(pair.material.friction)},
-          {"restitution", shortest_double(pair.material.restitution)}};
-}
-
-// The index of `name` among the choices of an enum setting, else "unknown <what> '<name>';
-// <what>s: a, b", for names given on the command line.
-std::size_t parse_name(std::string_view name, const Setting& setting, std::string_view what) {
-  const std::span<const std::string_view> names = setting.choices;
-  const auto found = std::find(names.begin(), names.end(), name);
-  if (found != names.end()) return static_cast<std::size_t>(found - names.begin());
-  std::string message = "unknown ";
-  message += what;
-  message += " '";
-  message += name;
-  message += "'; ";
-  message += what;
-  message += "s: ";
-  message += joined(names);
-  throw Error(message);
-}
-
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const fs::path& name) {
@@ -590,55 +347,6 @@ Scene parse_recorded_scene(std::string_view json_text, const fs::path& name) {
 
 Scene read_scene_file(const fs::path& path) {
   return parse_scene(read_input_file(path, InputKind::kScene), path);
-}
-
-std::string_view response_mode_name(ResponseMode mode) {
-  return setting_of("response").choices[static_cast<std::size_t>(mode)];
-}
-
-ResponseMode parse_response_mode(std::string_view name) {
-  return static_cast<ResponseMode>(parse_name(name, setting_of("response"), "response mode"));
-}
-
-GroundSpec::Kind parse_ground_option(std::string_view name, std::string_view option) {
-  if (name == "octree") return GroundSpec::Kind::kOctreeBox;
-  if (name == "plane") return GroundSpec::Kind::kPlane;
-  std::string message(option);
-  message += " must be octree or plane, got '";
-  message += name;
-  message += "'";
-  throw Error(message);
-}
-
-std::string_view contact_set_name(ContactSet contacts) {
-  return setting_of("solver.contacts").choices[static_cast<std::size_t>(contacts)];
-}
-
-ContactSet parse_contact_set(std::string_view name) {
-  return static_cast<ContactSet>(parse_name(name, setting_of("solver.contacts"), "contact set"));
-}
-
-std::string scene_to_json(const Scene& scene) {
-  Json out = Json::object();
-  out["format"] = kFormat;
-  out["version"] = kVersion;
-  out["time_step"] = scene.time_step;
-  out["frames"] = scene.frames;
-  const WorldSettings settings = world_settings(scene);
-  out.update(settings_json("", settings));
-  out["solver"] = settings_json("solver", settings);
-  out["sleep"] = settings_json("sleep", settings);
-  out["ground"] = ground_json(scene.ground);
-  out["ground"].update(settings_json("ground", settings));
-  Json bodies = Json::array();
-  for (const BodySpec& body : scene.bodies) bodies.push_back(body_json(body));
-  out["bodies"] = std::move(bodies);
-  Json pairs = Json::array();
-  for (const PairMaterialSpec& pair : scene.pair_materials) {
-    pairs.push_back(pair_material_json(pair));
-  }
-  out["pair_materials"] = std::move(pairs);
-  return out.dump(2) + "\n";
 }
 
 }  // namespace sphys::tools
