@@ -7,6 +7,7 @@
 
 #include "sphys/error.h"
 #include "sphys/settings_table.h"
+#include "sphys/tools/setting_text.h"
 
 namespace sphys::cli {
 

@@ -25,6 +25,7 @@
 #include "sphys/tools/run_summary.h"
 #include "sphys/tools/scenarios.h"
 #include "sphys/tools/scene_file.h"
+#include "sphys/tools/setting_text.h"
 #include "sphys/tools/tree_cache.h"
 #include "standard_output.h"
 

@@ -5,7 +5,8 @@
 // default-constructed WorldSettings holds. Validation (check_world_settings), the scene reader and
 // writer, the command line's --help, docs/scene.schema.json and the tables of docs/scenes.md all
 // come from this table, so that a setting cannot mean one thing in one place and another
-// elsewhere.
+// elsewhere. The settings as a person types and reads them (--set, --help) are the tools'
+// (sphys/tools/setting_text.h).
 
 #include <cstddef>
 #include <limits>
@@ -83,27 +84,12 @@ struct RemovedSetting {
 // std::out_of_range when there is none: a caller's mistake, not bad input.
 [[nodiscard]] const Setting& setting_of(std::string_view field);
 
-// Sets the field named as in Setting::field ("solver.soft_substeps") from text as a command line
-// gives it: a number, true or false, or a choice's name. Throws sphys::Error for an unknown field,
-// a vector, or text that is none of these, naming `source` (e.g. "--set"); the range is
-// check_world_settings' to check.
-void set_setting_from_text(WorldSettings& settings, std::string_view field, std::string_view text,
-                           std::string_view source);
-
 // Throws sphys::Error for the first setting outside its range, naming the field, the range and
 // the value with its unit ("solver.manifold_points must be between 1 and 8, got 9 contacts").
 void check_world_settings(const WorldSettings& settings);
 
-// "1 to 64", ">= 0", "> 0", "0 to 1", "finite", "paper or plausible", "true or false": the valid
-// values as a person reads them.
-[[nodiscard]] std::string range_text(const Setting& setting);
-// A value of the setting as scene files write it: "20", "0.0004", "true", "plausible",
-// "[0, -9.81, 0]".
-[[nodiscard]] std::string value_text(const Setting& setting, const WorldSettings& settings);
-// A --help text for a command-line option that sets this setting: its documentation, valid values
-// and unit ("... Valid: 1 to 64; unit: substeps."). The option's own default is the command's to
-// show: it need not be the runtime's.
-[[nodiscard]] std::string option_help(const Setting& setting);
+// "paper or plausible", "a, b or c": the choices of an enum setting as a person reads them.
+[[nodiscard]] std::string choices_text(const Setting& setting);
 
 // The shortest decimal form of a float, as a double: 0.3f gives 0.3 rather than
 // 0.30000001192092896. It rounds back to the same float for every finite float but one pair

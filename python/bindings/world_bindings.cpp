@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "sphys/settings_table.h"
+#include "sphys/tools/setting_text.h"
 #include "sphys/world.h"
 
 namespace sphys::python {

@@ -348,7 +348,7 @@ constexpr auto kRemoved = std::to_array<RemovedSetting>({
 // What a value must be, for messages: "between 1 and 64", "finite and not negative".
 std::string requirement(const Setting& setting) {
   const SettingRange& range = setting.range;
-  if (setting.kind == SettingKind::kEnum) return "one of " + range_text(setting);
+  if (setting.kind == SettingKind::kEnum) return "one of " + choices_text(setting);
   if (range.has_min() && range.has_max()) {
     return "between " + number_text(range.min) + " and " + number_text(range.max) +
            (setting.kind == SettingKind::kVector3 ? " in each component" : "");
@@ -383,6 +383,28 @@ std::string vector_text(const Vec3& v) {
   }
   text += "]";
   return text;
+}
+
+// A value of the setting as scene files write it, for messages: "20", "0.0004", "true",
+// "plausible", "[0, -9.81, 0]".
+std::string value_text(const Setting& setting, const WorldSettings& settings) {
+  switch (setting.kind) {
+    case SettingKind::kVector3:
+      return vector_text(setting.get_vector(settings));
+    case SettingKind::kBool:
+      return setting.get(settings) != 0.0 ? "true" : "false";
+    case SettingKind::kEnum: {
+      const double value = setting.get(settings);
+      if (value >= 0.0 && value < static_cast<double>(setting.choices.size())) {
+        return std::string(setting.choices[static_cast<std::size_t>(value)]);
+      }
+      return number_text(value);
+    }
+    case SettingKind::kInteger:
+    case SettingKind::kNumber:
+      break;
+  }
+  return number_text(setting.get(settings));
 }
 
 void check_setting(const Setting& setting, const WorldSettings& settings) {
@@ -435,114 +457,16 @@ const Setting& setting_of(std::string_view field) {
   return *found;
 }
 
-void set_setting_from_text(WorldSettings& settings, std::string_view field, std::string_view text,
-                           std::string_view source) {
-  const std::string where = std::string(source) + " " + std::string(field) + ": ";
-  const auto found = std::find_if(kTable.begin(), kTable.end(),
-                                  [&](const Setting& setting) { return setting.field == field; });
-  if (found == kTable.end()) {
-    if (const RemovedSetting* removed = removed_setting(field)) {
-      throw Error(std::string(source) + " " + removed_setting_message(*removed));
-    }
-    throw Error(std::string(source) + ": no setting " + std::string(field));
-  }
-  const Setting& setting = *found;
-  double value = 0.0;
-  switch (setting.kind) {
-    case SettingKind::kVector3:
-      throw Error(where + "a vector is set in a scene file");
-    case SettingKind::kBool:
-      if (text != "true" && text != "false") throw Error(where + "must be true or false");
-      value = text == "true" ? 1.0 : 0.0;
-      break;
-    case SettingKind::kEnum: {
-      const auto choice = std::find(setting.choices.begin(), setting.choices.end(), text);
-      if (choice == setting.choices.end()) {
-        throw Error(where + "must be " + range_text(setting) + ", got '" + std::string(text) + "'");
-      }
-      value = static_cast<double>(choice - setting.choices.begin());
-      break;
-    }
-    default: {
-      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-      if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value)) {
-        throw Error(where + "must be a finite number, got '" + std::string(text) + "'");
-      }
-      if (setting.kind == SettingKind::kInteger &&
-          (value != std::floor(value) || value < 0.0 || value > 4294967295.0)) {
-        throw Error(where + "must be a whole number from 0, got '" + std::string(text) + "'");
-      }
-    }
-  }
-  setting.set(settings, value);
-}
-
 void check_world_settings(const WorldSettings& settings) {
   for (const Setting& setting : kTable) check_setting(setting, settings);
 }
 
-std::string range_text(const Setting& setting) {
-  switch (setting.kind) {
-    case SettingKind::kBool:
-      return "true or false";
-    case SettingKind::kEnum: {
-      std::string text;
-      for (std::size_t i = 0; i < setting.choices.size(); ++i) {
-        if (i > 0) text += i + 1 == setting.choices.size() ? " or " : ", ";
-        text += setting.choices[i];
-      }
-      return text;
-    }
-    case SettingKind::kVector3:
-    case SettingKind::kInteger:
-    case SettingKind::kNumber:
-      break;
+std::string choices_text(const Setting& setting) {
+  std::string text;
+  for (std::size_t i = 0; i < setting.choices.size(); ++i) {
+    if (i > 0) text += i + 1 == setting.choices.size() ? " or " : ", ";
+    text += setting.choices[i];
   }
-  const SettingRange& range = setting.range;
-  if (range.has_min() && range.has_max()) {
-    return number_text(range.min) + " to " + number_text(range.max) +
-           (setting.kind == SettingKind::kVector3 ? " each" : "");
-  }
-  std::string text = "finite";
-  if (range.has_min()) {
-    text = range.min_inclusive ? ">= " : "> ";
-    text += number_text(range.min);
-  } else if (range.has_max()) {
-    text = range.max_inclusive ? "<= " : "< ";
-    text += number_text(range.max);
-  }
-  return text;
-}
-
-std::string value_text(const Setting& setting, const WorldSettings& settings) {
-  switch (setting.kind) {
-    case SettingKind::kVector3:
-      return vector_text(setting.get_vector(settings));
-    case SettingKind::kBool:
-      return setting.get(settings) != 0.0 ? "true" : "false";
-    case SettingKind::kEnum: {
-      const double value = setting.get(settings);
-      if (value >= 0.0 && value < static_cast<double>(setting.choices.size())) {
-        return std::string(setting.choices[static_cast<std::size_t>(value)]);
-      }
-      return number_text(value);
-    }
-    case SettingKind::kInteger:
-    case SettingKind::kNumber:
-      break;
-  }
-  return number_text(setting.get(settings));
-}
-
-std::string option_help(const Setting& setting) {
-  std::string text(setting.doc);
-  text += " Valid: ";
-  text += range_text(setting);
-  if (!setting.unit.empty() && setting.unit != "dimensionless") {
-    text += "; unit: ";
-    text += setting.unit;
-  }
-  text += ".";
   return text;
 }
 

@@ -16,6 +16,7 @@
 #include "apps/cli.h"
 #include "sphys/settings_table.h"
 #include "sphys/tools/recording.h"
+#include "sphys/tools/setting_text.h"
 #include "support/temp_file.h"
 
 namespace sphys {

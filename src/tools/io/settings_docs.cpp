@@ -11,8 +11,6 @@
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "io/setting_json.h"
 #include "sphys/error.h"
 #include "sphys/settings_table.h"
@@ -20,8 +18,6 @@
 
 namespace sphys::tools {
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 // The committed files' line length, as .clang-format has it for the code.
 constexpr std::size_t kColumns = 100;

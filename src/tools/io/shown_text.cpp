@@ -15,4 +15,13 @@ std::string shown(std::string_view text) {
   return "'" + out + "'";
 }
 
+std::string joined(std::span<const std::string_view> names) {
+  std::string out;
+  for (const std::string_view name : names) {
+    if (!out.empty()) out += ", ";
+    out += name;
+  }
+  return out;
+}
+
 }  // namespace sphys::tools

@@ -1,0 +1,99 @@
+// The scene writer: every key of the scene's manifest (scene_schema.h) written out, in the order
+// of docs/scenes.md, so that the reader gets back the same scene bit for bit.
+
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "io/scene_schema.h"
+#include "io/setting_json.h"
+#include "sphys/settings_table.h"
+#include "sphys/tools/scene_file.h"
+
+namespace sphys::tools {
+namespace {
+
+// Floats are written in their shortest decimal form (shortest_double), so that 0.3f is written
+// "0.3" rather than "0.30000001192092896" and reads back bit for bit.
+Json vec3_json(const Vec3& v) {
+  return Json::array({shortest_double(v.x()), shortest_double(v.y()), shortest_double(v.z())});
+}
+
+template <typename T>
+Json optional_json(const std::optional<T>& value) {
+  return value ? Json(*value) : Json(nullptr);
+}
+
+Json tree_json(const TreeSpec& tree) {
+  if (tree.sph_file) return tree.sph_file->generic_string();
+  Json out = Json::object();
+  out["method"] = method_name(tree.method);
+  out["branching"] = tree.branching;
+  out["depth"] = tree.depth;
+  return out;
+}
+
+Json body_json(const BodySpec& body) {
+  Json out = Json::object();
+  out["mesh"] = body.mesh;
+  out["triangles"] = optional_json(body.triangles);
+  out["size"] = optional_json(body.size);
+  out["sphere_tree"] = tree_json(body.tree);
+  out["position"] = vec3_json(body.position);
+  const Quat& q = body.orientation;
+  out["orientation"] = {{"w", shortest_double(q.w())},
+                        {"x", shortest_double(q.x())},
+                        {"y", shortest_double(q.y())},
+                        {"z", shortest_double(q.z())}};
+  out["linear_velocity"] = vec3_json(body.linear_velocity);
+  out["angular_velocity"] = vec3_json(body.angular_velocity);
+  out["density"] = body.density;
+  out["mass"] = optional_json(body.mass);
+  out["restitution"] = shortest_double(body.restitution);
+  out["friction"] = shortest_double(body.friction);
+  out["static"] = body.is_static;
+  return out;
+}
+
+Json ground_json(const GroundSpec& ground) {
+  Json out = Json::object();
+  out["type"] = name_of(ground.kind, kGroundKinds);
+  out["height"] = ground.height;
+  out["size"] = ground.size;
+  out["thickness"] = ground.thickness;
+  out["depth"] = ground.depth;
+  return out;
+}
+
+Json pair_material_json(const PairMaterialSpec& pair) {
+  return {{"bodies", Json::array({pair.bodies[0], pair.bodies[1]})},
+          {"friction", shortest_double(pair.material.friction)},
+          {"restitution", shortest_double(pair.material.restitution)}};
+}
+
+}  // namespace
+
+std::string scene_to_json(const Scene& scene) {
+  Json out = Json::object();
+  out["format"] = kSceneFormat;
+  out["version"] = kSceneVersion;
+  out["time_step"] = scene.time_step;
+  out["frames"] = scene.frames;
+  const WorldSettings settings = world_settings(scene);
+  out.update(settings_json("", settings));
+  out["solver"] = settings_json("solver", settings);
+  out["sleep"] = settings_json("sleep", settings);
+  out["ground"] = ground_json(scene.ground);
+  out["ground"].update(settings_json("ground", settings));
+  Json bodies = Json::array();
+  for (const BodySpec& body : scene.bodies) bodies.push_back(body_json(body));
+  out["bodies"] = std::move(bodies);
+  Json pairs = Json::array();
+  for (const PairMaterialSpec& pair : scene.pair_materials) {
+    pairs.push_back(pair_material_json(pair));
+  }
+  out["pair_materials"] = std::move(pairs);
+  return out.dump(2) + "\n";
+}
+
+}  // namespace sphys::tools
