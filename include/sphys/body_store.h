@@ -19,16 +19,28 @@
 
 namespace sphys {
 
+class BodyStore;
+
 // Arrays indexed by body slot that another part of a world keeps (the sleep tracker's still
 // times, the detector's trees). Attached to a store, they grow with its own arrays, so that no
-// owner keeps its arrays in step with the store by hand.
+// owner keeps its arrays in step with the store by hand. The link undoes itself from either
+// side: arrays destroyed first leave their store, and a store destroyed first lets go of them,
+// so the two may die in any order.
 class SlotArrays {
  public:
   // Every array is to have at least `slots` slots; a new slot's values are the owner's defaults.
   virtual void grow_slots(std::uint32_t slots) = 0;
 
  protected:
-  ~SlotArrays() = default;
+  SlotArrays() = default;
+  ~SlotArrays();
+  // Attached by address.
+  SlotArrays(const SlotArrays&) = delete;
+  SlotArrays& operator=(const SlotArrays&) = delete;
+
+ private:
+  friend class BodyStore;
+  BodyStore* attached_to_ = nullptr;
 };
 
 namespace detail {
@@ -60,6 +72,7 @@ struct BodyArrays {
 class BodyStore : private detail::BodyArrays {
  public:
   BodyStore() = default;
+  ~BodyStore();
   // A copy is a snapshot of the bodies: the arrays attached to the store stay with it alone.
   BodyStore(const BodyStore& other) : detail::BodyArrays(other) {}
   // Takes the other's bodies; the arrays attached to this store grow to its slots.
@@ -73,10 +86,10 @@ class BodyStore : private detail::BodyArrays {
   // on, so that the removed body's id names nothing any more.
   void remove(std::uint32_t slot);
 
-  // Grows `arrays` to the store's slots now and with the store from then on, until detached. The
-  // owner detaches them before they are destroyed.
+  // Grows `arrays` to the store's slots now and with the store from then on, until detached (or
+  // attached to another store, or destroyed).
   void attach(SlotArrays& arrays);
-  void detach(const SlotArrays& arrays);
+  void detach(SlotArrays& arrays);
 
   [[nodiscard]] std::uint32_t slots() const { return static_cast<std::uint32_t>(pose_.size()); }
   // The id of a slot's body, or of the next one to be added there when the slot is free.

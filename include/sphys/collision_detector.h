@@ -99,14 +99,11 @@ class CollisionDetector final : public SlotArrays {
  public:
   explicit CollisionDetector(const CollisionSettings& settings = {});
   ~CollisionDetector();
-  // The store it is attached to holds its address.
-  CollisionDetector(const CollisionDetector&) = delete;
-  CollisionDetector& operator=(const CollisionDetector&) = delete;
 
   // The bodies: their poses, whether they are static, asleep or alive, and their extents are
   // read from the store, never copied (a static body must stay where it was added); the
-  // detector's own per-body arrays grow with the store's. `bodies` must outlive the detector or
-  // be replaced first.
+  // detector's own per-body arrays grow with the store's. `bodies` must outlive the detector's
+  // use or be replaced first.
   void set_bodies(BodyStore& bodies);
   void grow_slots(std::uint32_t slots) override;
   // The body in a slot of the store joins the broad phase with its sphere-tree, whose centres

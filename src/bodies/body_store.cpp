@@ -69,12 +69,27 @@ BodyStore& BodyStore::operator=(const BodyStore& other) {
   return *this;
 }
 
+SlotArrays::~SlotArrays() {
+  if (attached_to_ != nullptr) attached_to_->detach(*this);
+}
+
+BodyStore::~BodyStore() {
+  for (SlotArrays* arrays : attached_) arrays->attached_to_ = nullptr;
+}
+
 void BodyStore::attach(SlotArrays& arrays) {
+  if (arrays.attached_to_ == this) return;
+  if (arrays.attached_to_ != nullptr) arrays.attached_to_->detach(arrays);
+  arrays.attached_to_ = this;
   attached_.push_back(&arrays);
   arrays.grow_slots(slots());
 }
 
-void BodyStore::detach(const SlotArrays& arrays) { std::erase(attached_, &arrays); }
+void BodyStore::detach(SlotArrays& arrays) {
+  if (arrays.attached_to_ != this) return;
+  arrays.attached_to_ = nullptr;
+  std::erase(attached_, &arrays);
+}
 
 RigidBody BodyStore::body(std::uint32_t slot) const {
   RigidBody body;

@@ -46,12 +46,9 @@ constexpr std::size_t kBodiesPerChunk = 256;
 CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {
   if (settings.broad_phase == BroadPhaseKind::kCells) broad_phase_.emplace<CellSweepAndPrune>();
 }
-CollisionDetector::~CollisionDetector() {
-  if (store_ != nullptr) store_->detach(*this);
-}
+CollisionDetector::~CollisionDetector() = default;
 
 void CollisionDetector::set_bodies(BodyStore& bodies) {
-  if (store_ != nullptr) store_->detach(*this);
   store_ = &bodies;
   bodies.attach(*this);
 }

@@ -22,8 +22,6 @@ constexpr float kUnmeasured = std::numeric_limits<float>::infinity();
 
 SleepTracker::SleepTracker(BodyStore& bodies) : store_(&bodies) { bodies.attach(*this); }
 
-SleepTracker::~SleepTracker() { store_->detach(*this); }
-
 void SleepTracker::grow_slots(std::uint32_t slots) {
   const std::size_t before = island_parent_.size();
   island_parent_.resize(slots);

@@ -20,9 +20,6 @@ class SleepTracker final : public SlotArrays {
   // Sleep is the store's: the tracker puts its bodies to sleep and wakes them there, and its
   // per-body arrays grow with the store's. `bodies` must outlive the tracker.
   explicit SleepTracker(BodyStore& bodies);
-  ~SleepTracker();
-  SleepTracker(const SleepTracker&) = delete;
-  SleepTracker& operator=(const SleepTracker&) = delete;
 
   void grow_slots(std::uint32_t slots) override;
   // Wakes a sleeping body, appending it to `woken`. Being asleep is being still: it keeps its

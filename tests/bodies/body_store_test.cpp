@@ -169,6 +169,33 @@ TEST(BodyStore, AttachedArraysGrowWithTheStoreUntilDetached) {
   EXPECT_EQ(column.values.size(), 4u);
 }
 
+// Store and arrays may die in either order, and arrays move from one store to another.
+TEST(BodyStore, AttachedArraysAndTheirStoreLetGoOfEachOtherInEitherOrder) {
+  Column outliving;
+  {
+    BodyStore store;
+    store.attach(outliving);
+    {
+      Column short_lived;
+      store.attach(short_lived);
+    }
+    store.add(moving_box(Vec3::Zero()), 0.5f);  // grows only what is still there
+  }
+  EXPECT_EQ(outliving.values.size(), 1u);
+  BodyStore first;
+  BodyStore second;
+  second.add(moving_box(Vec3::Zero()), 0.5f);
+  second.add(moving_box(Vec3::Zero()), 0.5f);
+  first.attach(outliving);
+  second.attach(outliving);  // leaves the first store
+  first.add(moving_box(Vec3::Zero()), 0.5f);
+  first.add(moving_box(Vec3::Zero()), 0.5f);
+  first.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_EQ(outliving.values.size(), 2u);
+  second.add(moving_box(Vec3::Zero()), 0.5f);
+  EXPECT_EQ(outliving.values.size(), 3u);
+}
+
 TEST(BodyStore, WorldInertiaAndEnergyFollowThePose) {
   BodyStore store;
   const std::uint32_t slot = store.add(moving_box(Vec3::Zero()), 0.5f);

@@ -113,6 +113,23 @@ TEST(WorldBodies, TheDefaultIdNamesNoBody) {
   EXPECT_EQ(world.body(first).linear_velocity, Vec3::Zero());
 }
 
+// A world moved onto another replaces it whole: the bodies, their ids and their contacts are the
+// moved world's, and it steps and grows as before.
+TEST(WorldBodies, AWorldMovedOntoAnotherIsThatWorld) {
+  World moved(on_plane());
+  const float rest = resting_height();
+  const BodyId low = moved.add_body(cube(Vec3(0.0f, rest, 0.0f)));
+  World target(on_plane());
+  (void)target.add_body(cube(Vec3(5.0f, rest, 0.0f)));
+  (void)target.add_body(cube(Vec3(8.0f, rest, 0.0f)));
+  target = std::move(moved);
+  EXPECT_EQ(target.body_slots(), 1u);
+  EXPECT_TRUE(target.alive(low));
+  const BodyId high = target.add_body(cube(Vec3(0.0f, 3.0f * rest, 0.0f)));
+  ASSERT_TRUE(settle(target, 5.0f));
+  EXPECT_NEAR(target.body(high).pose.translation.y(), 3.0f * rest, 0.01f);  // on the low one
+}
+
 // A slot's generations move on with each body it holds, so that no earlier id of the slot
 // answers to a later body, however often the slot is reused.
 TEST(WorldBodies, NoEarlierIdOfAReusedSlotAnswers) {
