@@ -64,9 +64,18 @@ class ConfigurationChecker {
                         const Parallel* parallel = nullptr) const;
 
  private:
+  // What check_one works in, one per run of configurations (configuration_check.cpp).
+  struct Scratch;
   // One configuration's S spheres, x y z r each.
-  [[nodiscard]] ConfigurationResult check_one(const float* spheres) const;
+  [[nodiscard]] ConfigurationResult check_one(const float* spheres, Scratch& scratch) const;
+  // The slot of a body whose leaf spheres the sphere touches, else -1: over every group the
+  // hierarchy leads to, or over `candidates` only (groups known to hold every group near it).
   [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius) const;
+  [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius,
+                                          std::span<const std::uint32_t> candidates) const;
+  // Runs of configurations, each with its scratch, on the threads.
+  template <class Check>
+  void run_configurations(std::size_t count, const Parallel* parallel, const Check& check) const;
 
   const WorldQuery* query_;
   std::vector<std::int32_t> links_;

@@ -1,7 +1,8 @@
-// Batched configuration checks: sphere after sphere against the world's leaf-sphere groups (the
-// snapshot's hierarchy, then kLaneWidth leaves at a time), stopping at the first sphere that
-// touches; then, if asked, the pairs of spheres of links that may collide. Configurations run in
-// runs on the threads.
+// Batched configuration checks. Per configuration, each link's spheres are bounded by one sphere,
+// which walks the snapshot's hierarchy once for the groups near the link; then sphere after
+// sphere is tested against its link's groups only (kLaneWidth leaves at a time), stopping at the
+// first sphere that touches; then, if asked, the pairs of spheres of links that may collide.
+// Configurations run in runs on the threads.
 
 #include "sphys/configuration_check.h"
 
@@ -85,11 +86,15 @@ ConfigurationChecker::ConfigurationChecker(const WorldQuery& query,
   }
 }
 
-std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius) const {
-  const Snapshot& snapshot = query_->snapshot();
-  if (snapshot.bvh.empty()) return -1;
+namespace {
+
+// Calls visit(group index) for every group whose box, and every box above it in the hierarchy,
+// the sphere reaches; visit returns false to stop.
+template <class Visit>
+void walk_near(const Snapshot& snapshot, float x, float y, float z, float radius,
+               const Visit& visit) {
+  if (snapshot.bvh.empty()) return;
   const float radius_squared = radius * radius;
-  const Vec3 centre(x, y, z);
   std::array<std::uint32_t, query_detail::kMaxBvhDepth> stack;
   int top = 0;
   stack[top++] = 0;
@@ -102,17 +107,92 @@ std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float
       continue;
     }
     for (std::uint32_t g = node.first; g < node.first + node.count; ++g) {
-      const LeafGroup& group = snapshot.groups[g];
-      if (group_seen_[g] != 0 && squared_distance(group.bounds, x, y, z) <= radius_squared &&
-          query_detail::group_touches_sphere(snapshot, group, centre, radius)) {
-        return static_cast<std::int32_t>(group.body);
+      if (squared_distance(snapshot.groups[g].bounds, x, y, z) <= radius_squared && !visit(g)) {
+        return;
       }
+    }
+  }
+}
+
+}  // namespace
+
+// Per link of one configuration: the sphere bounding its spheres, and the groups near it,
+// collected when its first sphere is checked.
+struct ConfigurationChecker::Scratch {
+  // Groups kept per link; a link near more is checked sphere by sphere through the hierarchy.
+  static constexpr std::uint32_t kMostCandidates = 32;
+  static constexpr std::int32_t kNotCollected = -1;
+  static constexpr std::int32_t kTooMany = -2;
+
+  explicit Scratch(std::size_t links)
+      : centre(links),
+        radius(links),
+        spheres(links),
+        candidates(links * kMostCandidates),
+        candidate_count(links) {}
+
+  // Each link's bounding sphere: about the mean of its spheres' centres, reaching the farthest;
+  // no link's groups collected yet.
+  void bound_links(const float* posed, std::span<const std::int32_t> links) {
+    std::ranges::fill(centre, Vec3::Zero());
+    std::ranges::fill(radius, 0.0f);
+    std::ranges::fill(spheres, 0u);
+    std::ranges::fill(candidate_count, kNotCollected);
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = posed + i * kFloatsPerSphere;
+      centre[links[i]] += Vec3(s[0], s[1], s[2]);
+      ++spheres[links[i]];
+    }
+    for (std::size_t l = 0; l < centre.size(); ++l) {
+      if (spheres[l] > 0) centre[l] /= static_cast<float>(spheres[l]);
+    }
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = posed + i * kFloatsPerSphere;
+      const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
+      // Rounding of the mean and the norm must not leave a sphere's surface outside: a relative
+      // margin, as the narrow phase's bounds have.
+      radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
+    }
+  }
+
+  std::vector<Vec3> centre;
+  std::vector<float> radius;
+  std::vector<std::uint32_t> spheres;
+  std::vector<std::uint32_t> candidates;
+  std::vector<std::int32_t> candidate_count;
+};
+
+std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius) const {
+  const Snapshot& snapshot = query_->snapshot();
+  const Vec3 centre(x, y, z);
+  std::int32_t body = -1;
+  walk_near(snapshot, x, y, z, radius, [&](std::uint32_t g) {
+    if (group_seen_[g] != 0 &&
+        query_detail::group_touches_sphere(snapshot, snapshot.groups[g], centre, radius)) {
+      body = static_cast<std::int32_t>(snapshot.groups[g].body);
+      return false;
+    }
+    return true;
+  });
+  return body;
+}
+
+std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius,
+                                                std::span<const std::uint32_t> candidates) const {
+  const Snapshot& snapshot = query_->snapshot();
+  const Vec3 centre(x, y, z);
+  const float radius_squared = radius * radius;
+  for (const std::uint32_t g : candidates) {
+    const LeafGroup& group = snapshot.groups[g];
+    if (squared_distance(group.bounds, x, y, z) <= radius_squared &&
+        query_detail::group_touches_sphere(snapshot, group, centre, radius)) {
+      return static_cast<std::int32_t>(group.body);
     }
   }
   return -1;
 }
 
-ConfigurationResult ConfigurationChecker::check_one(const float* spheres) const {
+ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratch& scratch) const {
   ConfigurationResult result;
   const auto collide = [&](std::size_t sphere, std::int32_t body, std::int32_t other) {
     result.free = false;
@@ -121,11 +201,32 @@ ConfigurationResult ConfigurationChecker::check_one(const float* spheres) const 
     result.other_sphere = other;
     return result;
   };
+  scratch.bound_links(spheres, links_);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     const float* s = spheres + i * kFloatsPerSphere;
     // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
     if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
-    const std::int32_t body = touched_body(s[0], s[1], s[2], s[3]);
+    const auto link = static_cast<std::size_t>(links_[i]);
+    std::int32_t& count = scratch.candidate_count[link];
+    std::uint32_t* candidates = scratch.candidates.data() + link * Scratch::kMostCandidates;
+    if (count == Scratch::kNotCollected) {
+      count = 0;
+      walk_near(query_->snapshot(), scratch.centre[link].x(), scratch.centre[link].y(),
+                scratch.centre[link].z(), scratch.radius[link], [&](std::uint32_t g) {
+                  if (group_seen_[g] == 0) return true;
+                  if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
+                    count = Scratch::kTooMany;
+                    return false;
+                  }
+                  candidates[count++] = g;
+                  return true;
+                });
+    }
+    const std::int32_t body =
+        count == Scratch::kTooMany
+            ? touched_body(s[0], s[1], s[2], s[3])
+            : touched_body(s[0], s[1], s[2], s[3],
+                           std::span(candidates, static_cast<std::size_t>(count)));
     if (body >= 0) return collide(i, body, -1);
   }
   for (const auto& [i, j] : self_pairs_) {
@@ -140,6 +241,17 @@ ConfigurationResult ConfigurationChecker::check_one(const float* spheres) const 
   return result;
 }
 
+template <class Check>
+void ConfigurationChecker::run_configurations(std::size_t count, const Parallel* parallel,
+                                              const Check& check) const {
+  for_each_on(parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun,
+              [&](std::size_t run) {
+                Scratch scratch(link_count_);
+                const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
+                for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) check(c, scratch);
+              });
+}
+
 void ConfigurationChecker::check(std::span<const float> spheres,
                                  std::span<ConfigurationResult> results,
                                  const Parallel* parallel) const {
@@ -151,13 +263,9 @@ void ConfigurationChecker::check(std::span<const float> spheres,
   }
   const std::size_t count = spheres.size() / per_configuration;
   check_results(results, count);
-  for_each_on(parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun,
-              [&](std::size_t run) {
-                const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
-                for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) {
-                  results[c] = check_one(spheres.data() + c * per_configuration);
-                }
-              });
+  run_configurations(count, parallel, [&](std::size_t c, Scratch& scratch) {
+    results[c] = check_one(spheres.data() + c * per_configuration, scratch);
+  });
 }
 
 void ConfigurationChecker::check_link_poses(std::span<const Transform> link_poses,
@@ -175,10 +283,12 @@ void ConfigurationChecker::check_link_poses(std::span<const Transform> link_pose
   }
   const std::size_t count = link_poses.size() / link_count_;
   check_results(results, count);
+  // Each run poses its configurations in its own buffer.
   for_each_on(
       parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun, [&](std::size_t run) {
+        Scratch scratch(link_count_);
         std::vector<Mat3> rotations(link_count_);
-        std::vector<float> posed(links_.size() * kFloatsPerSphere);
+        std::vector<float> posed_run(links_.size() * kFloatsPerSphere);
         const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
         for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) {
           const Transform* poses = link_poses.data() + c * link_count_;
@@ -186,15 +296,15 @@ void ConfigurationChecker::check_link_poses(std::span<const Transform> link_pose
             rotations[l] = poses[l].rotation.toRotationMatrix();
           }
           for (std::size_t i = 0; i < links_.size(); ++i) {
-            const Transform& pose = poses[links_[i]];
-            const Vec3 centre = rotations[links_[i]] * link_spheres[i].center + pose.translation;
-            float* out = posed.data() + i * kFloatsPerSphere;
+            const auto link = static_cast<std::size_t>(links_[i]);
+            const Vec3 centre = rotations[link] * link_spheres[i].center + poses[link].translation;
+            float* out = posed_run.data() + i * kFloatsPerSphere;
             out[0] = centre.x();
             out[1] = centre.y();
             out[2] = centre.z();
             out[3] = link_spheres[i].radius;
           }
-          results[c] = check_one(posed.data());
+          results[c] = check_one(posed_run.data(), scratch);
         }
       });
 }
