@@ -116,6 +116,37 @@ TEST(ConfigurationCheck, AnswersMatchEverySpherePairOnAnyThreads) {
   }
 }
 
+TEST(ConfigurationCheck, ALinkSpanningTheWorldIsCheckedSphereBySphere) {
+  // Two spheres of one link at opposite corners: the link's bound holds every group of the
+  // world, more than a link keeps as candidates, so its spheres walk the hierarchy themselves.
+  QueryRng rng(59);
+  const World world = random_query_world(rng, 60, 2.0f);
+  const WorldQuery query(world);
+  const std::vector<WorldLeaf> leaves = oracle_leaves(world);
+  const std::vector<std::int32_t> links{0, 0, 0};
+  const ConfigurationChecker checker(query, links);
+  constexpr std::size_t kConfigurations = 500;
+  std::vector<float> spheres;
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    const Vec3 middle = uniform_point(rng, 2.0f);
+    for (const Vec3& centre : {Vec3(-3, -3, -3), middle, Vec3(3, 3, 3)}) {
+      spheres.insert(spheres.end(), {centre.x(), centre.y(), centre.z(), 0.3f});
+    }
+  }
+  std::vector<ConfigurationResult> results(kConfigurations);
+  checker.check(spheres, results);
+  std::size_t free = 0;
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    const ConfigurationResult expected =
+        oracle_check(leaves, spheres.data() + c * 12, links, {}, false);
+    ASSERT_EQ(results[c].free, expected.free) << "configuration " << c;
+    EXPECT_EQ(results[c].sphere, expected.sphere);
+    free += results[c].free ? 1 : 0;
+  }
+  EXPECT_GT(free, kConfigurations / 10);
+  EXPECT_LT(free, kConfigurations * 9 / 10);
+}
+
 TEST(ConfigurationCheck, LinkPosesGiveTheSameAnswersAsPosedSpheres) {
   QueryRng rng(43);
   const World world = random_query_world(rng, 30, 2.0f);
