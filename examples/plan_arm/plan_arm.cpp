@@ -82,6 +82,11 @@ class ArmChecker {
     for (const sphys::ConfigurationResult& r : results_) out.push_back(r.free);
     return out;
   }
+  // One configuration: a bool, not the proxy vector<bool>::front() gives, which would dangle
+  // once the vector is gone.
+  [[nodiscard]] bool free_one(const std::vector<double>& configuration) {
+    return free({configuration}).front();
+  }
   [[nodiscard]] std::size_t batches() const { return batches_; }
   [[nodiscard]] std::size_t checked() const { return checked_; }
 
@@ -186,7 +191,7 @@ int run(const Arguments& arguments) {
   og::SimpleSetup setup(space);
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
   setup.setStateValidityChecker(
-      [&](const ob::State* state) { return checker.free({values_of(state, joints)}).front(); });
+      [&](const ob::State* state) { return checker.free_one(values_of(state, joints)); });
   auto motions = std::make_shared<SphysMotionValidator>(si, checker, joints);
   si->setMotionValidator(motions);
 
@@ -199,7 +204,7 @@ int run(const Arguments& arguments) {
       for (std::size_t j = 0; j < joints; ++j) {
         v[j] = std::uniform_real_distribution<double>(arm.limits[j][0], arm.limits[j][1])(rng);
       }
-      if (checker.free({v}).front()) return v;
+      if (checker.free_one(v)) return v;
     }
   };
   std::vector<double> start;
