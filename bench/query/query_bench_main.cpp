@@ -1,8 +1,9 @@
-// sphys-query-bench: sphys's queries beside Bullet's rayTest and FCL's collide on the same
-// worlds in the same run, alternating block by block (docs/queries.md):
+// sphys-query-bench: sphys's queries beside Bullet's rayTest and contactTest and FCL's collide
+// on the same worlds in the same run, alternating block by block (docs/queries.md):
 // - ray casts in a heap of resting bunnies (depth-2 trees), against Bullet on the same spheres;
 // - batched configuration checks of the spherized test robot by a pile of bunnies, against FCL
-//   on the robot's link meshes and the bunnies' meshes, with the agreement of the answers;
+//   on the robot's link meshes and the bunnies' meshes, with the agreement of the answers, and
+//   against Bullet's contactTest of the robot's spheres with the same sphere compounds;
 // - the same checks on two threads against one;
 // - distances between two bunnies at random poses, against a loop over every leaf pair.
 // Times are per query, each read with steady_clock; the table gives medians and their ratios.
@@ -64,7 +65,7 @@ float uniform(Rng& rng, float low, float high) {
 void rays(const Options& options) {
   const examples::BunnyPile heap = examples::settle_bunny_pile(options.ray_stacks, 10, 900);
   const WorldQuery query(*heap.setup.world);
-  const BulletRays bullet(heap.leaves, heap.poses);
+  const BulletScene bullet(heap.leaves, heap.poses, {});
   Rng rng(1);
   // From above the heap down to a random point in it, through the heap's top layers.
   constexpr float kLength = 100.0f;  // unit: m
@@ -80,7 +81,7 @@ void rays(const Options& options) {
   std::vector<double> sphys_us;
   std::vector<double> bullet_us;
   std::vector<std::optional<RayHit>> ours(all.size());
-  std::vector<BulletRays::Hit> theirs(all.size());
+  std::vector<BulletScene::Hit> theirs(all.size());
   for (std::size_t begin = 0; begin < all.size(); begin += options.block) {
     const std::size_t end = std::min(all.size(), begin + options.block);
     for (std::size_t i = begin; i < end; ++i) {
@@ -188,6 +189,9 @@ void configuration_checks(const Options& options) {
     link_meshes.push_back(geometry->mesh);
   }
   const FclScene fcl(heap.mesh(), heap.poses, link_meshes);
+  std::vector<float> robot_radii;
+  for (const Sphere& sphere : arm.link_spheres) robot_radii.push_back(sphere.radius);
+  const BulletScene bullet(heap.leaves, heap.poses, robot_radii);
 
   const std::size_t per = arm.spheres() * 4;
   const std::size_t count = static_cast<std::size_t>(options.configurations);
@@ -199,6 +203,8 @@ void configuration_checks(const Options& options) {
   std::vector<double> sphys_us;
   std::vector<double> sphys_on_fcl_us;
   std::vector<double> fcl_us;
+  std::vector<double> bullet_us;
+  std::size_t bullet_agrees = 0;
   std::size_t both_hit = 0, both_free = 0, spheres_only = 0, mesh_only = 0;
   for (std::size_t block = 0; block < blocks; ++block) {
     const std::size_t begin = block * options.block;
@@ -219,6 +225,11 @@ void configuration_checks(const Options& options) {
           std::span(configurations.link_poses).subspan(c * arm.links.size(), arm.links.size()));
       fcl_us.push_back(microseconds(Clock::now() - start));
       const bool sphere_hit = !results[c].free;
+      const auto bullet_start = Clock::now();
+      const bool bullet_hit =
+          bullet.touches(std::span(configurations.spheres).subspan(c * per, per));
+      bullet_us.push_back(microseconds(Clock::now() - bullet_start));
+      bullet_agrees += bullet_hit == sphere_hit ? 1 : 0;
       both_hit += sphere_hit && mesh_hit ? 1 : 0;
       both_free += !sphere_hit && !mesh_hit ? 1 : 0;
       spheres_only += sphere_hit && !mesh_hit ? 1 : 0;
@@ -255,6 +266,13 @@ void configuration_checks(const Options& options) {
               median(sphys_on_fcl_us));
   std::printf("| FCL 0.7 collide (link meshes vs bunny meshes, OBBRSS) | %zu | %.3f | %.1f |\n",
               fcl_us.size(), median(fcl_us), median(fcl_us) / median(sphys_on_fcl_us));
+  std::printf(
+      "| Bullet contactTest (the robot's spheres vs sphere compounds) | %zu | %.3f | %.1f |\n",
+      bullet_us.size(), median(bullet_us), median(bullet_us) / median(sphys_on_fcl_us));
+  std::printf(
+      "\nBullet, on the same spheres, agrees with sphys on %.2f%% of these "
+      "configurations.\n",
+      100.0 * double(bullet_agrees) / fcl_n);
   std::printf(
       "\nAgreement on FCL's %zu configurations: both say the same %.2f%% (both collide "
       "%.2f%%, both free %.2f%%); spheres collide where the meshes are free (the cost of "
