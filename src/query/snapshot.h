@@ -5,7 +5,9 @@
 // volume hierarchy of boxes over the groups. Made once per WorldQuery::refresh(), so that a query
 // neither moves a sphere nor allocates to find its candidates.
 
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <vector>
 
 #include "core/simd.h"
@@ -28,6 +30,23 @@ inline constexpr std::uint32_t kGroupLeaves = 8;
 // Far away and of zero radius: what pads a group to whole lanes, never within reach of anything.
 // unit: m
 inline constexpr float kPaddingCentre = 1e15f;
+
+// Floats whose storage starts on a 32-byte boundary, so that lanes load them aligned (SSE2's and
+// AVX2's aligned loads fault otherwise, and a plain vector<float> promises 4 bytes).
+template <class T>
+struct LaneAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{32};
+  LaneAllocator() = default;
+  template <class U>
+  explicit LaneAllocator(const LaneAllocator<U>& /*other*/) {}
+  [[nodiscard]] T* allocate(std::size_t count) {
+    return static_cast<T*>(::operator new(count * sizeof(T), kAlignment));
+  }
+  void deallocate(T* pointer, std::size_t /*count*/) { ::operator delete(pointer, kAlignment); }
+  friend bool operator==(const LaneAllocator&, const LaneAllocator&) { return true; }
+};
+using LaneFloats = std::vector<float, LaneAllocator<float>>;
 
 struct LeafGroup {
   Aabb bounds;              // of the group's spheres
@@ -53,10 +72,10 @@ inline constexpr int kMaxBvhDepth = 64;
 
 struct Snapshot {
   // The world's leaf spheres in lanes, each group's padded with kPaddingCentre spheres.
-  std::vector<float> x, y, z, radius;  // unit: m
-  std::vector<std::uint32_t> node;     // each sphere's node in its body's tree
-  std::vector<LeafGroup> groups;       // in the hierarchy's leaf order
-  std::vector<BvhNode> bvh;            // node 0 the root; empty when the world has no body
+  LaneFloats x, y, z, radius;       // unit: m
+  std::vector<std::uint32_t> node;  // each sphere's node in its body's tree
+  std::vector<LeafGroup> groups;    // in the hierarchy's leaf order
+  std::vector<BvhNode> bvh;         // node 0 the root; empty when the world has no body
   // Per body slot, as in the world when the snapshot was made.
   std::vector<Transform> poses;
   std::vector<const SphereTree*> trees;  // null for a free slot
