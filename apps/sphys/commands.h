@@ -60,5 +60,6 @@ void add_simulate_command(CLI::App& app);
 void add_experiment_command(CLI::App& app);
 void add_spherize_command(CLI::App& app);
 void add_cache_command(CLI::App& app);
+void add_query_command(CLI::App& app);
 
 }  // namespace sphys::cli

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   sphys::cli::add_view_command(app);
   sphys::cli::add_spherize_command(app);
   sphys::cli::add_cache_command(app);
+  sphys::cli::add_query_command(app);
 
   try {
     app.parse(argc, argv);

@@ -151,6 +151,8 @@ class CollisionDetector final : public SlotArrays {
   [[nodiscard]] const CollisionStats& stats() const { return stats_; }
   // The broad phase's current bound of a body (world frame).
   [[nodiscard]] Aabb bounds(std::uint32_t slot) const;
+  // The sphere-tree a body joined with (body frame).
+  [[nodiscard]] const SphereTree& tree(std::uint32_t slot) const { return *bodies_[slot].tree; }
 
  private:
   using PairRecord = PairCache::Record;

@@ -115,6 +115,8 @@ class World {
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
   [[nodiscard]] RigidBody body(BodyId body) const { return store_->body(slot_of(body)); }
+  // The body's sphere-tree, in the body frame.
+  [[nodiscard]] const SphereTree& tree(BodyId body) const { return detector_->tree(slot_of(body)); }
   // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes, and the
   // sleeping bodies it touches wake as it moves them. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);

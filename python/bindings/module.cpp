@@ -66,6 +66,7 @@ PYBIND11_MODULE(_sphys, m) {
   bind_mesh(m);
   bind_tree(m);
   bind_world(m);
+  bind_query(m);
   bind_scene(m);
   bind_experiment(m);
 }

@@ -8,6 +8,8 @@ Everything the command line does, by task (docs/python.md):
   SphereTree (centres, radii, level(k))
 * worlds: World(**settings), settings_table, World.add_body / step / poses / velocities /
   contacts; StepStats
+* queries: World.query() (a WorldQuery: cast_ray, cast_ray_all, cast_rays, overlap_sphere /
+  aabb / box / body, distance, check_configurations), World.check_configurations, QueryFilter
 * scenes: load_scene("stacks:4x50" or a file), Scene.from_dict, Simulation(scene).step / run /
   summary; read_recording, RecordingWriter
 * the experiment: run_experiment_row, paper_table, paper_statistics, experiment_statistics,

@@ -85,10 +85,19 @@ struct PortableLanes {
   friend Mask operator>(PortableLanes a, PortableLanes b) {
     return compare(a, b, [](float x, float y) { return x > y; });
   }
+  friend Mask operator<=(PortableLanes a, PortableLanes b) {
+    return compare(a, b, [](float x, float y) { return x <= y; });
+  }
   friend Mask operator&(Mask a, Mask b) {
     Mask m;
     for (int i = 0; i < W; ++i) m.on[i] = a.on[i] && b.on[i];
     return m;
+  }
+  friend bool any(Mask m) {
+    for (int i = 0; i < W; ++i) {
+      if (m.on[i]) return true;
+    }
+    return false;
   }
   // a where the mask is on, else b.
   friend PortableLanes select(Mask m, PortableLanes a, PortableLanes b) {
@@ -118,7 +127,9 @@ struct Sse2Lanes {
   friend Sse2Lanes sqrt(Sse2Lanes a) { return {_mm_sqrt_ps(a.v)}; }
   friend Mask operator<(Sse2Lanes a, Sse2Lanes b) { return {_mm_cmplt_ps(a.v, b.v)}; }
   friend Mask operator>(Sse2Lanes a, Sse2Lanes b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+  friend Mask operator<=(Sse2Lanes a, Sse2Lanes b) { return {_mm_cmple_ps(a.v, b.v)}; }
   friend Mask operator&(Mask a, Mask b) { return {_mm_and_ps(a.on, b.on)}; }
+  friend bool any(Mask m) { return _mm_movemask_ps(m.on) != 0; }
   friend Sse2Lanes select(Mask m, Sse2Lanes a, Sse2Lanes b) {
     return {_mm_or_ps(_mm_and_ps(m.on, a.v), _mm_andnot_ps(m.on, b.v))};
   }
@@ -146,7 +157,9 @@ struct Avx2Lanes {
   // Ordered, non-signalling: false with a NaN, as SSE's cmplt and cmpgt.
   friend Mask operator<(Avx2Lanes a, Avx2Lanes b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
   friend Mask operator>(Avx2Lanes a, Avx2Lanes b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
+  friend Mask operator<=(Avx2Lanes a, Avx2Lanes b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
   friend Mask operator&(Mask a, Mask b) { return {_mm256_and_ps(a.on, b.on)}; }
+  friend bool any(Mask m) { return _mm256_movemask_ps(m.on) != 0; }
   friend Avx2Lanes select(Mask m, Avx2Lanes a, Avx2Lanes b) {
     return {_mm256_blendv_ps(b.v, a.v, m.on)};
   }

@@ -1,0 +1,284 @@
+// Plans the test robot's arm around a pile of bunnies with OMPL (RRT-Connect), sphys's batched
+// configuration check serving as OMPL's state-validity checker and motion validator, then checks
+// the path it returns with sphys's own overlap queries at ten times finer steps.
+//
+//   plan_arm [--stacks S] [--per-stack N] [--time SECONDS] [--seed K]
+//
+// Prints the plan as JSON; exit 0 when a path was found and every state along it is free, 1 when
+// not, 2 for bad arguments.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <random>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "robot_arm/bunny_pile.h"
+#include "robot_arm/robot_arm.h"
+#include "sphys/configuration_check.h"
+#include "sphys/error.h"
+#include "sphys/world_query.h"
+
+namespace {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+using sphys::examples::RobotArm;
+
+// Largest joint change between two configurations a motion is checked at: OMPL's motion
+// validators check motions at discrete steps too. unit: rad (m for the fingers)
+constexpr double kMotionStep = 0.02;
+// The returned path is checked again at steps this many times finer.
+constexpr int kFinerChecks = 10;
+
+std::vector<double> values_of(const ob::State* state, std::size_t joints) {
+  const auto* real = state->as<ob::RealVectorStateSpace::StateType>();
+  return {real->values, real->values + joints};
+}
+
+// The configurations from a to b at steps of at most `step` per joint, both ends included.
+std::vector<std::vector<double>> steps_between(const std::vector<double>& a,
+                                               const std::vector<double>& b, double step) {
+  double widest = 0.0;
+  for (std::size_t j = 0; j < a.size(); ++j) widest = std::max(widest, std::abs(b[j] - a[j]));
+  const int count = std::max(1, static_cast<int>(std::ceil(widest / step)));
+  std::vector<std::vector<double>> out;
+  for (int k = 0; k <= count; ++k) {
+    std::vector<double> v(a.size());
+    for (std::size_t j = 0; j < a.size(); ++j) v[j] = a[j] + (b[j] - a[j]) * k / count;
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+// sphys's batched check over configurations of the arm: each posed, all checked at once.
+class ArmChecker {
+ public:
+  ArmChecker(const RobotArm& arm, const sphys::WorldQuery& query)
+      : arm_(arm), checker_(query, arm.sphere_links) {}
+
+  // Per configuration, free or not.
+  [[nodiscard]] std::vector<bool> free(const std::vector<std::vector<double>>& configurations) {
+    spheres_.resize(configurations.size() * arm_.spheres() * 4);
+    results_.resize(configurations.size());
+    for (std::size_t c = 0; c < configurations.size(); ++c) {
+      arm_.posed_spheres(configurations[c],
+                         std::span(spheres_).subspan(c * arm_.spheres() * 4, arm_.spheres() * 4));
+    }
+    checker_.check(spheres_, results_);
+    ++batches_;
+    checked_ += configurations.size();
+    std::vector<bool> out;
+    for (const sphys::ConfigurationResult& r : results_) out.push_back(r.free);
+    return out;
+  }
+  // One configuration: a bool, not the proxy vector<bool>::front() gives, which would dangle
+  // once the vector is gone.
+  [[nodiscard]] bool free_one(const std::vector<double>& configuration) {
+    return free({configuration}).front();
+  }
+  [[nodiscard]] std::size_t batches() const { return batches_; }
+  [[nodiscard]] std::size_t checked() const { return checked_; }
+
+ private:
+  const RobotArm& arm_;
+  sphys::ConfigurationChecker checker_;
+  std::vector<float> spheres_;
+  std::vector<sphys::ConfigurationResult> results_;
+  std::size_t batches_ = 0;
+  std::size_t checked_ = 0;
+};
+
+// OMPL's motion validator: the motion's steps checked in one batch.
+class SphysMotionValidator final : public ob::MotionValidator {
+ public:
+  SphysMotionValidator(const ob::SpaceInformationPtr& si, ArmChecker& checker, std::size_t joints)
+      : ob::MotionValidator(si), checker_(checker), joints_(joints) {}
+
+  bool checkMotion(const ob::State* a, const ob::State* b) const override {
+    const auto steps = steps_between(values_of(a, joints_), values_of(b, joints_), kMotionStep);
+    const std::vector<bool> free = checker_.free(steps);
+    const bool all_free = std::all_of(free.begin(), free.end(), [](bool f) { return f; });
+    if (all_free)
+      ++valid_;
+    else
+      ++invalid_;
+    return all_free;
+  }
+
+  bool checkMotion(const ob::State* a, const ob::State* b,
+                   std::pair<ob::State*, double>& last_valid) const override {
+    const auto steps = steps_between(values_of(a, joints_), values_of(b, joints_), kMotionStep);
+    const std::vector<bool> free = checker_.free(steps);
+    const auto first_bad = std::find(free.begin(), free.end(), false);
+    if (first_bad == free.end()) {
+      ++valid_;
+      return true;
+    }
+    ++invalid_;
+    const auto bad = static_cast<std::size_t>(first_bad - free.begin());
+    const double fraction =
+        bad == 0 ? 0.0 : static_cast<double>(bad - 1) / static_cast<double>(steps.size() - 1);
+    if (last_valid.first != nullptr)
+      si_->getStateSpace()->interpolate(a, b, fraction, last_valid.first);
+    last_valid.second = fraction;
+    return false;
+  }
+
+ private:
+  ArmChecker& checker_;
+  std::size_t joints_;
+};
+
+struct Arguments {
+  int stacks = 3;
+  int per_stack = 4;
+  double time = 20.0;  // unit: s
+  unsigned seed = 1;
+};
+
+Arguments parse(int argc, char** argv) {
+  Arguments out;
+  for (int i = 1; i < argc; ++i) {
+    const std::string name = argv[i];
+    if (i + 1 >= argc) throw sphys::Error(name + ": needs a value");
+    const std::string value = argv[++i];
+    if (name == "--stacks") {
+      out.stacks = std::stoi(value);
+    } else if (name == "--per-stack") {
+      out.per_stack = std::stoi(value);
+    } else if (name == "--time") {
+      out.time = std::stod(value);
+    } else if (name == "--seed") {
+      out.seed = static_cast<unsigned>(std::stoul(value));
+    } else {
+      throw sphys::Error("unknown option " + name);
+    }
+  }
+  return out;
+}
+
+int run(const Arguments& arguments) {
+  const sphys::examples::BunnyPile pile =
+      sphys::examples::settle_bunny_pile(arguments.stacks, arguments.per_stack, 900);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("sphys-plan-arm-" + std::to_string(getpid()));
+  RobotArm arm = sphys::examples::make_test_robot_arm(dir, 60, sphys::Vec3::Zero());
+  std::filesystem::remove_all(dir);
+  const sphys::WorldQuery query(*pile.setup.world);
+  // At the pile's side, on the plane, so that many of its reaches end in a bunny.
+  sphys::examples::place_arm_beside(arm, query, pile.bounds.center(), 0.05f);
+  ArmChecker checker(arm, query);
+  const std::size_t joints = arm.joints.size();
+
+  auto space = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned>(joints));
+  ob::RealVectorBounds bounds(static_cast<unsigned>(joints));
+  for (std::size_t j = 0; j < joints; ++j) {
+    bounds.setLow(static_cast<unsigned>(j), arm.limits[j][0]);
+    bounds.setHigh(static_cast<unsigned>(j), arm.limits[j][1]);
+  }
+  space->setBounds(bounds);
+  og::SimpleSetup setup(space);
+  const ob::SpaceInformationPtr si = setup.getSpaceInformation();
+  setup.setStateValidityChecker(
+      [&](const ob::State* state) { return checker.free_one(values_of(state, joints)); });
+  auto motions = std::make_shared<SphysMotionValidator>(si, checker, joints);
+  si->setMotionValidator(motions);
+
+  // A start and a goal that are free but not joined by a free straight motion: the planner must
+  // go around the bunnies.
+  std::mt19937 rng(arguments.seed);
+  const auto random_free = [&] {
+    for (;;) {
+      std::vector<double> v(joints);
+      for (std::size_t j = 0; j < joints; ++j) {
+        v[j] = std::uniform_real_distribution<double>(arm.limits[j][0], arm.limits[j][1])(rng);
+      }
+      if (checker.free_one(v)) return v;
+    }
+  };
+  std::vector<double> start;
+  std::vector<double> goal;
+  for (int tries = 0;; ++tries) {
+    if (tries == 1000) throw sphys::Error("no start and goal blocked from each other found");
+    start = random_free();
+    goal = random_free();
+    const std::vector<bool> straight = checker.free(steps_between(start, goal, kMotionStep));
+    if (std::find(straight.begin(), straight.end(), false) != straight.end()) break;
+  }
+  ob::ScopedState<> start_state(space);
+  ob::ScopedState<> goal_state(space);
+  for (std::size_t j = 0; j < joints; ++j) {
+    start_state[static_cast<unsigned>(j)] = start[j];
+    goal_state[static_cast<unsigned>(j)] = goal[j];
+  }
+  setup.setStartAndGoalStates(start_state, goal_state);
+  setup.setPlanner(std::make_shared<og::RRTConnect>(si));
+  setup.setup();
+
+  const auto begin = std::chrono::steady_clock::now();
+  const ob::PlannerStatus status = setup.solve(arguments.time);
+  const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
+  std::size_t waypoints = 0;
+  std::size_t finer_states = 0;
+  std::size_t colliding_states = 0;
+  if (solved) setup.simplifySolution();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  if (solved) {
+    const og::PathGeometric& path = setup.getSolutionPath();
+    waypoints = path.getStateCount();
+    // Every state at finer steps, each sphere asked of the world by sphys's overlap query.
+    std::vector<float> spheres(arm.spheres() * 4);
+    for (std::size_t w = 0; w + 1 < waypoints; ++w) {
+      for (const std::vector<double>& v :
+           steps_between(values_of(path.getState(static_cast<unsigned>(w)), joints),
+                         values_of(path.getState(static_cast<unsigned>(w + 1)), joints),
+                         kMotionStep / kFinerChecks)) {
+        arm.posed_spheres(v, spheres);
+        ++finer_states;
+        for (std::size_t i = 0; i < arm.spheres(); ++i) {
+          const sphys::Vec3 centre(spheres[4 * i], spheres[4 * i + 1], spheres[4 * i + 2]);
+          if (!query.overlap_sphere(centre, spheres[4 * i + 3]).empty()) {
+            ++colliding_states;
+            break;
+          }
+        }
+      }
+    }
+  }
+  const bool free_path = solved && colliding_states == 0;
+  std::printf(
+      "{\n  \"bunnies\": %zu,\n  \"robot_spheres\": %zu,\n  \"joints\": %zu,\n"
+      "  \"solved\": %s,\n  \"planning_seconds\": %.3f,\n  \"waypoints\": %zu,\n"
+      "  \"configurations_checked\": %zu,\n  \"check_batches\": %zu,\n"
+      "  \"path_states_checked_by_queries\": %zu,\n  \"path_states_colliding\": %zu\n}\n",
+      pile.poses.size(), arm.spheres(), joints, solved ? "true" : "false", seconds, waypoints,
+      checker.checked(), checker.batches(), finer_states, colliding_states);
+  return free_path ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  try {
+    return run(parse(argc, argv));
+  } catch (const sphys::Error& error) {
+    std::fprintf(stderr, "plan_arm: error: %s\n", error.what());
+    return 2;
+  } catch (const std::invalid_argument& error) {
+    std::fprintf(stderr, "plan_arm: error: a number was expected (%s)\n", error.what());
+    return 2;
+  }
+}

@@ -1,0 +1,87 @@
+#pragma once
+
+// Batched checks for motion planners: a robot's spheres, each on a link, posed at many
+// configurations and checked against a world's leaf spheres (and, if asked, against each other).
+// What a planner's state-validity checker and motion validator call.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sphys/parallel.h"
+#include "sphys/sphere_tree.h"
+#include "sphys/world_query.h"
+
+namespace sphys {
+
+struct ConfigurationCheckSettings {
+  // Which of the world's bodies count (e.g. the robot's own base, if it is a body, left out).
+  QueryFilter filter;
+  // Spheres of different links are checked against each other too, but for the pairs of links
+  // listed in `allowed_link_pairs` (what SRDF's disabled collisions list: neighbours, links that
+  // can never meet). Spheres of one link never are.
+  bool self_collision = false;
+  std::vector<std::array<std::int32_t, 2>> allowed_link_pairs;
+};
+
+// One configuration's answer.
+struct ConfigurationResult {
+  bool free = true;
+  // The first colliding sphere: the lowest-numbered sphere that touches a body of the world,
+  // else (self-collision) the first sphere of the first pair of spheres that touch, pairs in
+  // order of their first sphere then their second. -1 when free.
+  std::int32_t sphere = -1;
+  std::int32_t body = -1;          // the slot of a body it touches (World::id_of), else -1
+  std::int32_t other_sphere = -1;  // self-collision: the sphere of another link it touches
+};
+
+// Checks configurations of a set of spheres against the bodies a WorldQuery read. Spheres touch
+// when |c_a - c_b| <= r_a + r_b (touching counts as a collision, so "free" is strict).
+class ConfigurationChecker {
+ public:
+  // `sphere_links`: each sphere's link, 0 .. links - 1. Throws sphys::Error naming
+  // `sphere_links` for a negative link or `settings.allowed_link_pairs` for a pair naming a link
+  // no sphere has, and the filter's unknown bodies.
+  ConfigurationChecker(const WorldQuery& query, std::vector<std::int32_t> sphere_links,
+                       ConfigurationCheckSettings settings = {});
+
+  [[nodiscard]] std::size_t spheres() const { return links_.size(); }
+  // Links: one more than the largest in sphere_links.
+  [[nodiscard]] std::size_t links() const { return link_count_; }
+
+  // `spheres`: N configurations of spheres() spheres, each (x, y, z, radius) in the world frame
+  // (N × S × 4 floats, unit: m); `results`: N entries. Configurations run on `parallel`'s
+  // threads when given. Throws sphys::Error naming `spheres` or `results` for sizes that do not
+  // match; non-finite spheres count as colliding (never "free" by accident).
+  void check(std::span<const float> spheres, std::span<ConfigurationResult> results,
+             const Parallel* parallel = nullptr) const;
+
+  // The same with the spheres given in their links' frames (`link_spheres`, one per sphere, in
+  // sphere order: what `sphys spherize` writes) and N × links() link poses in the world frame.
+  void check_link_poses(std::span<const Transform> link_poses, std::span<const Sphere> link_spheres,
+                        std::span<ConfigurationResult> results,
+                        const Parallel* parallel = nullptr) const;
+
+ private:
+  // What check_one works in, one per run of configurations (configuration_check.cpp).
+  struct Scratch;
+  // One configuration's S spheres, x y z r each.
+  [[nodiscard]] ConfigurationResult check_one(const float* spheres, Scratch& scratch) const;
+  // The slot of a body whose leaf spheres the sphere touches, else -1: over every group the
+  // hierarchy leads to, or over `candidates` only (groups known to hold every group near it).
+  [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius) const;
+  [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius,
+                                          std::span<const std::uint32_t> candidates) const;
+  // Runs of configurations, each with its scratch, on the threads.
+  template <class Check>
+  void run_configurations(std::size_t count, const Parallel* parallel, const Check& check) const;
+
+  const WorldQuery* query_;
+  std::vector<std::int32_t> links_;
+  std::size_t link_count_ = 0;
+  std::vector<std::uint8_t> group_seen_;  // per group of the snapshot: the filter sees its body
+  std::vector<std::array<std::int32_t, 2>> self_pairs_;  // sphere pairs checked for self-collision
+};
+
+}  // namespace sphys

@@ -1,0 +1,312 @@
+// Batched configuration checks. Per configuration, each link's spheres are bounded by one sphere,
+// which walks the snapshot's hierarchy once for the groups near the link; then sphere after
+// sphere is tested against its link's groups only (kLaneWidth leaves at a time), stopping at the
+// first sphere that touches; then, if asked, the pairs of spheres of links that may collide.
+// Configurations run in runs on the threads.
+
+#include "sphys/configuration_check.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "query/body_filter.h"
+#include "query/group_tests.h"
+#include "query/snapshot.h"
+#include "sphys/error.h"
+
+namespace sphys {
+namespace {
+
+using query_detail::BvhNode;
+using query_detail::LeafGroup;
+using query_detail::Snapshot;
+
+// Configurations per task on the threads: one is too little work to hand out. unit:
+// configurations
+constexpr std::size_t kConfigurationsPerRun = 64;
+
+constexpr std::size_t kFloatsPerSphere = 4;  // x, y, z, radius
+
+// The squared distance from a point to a box. unit: m²
+float squared_distance(const Aabb& box, float x, float y, float z) {
+  const float dx = std::max({box.min.x() - x, x - box.max.x(), 0.0f});
+  const float dy = std::max({box.min.y() - y, y - box.max.y(), 0.0f});
+  const float dz = std::max({box.min.z() - z, z - box.max.z(), 0.0f});
+  return dx * dx + dy * dy + dz * dz;
+}
+
+void check_results(std::span<const ConfigurationResult> results, std::size_t configurations) {
+  if (results.size() != configurations) {
+    throw Error("results: " + std::to_string(results.size()) + " entries for " +
+                std::to_string(configurations) + " configurations");
+  }
+}
+
+}  // namespace
+
+ConfigurationChecker::ConfigurationChecker(const WorldQuery& query,
+                                           std::vector<std::int32_t> sphere_links,
+                                           ConfigurationCheckSettings settings)
+    : query_(&query), links_(std::move(sphere_links)) {
+  if (links_.empty()) throw Error("sphere_links: no spheres");
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    if (links_[i] < 0) {
+      throw Error("sphere_links[" + std::to_string(i) + "]: negative link " +
+                  std::to_string(links_[i]));
+    }
+    link_count_ = std::max(link_count_, static_cast<std::size_t>(links_[i]) + 1);
+  }
+  const Snapshot& snapshot = query.snapshot();
+  const query_detail::BodyFilter filter(query.world(), snapshot, settings.filter);
+  group_seen_.reserve(snapshot.groups.size());
+  for (const LeafGroup& group : snapshot.groups) {
+    group_seen_.push_back(filter.sees(group.body) ? 1 : 0);
+  }
+  if (!settings.self_collision) return;
+  // Allowed link pairs as a table, either order.
+  std::vector<std::uint8_t> allowed(link_count_ * link_count_, 0);
+  for (const auto& [a, b] : settings.allowed_link_pairs) {
+    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= link_count_ ||
+        static_cast<std::size_t>(b) >= link_count_) {
+      throw Error("allowed_link_pairs: (" + std::to_string(a) + ", " + std::to_string(b) +
+                  ") names a link no sphere has (links 0.." + std::to_string(link_count_ - 1) +
+                  ")");
+    }
+    allowed[a * link_count_ + b] = 1;
+    allowed[b * link_count_ + a] = 1;
+  }
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    for (std::size_t j = i + 1; j < links_.size(); ++j) {
+      if (links_[i] != links_[j] && allowed[links_[i] * link_count_ + links_[j]] == 0) {
+        self_pairs_.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+      }
+    }
+  }
+}
+
+namespace {
+
+// Calls visit(group index) for every group whose box, and every box above it in the hierarchy,
+// the sphere reaches; visit returns false to stop.
+template <class Visit>
+void walk_near(const Snapshot& snapshot, float x, float y, float z, float radius,
+               const Visit& visit) {
+  if (snapshot.bvh.empty()) return;
+  const float radius_squared = radius * radius;
+  std::array<std::uint32_t, query_detail::kMaxBvhDepth> stack;
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const BvhNode& node = snapshot.bvh[stack[--top]];
+    if (squared_distance(node.bounds, x, y, z) > radius_squared) continue;
+    if (node.count == 0) {
+      stack[top++] = node.first + 1;
+      stack[top++] = node.first;
+      continue;
+    }
+    for (std::uint32_t g = node.first; g < node.first + node.count; ++g) {
+      if (squared_distance(snapshot.groups[g].bounds, x, y, z) <= radius_squared && !visit(g)) {
+        return;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+// Per link of one configuration: the sphere bounding its spheres, and the groups near it,
+// collected when its first sphere is checked.
+struct ConfigurationChecker::Scratch {
+  // Groups kept per link; a link near more is checked sphere by sphere through the hierarchy.
+  static constexpr std::uint32_t kMostCandidates = 32;
+  static constexpr std::int32_t kNotCollected = -1;
+  static constexpr std::int32_t kTooMany = -2;
+
+  explicit Scratch(std::size_t links)
+      : centre(links),
+        radius(links),
+        spheres(links),
+        candidates(links * kMostCandidates),
+        candidate_count(links) {}
+
+  // Each link's bounding sphere: about the mean of its spheres' centres, reaching the farthest;
+  // no link's groups collected yet.
+  void bound_links(const float* posed, std::span<const std::int32_t> links) {
+    std::ranges::fill(centre, Vec3::Zero());
+    std::ranges::fill(radius, 0.0f);
+    std::ranges::fill(spheres, 0u);
+    std::ranges::fill(candidate_count, kNotCollected);
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = posed + i * kFloatsPerSphere;
+      centre[links[i]] += Vec3(s[0], s[1], s[2]);
+      ++spheres[links[i]];
+    }
+    for (std::size_t l = 0; l < centre.size(); ++l) {
+      if (spheres[l] > 0) centre[l] /= static_cast<float>(spheres[l]);
+    }
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = posed + i * kFloatsPerSphere;
+      const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
+      // Rounding of the mean and the norm must not leave a sphere's surface outside: a relative
+      // margin, as the narrow phase's bounds have.
+      radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
+    }
+  }
+
+  std::vector<Vec3> centre;
+  std::vector<float> radius;
+  std::vector<std::uint32_t> spheres;
+  std::vector<std::uint32_t> candidates;
+  std::vector<std::int32_t> candidate_count;
+};
+
+std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius) const {
+  const Snapshot& snapshot = query_->snapshot();
+  const Vec3 centre(x, y, z);
+  std::int32_t body = -1;
+  walk_near(snapshot, x, y, z, radius, [&](std::uint32_t g) {
+    if (group_seen_[g] != 0 &&
+        query_detail::group_touches_sphere(snapshot, snapshot.groups[g], centre, radius)) {
+      body = static_cast<std::int32_t>(snapshot.groups[g].body);
+      return false;
+    }
+    return true;
+  });
+  return body;
+}
+
+std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius,
+                                                std::span<const std::uint32_t> candidates) const {
+  const Snapshot& snapshot = query_->snapshot();
+  const Vec3 centre(x, y, z);
+  const float radius_squared = radius * radius;
+  for (const std::uint32_t g : candidates) {
+    const LeafGroup& group = snapshot.groups[g];
+    if (squared_distance(group.bounds, x, y, z) <= radius_squared &&
+        query_detail::group_touches_sphere(snapshot, group, centre, radius)) {
+      return static_cast<std::int32_t>(group.body);
+    }
+  }
+  return -1;
+}
+
+ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratch& scratch) const {
+  ConfigurationResult result;
+  const auto collide = [&](std::size_t sphere, std::int32_t body, std::int32_t other) {
+    result.free = false;
+    result.sphere = static_cast<std::int32_t>(sphere);
+    result.body = body;
+    result.other_sphere = other;
+    return result;
+  };
+  scratch.bound_links(spheres, links_);
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    const float* s = spheres + i * kFloatsPerSphere;
+    // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
+    if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
+    const auto link = static_cast<std::size_t>(links_[i]);
+    std::int32_t& count = scratch.candidate_count[link];
+    std::uint32_t* candidates = scratch.candidates.data() + link * Scratch::kMostCandidates;
+    if (count == Scratch::kNotCollected) {
+      count = 0;
+      walk_near(query_->snapshot(), scratch.centre[link].x(), scratch.centre[link].y(),
+                scratch.centre[link].z(), scratch.radius[link], [&](std::uint32_t g) {
+                  if (group_seen_[g] == 0) return true;
+                  if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
+                    count = Scratch::kTooMany;
+                    return false;
+                  }
+                  candidates[count++] = g;
+                  return true;
+                });
+    }
+    const std::int32_t body =
+        count == Scratch::kTooMany
+            ? touched_body(s[0], s[1], s[2], s[3])
+            : touched_body(s[0], s[1], s[2], s[3],
+                           std::span(candidates, static_cast<std::size_t>(count)));
+    if (body >= 0) return collide(i, body, -1);
+  }
+  for (const auto& [i, j] : self_pairs_) {
+    const float* a = spheres + i * kFloatsPerSphere;
+    const float* b = spheres + j * kFloatsPerSphere;
+    const float dx = a[0] - b[0];
+    const float dy = a[1] - b[1];
+    const float dz = a[2] - b[2];
+    const float reach = a[3] + b[3];
+    if (dx * dx + dy * dy + dz * dz <= reach * reach) return collide(i, -1, j);
+  }
+  return result;
+}
+
+template <class Check>
+void ConfigurationChecker::run_configurations(std::size_t count, const Parallel* parallel,
+                                              const Check& check) const {
+  for_each_on(parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun,
+              [&](std::size_t run) {
+                Scratch scratch(link_count_);
+                const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
+                for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) check(c, scratch);
+              });
+}
+
+void ConfigurationChecker::check(std::span<const float> spheres,
+                                 std::span<ConfigurationResult> results,
+                                 const Parallel* parallel) const {
+  const std::size_t per_configuration = links_.size() * kFloatsPerSphere;
+  if (spheres.size() % per_configuration != 0) {
+    throw Error("spheres: " + std::to_string(spheres.size()) +
+                " floats is no whole number of configurations of " + std::to_string(links_.size()) +
+                " spheres × 4 (x, y, z, radius)");
+  }
+  const std::size_t count = spheres.size() / per_configuration;
+  check_results(results, count);
+  run_configurations(count, parallel, [&](std::size_t c, Scratch& scratch) {
+    results[c] = check_one(spheres.data() + c * per_configuration, scratch);
+  });
+}
+
+void ConfigurationChecker::check_link_poses(std::span<const Transform> link_poses,
+                                            std::span<const Sphere> link_spheres,
+                                            std::span<ConfigurationResult> results,
+                                            const Parallel* parallel) const {
+  if (link_spheres.size() != links_.size()) {
+    throw Error("link_spheres: " + std::to_string(link_spheres.size()) + " spheres for " +
+                std::to_string(links_.size()) + " sphere links");
+  }
+  if (link_poses.size() % link_count_ != 0) {
+    throw Error("link_poses: " + std::to_string(link_poses.size()) +
+                " poses is no whole number of configurations of " + std::to_string(link_count_) +
+                " links");
+  }
+  const std::size_t count = link_poses.size() / link_count_;
+  check_results(results, count);
+  // Each run poses its configurations in its own buffer.
+  for_each_on(
+      parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun, [&](std::size_t run) {
+        Scratch scratch(link_count_);
+        std::vector<Mat3> rotations(link_count_);
+        std::vector<float> posed_run(links_.size() * kFloatsPerSphere);
+        const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
+        for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) {
+          const Transform* poses = link_poses.data() + c * link_count_;
+          for (std::size_t l = 0; l < link_count_; ++l) {
+            rotations[l] = poses[l].rotation.toRotationMatrix();
+          }
+          for (std::size_t i = 0; i < links_.size(); ++i) {
+            const auto link = static_cast<std::size_t>(links_[i]);
+            const Vec3 centre = rotations[link] * link_spheres[i].center + poses[link].translation;
+            float* out = posed_run.data() + i * kFloatsPerSphere;
+            out[0] = centre.x();
+            out[1] = centre.y();
+            out[2] = centre.z();
+            out[3] = link_spheres[i].radius;
+          }
+          results[c] = check_one(posed_run.data(), scratch);
+        }
+      });
+}
+
+}  // namespace sphys

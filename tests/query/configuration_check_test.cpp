@@ -1,0 +1,239 @@
+// Batched configuration checks against a plain loop over every sphere and leaf sphere.
+
+#include "sphys/configuration_check.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sphys/error.h"
+#include "support/query_worlds.h"
+
+namespace sphys::test {
+namespace {
+
+bool touch(const float* a, const Sphere& b) {
+  const double d = (Eigen::Vector3d(a[0], a[1], a[2]) - b.center.cast<double>()).norm();
+  return d <= double(a[3]) + b.radius;
+}
+
+bool touch(const float* a, const float* b) {
+  const double d = (Eigen::Vector3d(a[0], a[1], a[2]) - Eigen::Vector3d(b[0], b[1], b[2])).norm();
+  return d <= double(a[3]) + b[3];
+}
+
+// The definition of ConfigurationResult, as loops.
+ConfigurationResult oracle_check(const std::vector<WorldLeaf>& leaves, const float* spheres,
+                                 const std::vector<std::int32_t>& links,
+                                 const std::vector<std::array<std::int32_t, 2>>& allowed,
+                                 bool self_collision) {
+  ConfigurationResult result;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    for (const WorldLeaf& leaf : leaves) {
+      if (touch(spheres + 4 * i, leaf.sphere)) {
+        return {false, static_cast<std::int32_t>(i), static_cast<std::int32_t>(leaf.body.index),
+                -1};
+      }
+    }
+  }
+  if (!self_collision) return result;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    for (std::size_t j = i + 1; j < links.size(); ++j) {
+      const bool is_allowed = std::any_of(allowed.begin(), allowed.end(), [&](const auto& p) {
+        return (p[0] == links[i] && p[1] == links[j]) || (p[1] == links[i] && p[0] == links[j]);
+      });
+      if (links[i] == links[j] || is_allowed) continue;
+      if (touch(spheres + 4 * i, spheres + 4 * j)) {
+        return {false, static_cast<std::int32_t>(i), -1, static_cast<std::int32_t>(j)};
+      }
+    }
+  }
+  return result;
+}
+
+// A chain of `links` links of a few spheres each, placed at random in the world per
+// configuration: some free, some not.
+std::vector<float> random_configurations(QueryRng& rng, std::size_t count,
+                                         const std::vector<std::int32_t>& links, float half_side) {
+  std::vector<float> out;
+  for (std::size_t c = 0; c < count; ++c) {
+    const Vec3 base = uniform_point(rng, half_side);
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const Vec3 centre =
+          base + uniform_point(rng, 0.4f) + Vec3(0, 0.1f * static_cast<float>(links[i]), 0);
+      out.insert(out.end(), {centre.x(), centre.y(), centre.z(), uniform_in(rng, 0.01f, 0.08f)});
+    }
+  }
+  return out;
+}
+
+TEST(ConfigurationCheck, AnswersMatchEverySpherePairOnAnyThreads) {
+  QueryRng rng(41);
+  const World world = random_query_world(rng, 40, 2.5f);
+  const WorldQuery query(world);
+  const std::vector<std::int32_t> links{0, 0, 1, 1, 1, 2, 3, 3, 4, 4, 4, 4};
+  const std::vector<std::array<std::int32_t, 2>> allowed{{0, 1}, {1, 2}, {3, 2}};
+  const std::vector<WorldLeaf> leaves = oracle_leaves(world);
+  constexpr std::size_t kConfigurations = 3000;
+  const std::vector<float> spheres = random_configurations(rng, kConfigurations, links, 3.0f);
+  const Parallel two(2);
+  for (const bool self_collision : {false, true}) {
+    ConfigurationCheckSettings settings;
+    settings.self_collision = self_collision;
+    settings.allowed_link_pairs = allowed;
+    const ConfigurationChecker checker(query, links, settings);
+    EXPECT_EQ(checker.links(), 5u);
+    for (const Parallel* parallel : {static_cast<const Parallel*>(nullptr), &two}) {
+      std::vector<ConfigurationResult> results(kConfigurations);
+      checker.check(spheres, results, parallel);
+      std::size_t free = 0;
+      std::size_t self_hits = 0;
+      for (std::size_t c = 0; c < kConfigurations; ++c) {
+        const ConfigurationResult expected = oracle_check(
+            leaves, spheres.data() + c * 4 * links.size(), links, allowed, self_collision);
+        ASSERT_EQ(results[c].free, expected.free) << "configuration " << c;
+        EXPECT_EQ(results[c].sphere, expected.sphere);
+        EXPECT_EQ(results[c].other_sphere, expected.other_sphere);
+        free += results[c].free ? 1 : 0;
+        self_hits += results[c].other_sphere >= 0 ? 1 : 0;
+        // The body named is one the sphere touches (any of them may be named).
+        if (results[c].body >= 0) {
+          const float* sphere = spheres.data() + c * 4 * links.size() + 4 * results[c].sphere;
+          EXPECT_TRUE(std::any_of(leaves.begin(), leaves.end(), [&](const WorldLeaf& leaf) {
+            return leaf.body.index == std::uint32_t(results[c].body) && touch(sphere, leaf.sphere);
+          }));
+        }
+      }
+      // Both answers occur often enough to be tested.
+      EXPECT_GT(free, kConfigurations / 10);
+      EXPECT_LT(free, kConfigurations * 9 / 10);
+      if (self_collision) {
+        EXPECT_GT(self_hits, 10u);
+      }
+    }
+  }
+}
+
+TEST(ConfigurationCheck, ALinkSpanningTheWorldIsCheckedSphereBySphere) {
+  // Two spheres of one link at opposite corners: the link's bound holds every group of the
+  // world, more than a link keeps as candidates, so its spheres walk the hierarchy themselves.
+  QueryRng rng(59);
+  const World world = random_query_world(rng, 60, 2.0f);
+  const WorldQuery query(world);
+  const std::vector<WorldLeaf> leaves = oracle_leaves(world);
+  const std::vector<std::int32_t> links{0, 0, 0};
+  const ConfigurationChecker checker(query, links);
+  constexpr std::size_t kConfigurations = 500;
+  std::vector<float> spheres;
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    const Vec3 middle = uniform_point(rng, 2.0f);
+    for (const Vec3& centre : {Vec3(-3, -3, -3), middle, Vec3(3, 3, 3)}) {
+      spheres.insert(spheres.end(), {centre.x(), centre.y(), centre.z(), 0.3f});
+    }
+  }
+  std::vector<ConfigurationResult> results(kConfigurations);
+  checker.check(spheres, results);
+  std::size_t free = 0;
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    const ConfigurationResult expected =
+        oracle_check(leaves, spheres.data() + c * 12, links, {}, false);
+    ASSERT_EQ(results[c].free, expected.free) << "configuration " << c;
+    EXPECT_EQ(results[c].sphere, expected.sphere);
+    free += results[c].free ? 1 : 0;
+  }
+  EXPECT_GT(free, kConfigurations / 10);
+  EXPECT_LT(free, kConfigurations * 9 / 10);
+}
+
+TEST(ConfigurationCheck, LinkPosesGiveTheSameAnswersAsPosedSpheres) {
+  QueryRng rng(43);
+  const World world = random_query_world(rng, 30, 2.0f);
+  const WorldQuery query(world);
+  const std::vector<std::int32_t> links{0, 0, 1, 2, 2, 2};
+  std::vector<Sphere> local;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    local.push_back({uniform_point(rng, 0.3f), uniform_in(rng, 0.02f, 0.1f)});
+  }
+  constexpr std::size_t kConfigurations = 500;
+  std::vector<Transform> poses;
+  std::vector<float> posed;
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    for (int l = 0; l < 3; ++l) {
+      Transform pose;
+      pose.rotation = uniform_rotation(rng);
+      pose.translation = uniform_point(rng, 2.5f);
+      poses.push_back(pose);
+    }
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const Transform& pose = poses[c * 3 + links[i]];
+      const Vec3 centre = pose.rotation.toRotationMatrix() * local[i].center + pose.translation;
+      posed.insert(posed.end(), {centre.x(), centre.y(), centre.z(), local[i].radius});
+    }
+  }
+  ConfigurationCheckSettings settings;
+  settings.self_collision = true;
+  const ConfigurationChecker checker(query, links, settings);
+  std::vector<ConfigurationResult> from_poses(kConfigurations);
+  std::vector<ConfigurationResult> from_spheres(kConfigurations);
+  checker.check_link_poses(poses, local, from_poses);
+  checker.check(posed, from_spheres);
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    EXPECT_EQ(from_poses[c].free, from_spheres[c].free);
+    EXPECT_EQ(from_poses[c].sphere, from_spheres[c].sphere);
+  }
+}
+
+TEST(ConfigurationCheck, TheFilterLeavesBodiesOutAndNaNSpheresNeverPassAsFree) {
+  QueryRng rng(47);
+  const World world = random_query_world(rng, 10, 1.0f);
+  const WorldQuery query(world);
+  // One sphere over everything: it touches every body.
+  const std::vector<float> everywhere{0, 0, 0, 10};
+  ConfigurationCheckSettings none;
+  none.filter.mask = 0;
+  std::vector<ConfigurationResult> result(1);
+  ConfigurationChecker(query, {0}, none).check(everywhere, result);
+  EXPECT_TRUE(result[0].free);
+  ConfigurationChecker(query, {0}).check(everywhere, result);
+  EXPECT_FALSE(result[0].free);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> far_and_nan{100, 100, 100, 0.1f, nan, 100, 100, 0.1f};
+  ConfigurationChecker(query, {0, 1}).check(far_and_nan, result);
+  EXPECT_FALSE(result[0].free);
+  EXPECT_EQ(result[0].sphere, 1);
+}
+
+TEST(ConfigurationCheck, BadShapesAreErrorsNamingTheArgument) {
+  QueryRng rng(53);
+  const World world = random_query_world(rng, 3, 1.0f);
+  const WorldQuery query(world);
+  using testing::HasSubstr;
+  EXPECT_THAT(error_message([&] { ConfigurationChecker(query, {}); }), HasSubstr("sphere_links"));
+  EXPECT_THAT(error_message([&] {
+                ConfigurationChecker(query, {0, -1});
+              }),
+              HasSubstr("sphere_links[1]"));
+  ConfigurationCheckSettings bad_pair;
+  bad_pair.self_collision = true;
+  bad_pair.allowed_link_pairs = {{0, 5}};
+  EXPECT_THAT(error_message([&] {
+                ConfigurationChecker(query, {0, 1}, bad_pair);
+              }),
+              HasSubstr("allowed_link_pairs"));
+  const ConfigurationChecker checker(query, {0, 1});
+  std::vector<ConfigurationResult> results(2);
+  EXPECT_THAT(error_message([&] { checker.check(std::vector<float>(7), results); }),
+              HasSubstr("spheres: 7 floats"));
+  EXPECT_THAT(error_message([&] { checker.check(std::vector<float>(8), results); }),
+              HasSubstr("results: 2 entries for 1"));
+  EXPECT_THAT(error_message([&] {
+                checker.check_link_poses(std::vector<Transform>(3), std::vector<Sphere>(2),
+                                         results);
+              }),
+              HasSubstr("link_poses"));
+}
+
+}  // namespace
+}  // namespace sphys::test
