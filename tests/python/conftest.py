@@ -11,6 +11,7 @@ import os
 import pathlib
 import subprocess
 import sys
+import threading
 
 import pytest
 
@@ -75,6 +76,28 @@ def assert_isolated(code, timeout=120):
         f"the snippet exited with {done.returncode}\n--- stdout\n{done.stdout}\n--- stderr\n"
         f"{done.stderr}")
     return done
+
+
+def run_side_by_side(work):
+    """Runs work(0) and work(1) on two threads at once. With a switch interval of 1000 s a thread
+    that holds the GIL keeps it until it blocks or releases it, so the two calls can overlap in
+    time only where the library released the GIL."""
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1000.0)
+    try:
+        threads = [threading.Thread(target=work, args=(k,)) for k in range(2)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+    finally:
+        sys.setswitchinterval(old)
+
+
+@pytest.fixture
+def side_by_side():
+    """run_side_by_side, for tests."""
+    return run_side_by_side
 
 
 @pytest.fixture

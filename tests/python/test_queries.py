@@ -2,7 +2,6 @@
 numpy loops over every leaf sphere, bad input as sphys.Error naming the argument, and the batched
 check running with the GIL released."""
 
-import sys
 import threading
 import time
 
@@ -163,7 +162,7 @@ def test_check_configurations_matches_loops_on_threads(scene):
     assert allowed["free"][0]
 
 
-def test_check_configurations_releases_the_gil(scene):
+def test_check_configurations_releases_the_gil(scene, side_by_side):
     # With a switch interval of 1000 s a thread that holds the GIL keeps it until it releases
     # it, so were the GIL held during a check, two threads' checks could never overlap in time.
     world, _ = scene
@@ -180,16 +179,7 @@ def test_check_configurations_releases_the_gil(scene):
             world.check_configurations(spheres, [0, 0, 1, 1])
             intervals[k].append((start, time.perf_counter()))
 
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1000)
-    try:
-        threads = [threading.Thread(target=work, args=(k,)) for k in range(2)]
-        for thread in threads:
-            thread.start()
-        for thread in threads:
-            thread.join()
-    finally:
-        sys.setswitchinterval(interval)
+    side_by_side(work)
     overlap = any(a0 < b1 and b0 < a1 for a0, a1 in intervals[0] for b0, b1 in intervals[1])
     assert overlap
 

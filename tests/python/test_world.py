@@ -3,7 +3,6 @@ Newton's law of restitution, impulses, the contact geometry of eq. 1-3), setting
 errors, and stepping with the GIL released."""
 
 import math
-import sys
 import textwrap
 import threading
 import time
@@ -686,7 +685,7 @@ def _stack_simulations(count):
 
 
 @pytest.mark.parametrize("stepper", ["Simulation.step", "World.step"])
-def test_two_threads_step_concurrently_and_deterministically(stepper):
+def test_two_threads_step_concurrently_and_deterministically(stepper, side_by_side):
     # Two 200-bunny worlds, each stepped by its own thread. With a switch interval of 1000 s a
     # thread that holds the GIL keeps it until it blocks or releases it, so were the GIL held
     # during a step, the threads' step calls could never overlap in time. They must, and each
@@ -710,17 +709,7 @@ def test_two_threads_step_concurrently_and_deterministically(stepper):
         except BaseException as error:  # reported by the main thread
             errors.append(error)
 
-    old = sys.getswitchinterval()
-    sys.setswitchinterval(1000.0)
-    try:
-        threads = [threading.Thread(target=work, args=(k, sim)) for k, sim in
-                   enumerate((first, second))]
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
-    finally:
-        sys.setswitchinterval(old)
+    side_by_side(lambda k: work(k, (first, second)[k]))
     assert not errors, errors
     assert len(intervals[0]) == len(intervals[1]) == frames
     overlapping = [(a, b) for a in intervals[0] for b in intervals[1]
