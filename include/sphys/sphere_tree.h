@@ -57,6 +57,11 @@ class SphereTree {
   [[nodiscard]] float subtree_radius(std::uint32_t node) const { return subtree_radius_[node]; }
   [[nodiscard]] int level(std::uint32_t node) const;
 
+  // The deepest level a descent uses when it stops after `tree_depth` levels (0, or more than
+  // the tree has: every level): its nodes act as leaves.
+  [[nodiscard]] int last_level(int tree_depth) const {
+    return tree_depth <= 0 || tree_depth > depth() ? depth() - 1 : tree_depth - 1;
+  }
   // Nodes of level k (0 = root) as the index range [begin, end).
   [[nodiscard]] std::uint32_t level_begin(int level) const { return level_begin_[level]; }
   [[nodiscard]] std::uint32_t level_end(int level) const { return level_begin_[level + 1]; }

@@ -14,11 +14,6 @@
 namespace sphys {
 namespace {
 
-// The last level used of a tree: its nodes are the leaves.
-int last_level(const SphereTree& tree, int tree_depth) {
-  return (tree_depth <= 0 || tree_depth > tree.depth()) ? tree.depth() - 1 : tree_depth - 1;
-}
-
 // Body b's pose in body a's frame.
 Transform relative_pose(const Transform& a, const Transform& b) {
   const Quat inverse = a.rotation.conjugate();
@@ -166,7 +161,7 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_dow
                                             NarrowChunk& chunk) const {
   const SphereTree& tree = *bodies_[index].tree;
   const Transform& pose = pose_of(index);
-  const std::uint32_t leaves_begin = tree.level_begin(last_level(tree, settings_.tree_depth));
+  const std::uint32_t leaves_begin = tree.level_begin(tree.last_level(settings_.tree_depth));
   std::vector<std::uint32_t>& stack = chunk.plane_stack;
   stack.assign(1, 0);
   while (!stack.empty()) {

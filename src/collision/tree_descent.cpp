@@ -20,8 +20,7 @@ constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 struct PosedTree {
   PosedTree(const SphereTree& t, const Transform& pose, int depth_used)
       : tree(t), rotation(pose.rotation.toRotationMatrix()), translation(pose.translation) {
-    const int levels = depth_used <= 0 ? t.depth() : std::min(depth_used, t.depth());
-    leaf_from = t.level_begin(levels - 1);
+    leaf_from = t.level_begin(t.last_level(depth_used));
   }
 
   // The nodes of the last used level act as leaves even when they have children.

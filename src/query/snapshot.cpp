@@ -45,8 +45,8 @@ void build_node(std::vector<BvhNode>& bvh, const std::vector<LeafGroup>& groups,
 }  // namespace
 
 LeafRange leaf_range(const SphereTree& tree, int depth) {
-  const int levels = depth <= 0 ? tree.depth() : std::min(depth, tree.depth());
-  return {tree.level_begin(levels - 1), tree.level_end(levels - 1)};
+  const int last = tree.last_level(depth);
+  return {tree.level_begin(last), tree.level_end(last)};
 }
 
 void Snapshot::read(const World& world) {

@@ -33,8 +33,8 @@ void SleepTracker::grow_slots(std::uint32_t slots) {
   }
 }
 
-void SleepTracker::keep_still_time(std::uint32_t body, const SleepSettings& settings,
-                                   std::vector<std::uint32_t>& woken) {
+void SleepTracker::note_woken(std::uint32_t body, const SleepSettings& settings,
+                              std::vector<std::uint32_t>& woken) {
   still_time_[body] = std::min(still_time_[body], kWokenStillShare * settings.time);
   speed_[body] = 0.0f;  // it slept at rest
   woken.push_back(body);
@@ -43,7 +43,7 @@ void SleepTracker::keep_still_time(std::uint32_t body, const SleepSettings& sett
 void SleepTracker::wake(std::uint32_t body, const SleepSettings& settings,
                         std::vector<std::uint32_t>& woken) {
   if (!store_->asleep(body)) return;
-  keep_still_time(body, settings, woken);
+  note_woken(body, settings, woken);
   store_->set_asleep(body, false);
 }
 
@@ -104,8 +104,8 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
     if (contact.body_a == kGroundPlaneBody) continue;
     const std::uint32_t a = contact.body_a;
     const std::uint32_t b = contact.body_b;
-    if (wakes(a, b)) keep_still_time(a, settings, woken);
-    if (wakes(b, a)) keep_still_time(b, settings, woken);
+    if (wakes(a, b)) note_woken(a, settings, woken);
+    if (wakes(b, a)) note_woken(b, settings, woken);
   }
   // A body touching several moving ones was listed once per contact.
   const auto listed = woken.begin() + static_cast<std::ptrdiff_t>(first);

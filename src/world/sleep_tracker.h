@@ -60,10 +60,10 @@ class SleepTracker final : public SlotArrays {
   // Union-find over body slots: path halving, the smaller slot the root of a set.
   [[nodiscard]] std::uint32_t island(std::uint32_t body);
   void join(std::uint32_t a, std::uint32_t b);
-  // Keeps a sleeping body's still time (see wake()) and counts it as measured at rest, appending
-  // it to `woken`; the caller wakes it in the store.
-  void keep_still_time(std::uint32_t body, const SleepSettings& settings,
-                       std::vector<std::uint32_t>& woken);
+  // A sleeping body about to wake: keeps its still time (see wake()), counts it as measured at
+  // rest and appends it to `woken`; the caller wakes it in the store.
+  void note_woken(std::uint32_t body, const SleepSettings& settings,
+                  std::vector<std::uint32_t>& woken);
   // An awake dynamic body not still for settings.time yet.
   [[nodiscard]] bool restless(std::uint32_t body, const SleepSettings& settings) const {
     return store_->moving()[body] != 0 && still_time_[body] < settings.time;
