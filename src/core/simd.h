@@ -41,6 +41,12 @@ struct PortableLanes {
     r.v.fill(x);
     return r;
   }
+  // Lane i takes base[index[i] * stride].
+  static PortableLanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {
+    PortableLanes r;
+    for (int i = 0; i < W; ++i) r.v[i] = base[index[i] * stride];
+    return r;
+  }
   void store(float* p) const {
     for (int i = 0; i < W; ++i) p[i] = v[i];
   }
@@ -117,6 +123,11 @@ struct Sse2Lanes {
 
   static Sse2Lanes load(const float* p) { return {_mm_load_ps(p)}; }
   static Sse2Lanes splat(float x) { return {_mm_set1_ps(x)}; }
+  // Lane i takes base[index[i] * stride]: four scalar loads put together in registers.
+  static Sse2Lanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {
+    return {_mm_setr_ps(base[index[0] * stride], base[index[1] * stride], base[index[2] * stride],
+                        base[index[3] * stride])};
+  }
   void store(float* p) const { _mm_store_ps(p, v); }
   friend Sse2Lanes operator+(Sse2Lanes a, Sse2Lanes b) { return {_mm_add_ps(a.v, b.v)}; }
   friend Sse2Lanes operator-(Sse2Lanes a, Sse2Lanes b) { return {_mm_sub_ps(a.v, b.v)}; }
@@ -146,6 +157,13 @@ struct Avx2Lanes {
 
   static Avx2Lanes load(const float* p) { return {_mm256_load_ps(p)}; }
   static Avx2Lanes splat(float x) { return {_mm256_set1_ps(x)}; }
+  // Lane i takes base[index[i] * stride], as Sse2Lanes::gather.
+  static Avx2Lanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {
+    return {_mm256_setr_ps(base[index[0] * stride], base[index[1] * stride],
+                           base[index[2] * stride], base[index[3] * stride],
+                           base[index[4] * stride], base[index[5] * stride],
+                           base[index[6] * stride], base[index[7] * stride])};
+  }
   void store(float* p) const { _mm256_store_ps(p, v); }
   friend Avx2Lanes operator+(Avx2Lanes a, Avx2Lanes b) { return {_mm256_add_ps(a.v, b.v)}; }
   friend Avx2Lanes operator-(Avx2Lanes a, Avx2Lanes b) { return {_mm256_sub_ps(a.v, b.v)}; }

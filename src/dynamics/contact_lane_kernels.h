@@ -69,17 +69,10 @@ struct LaneBody {
   V3<F> angular;
 
   static LaneBody gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    alignas(32) float v[6][W];
-    for (int lane = 0; lane < W; ++lane) {
-      const float* l = bodies.linear + 3 * static_cast<std::size_t>(slot[lane]);
-      const float* a = bodies.angular + 3 * static_cast<std::size_t>(slot[lane]);
-      for (int k = 0; k < 3; ++k) {
-        v[k][lane] = l[k];
-        v[3 + k][lane] = a[k];
-      }
-    }
-    return {{F::load(v[0]), F::load(v[1]), F::load(v[2])},
-            {F::load(v[3]), F::load(v[4]), F::load(v[5])}};
+    const auto component = [&](const float* base, int k) { return F::gather(base + k, slot, 3); };
+    return {
+        {component(bodies.linear, 0), component(bodies.linear, 1), component(bodies.linear, 2)},
+        {component(bodies.angular, 0), component(bodies.angular, 1), component(bodies.angular, 2)}};
   }
   // Written back only where the lane's body moves: immovable bodies are shared by lanes and by
   // blocks on other threads, and keep their zero velocities.
@@ -112,15 +105,10 @@ struct LaneMotion {
   F turned[9];
 
   static LaneMotion gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    alignas(32) float v[12][W];
-    for (int lane = 0; lane < W; ++lane) {
-      const float* m = bodies.moved + 3 * static_cast<std::size_t>(slot[lane]);
-      const float* t = bodies.turned + 9 * static_cast<std::size_t>(slot[lane]);
-      for (int k = 0; k < 3; ++k) v[k][lane] = m[k];
-      for (int k = 0; k < 9; ++k) v[3 + k][lane] = t[k];
-    }
-    LaneMotion motion{{F::load(v[0]), F::load(v[1]), F::load(v[2])}, {}};
-    for (int k = 0; k < 9; ++k) motion.turned[k] = F::load(v[3 + k]);
+    LaneMotion motion{{F::gather(bodies.moved + 0, slot, 3), F::gather(bodies.moved + 1, slot, 3),
+                       F::gather(bodies.moved + 2, slot, 3)},
+                      {}};
+    for (int k = 0; k < 9; ++k) motion.turned[k] = F::gather(bodies.turned + k, slot, 9);
     return motion;
   }
 };

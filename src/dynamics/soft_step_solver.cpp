@@ -263,9 +263,19 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
     first = end;
   }
   colouring_.colour(manifold_bodies_, linear_.size(), colours_);
+  // By colour, and within a colour by point count, most first: a block's lanes then hold
+  // manifolds of one count, and no lane idles through points past its manifold's last. A
+  // colour's manifolds share no moving body, so their order within it changes no result.
   group_by(
-      manifolds_.size(), kColours + 1, [&](std::size_t k) { return colours_[k]; }, colour_begin_,
-      by_colour_);
+      manifolds_.size(), (kColours + 1) * kManifoldPoints,
+      [&](std::size_t k) {
+        return colours_[k] * kManifoldPoints + kManifoldPoints - manifolds_[k].count;
+      },
+      count_begin_, by_colour_);
+  resize_buffer(colour_begin_, kColours + 2);
+  for (std::uint32_t colour = 0; colour <= kColours + 1; ++colour) {
+    colour_begin_[colour] = count_begin_[colour * kManifoldPoints];
+  }
   // Each colour's manifolds, kLaneWidth to a block; the overflow's one to a block.
   fill_buffer(block_begin_, kColours + 1, 0u);
   std::size_t blocks = 0;

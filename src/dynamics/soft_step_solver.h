@@ -157,6 +157,7 @@ class SoftStepSolver {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // the constraints' body pairs
   std::vector<std::uint32_t> colours_;                          // per manifold
   std::vector<std::uint32_t> colour_begin_;  // manifolds by colour, as group_by lists them
+  std::vector<std::uint32_t> count_begin_;   // by colour and point count (most first)
   std::vector<std::uint32_t> by_colour_;
   // Colour c's blocks are blocks_[block_begin_[c], block_begin_[c + 1]); the overflow's
   // manifolds are solved one by one.
