@@ -4,6 +4,10 @@
 #include <atomic>
 #include <thread>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -37,16 +41,22 @@ void Parallel::run(std::size_t count, void (*item)(const void*, std::size_t),
 
 namespace {
 
-// Spins this many times before yielding the processor: with more threads than cores a waiting
-// thread must let the one it waits for run.
-constexpr int kSpinsBeforeYield = 64;
+// Spins this many times (each a PAUSE) before yielding the processor: with more threads than
+// cores a waiting thread must let the one it waits for run, but a yield is a system call that
+// costs more than most stages of a solver pass take.
+constexpr int kSpinsBeforeYield = 4096;
 
-// A stage's items are claimed in runs of about 1 / (this many x the threads) of them: few claims,
-// yet a thread that comes late or runs slow still finds some left.
+// A stage's items are claimed in runs of about 1 / (this many x the threads) of those left: few
+// claims, yet a thread that comes late or runs slow still finds some left.
 constexpr std::uint32_t kRunsPerThread = 2;
 
 void wait_a_little(int& spins) {
-  if (++spins < kSpinsBeforeYield) return;
+  if (++spins < kSpinsBeforeYield) {
+#if defined(__SSE2__)
+    _mm_pause();  // tells the core this is a wait, which spares the other thread's resources
+#endif
+    return;
+  }
   spins = 0;
   std::this_thread::yield();
 }
@@ -73,10 +83,12 @@ struct Stages {
   // threads by turns costs more than the items.
   void work(std::size_t stage) {
     const std::uint32_t count = counts[stage];
-    const std::uint32_t run = std::max(1u, count / (kRunsPerThread * threads));
     std::uint64_t claimed = claim.load();
     while ((claimed >> 32) == stage && (claimed & 0xffffffffu) < count) {
       const auto first = static_cast<std::uint32_t>(claimed & 0xffffffffu);
+      // Guided: a share of what is left, so that the runs shrink towards the stage's end and
+      // the threads finish it together.
+      const std::uint32_t run = std::max(1u, (count - first) / (kRunsPerThread * threads));
       const std::uint32_t end = std::min(count, first + run);
       if (!claim.compare_exchange_weak(claimed, claimed + (end - first))) continue;
       for (std::uint32_t i = first; i < end; ++i) item(fn, stage, i);

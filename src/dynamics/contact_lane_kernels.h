@@ -69,7 +69,9 @@ struct LaneBody {
   V3<F> angular;
 
   static LaneBody gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    const auto component = [&](const float* base, int k) { return F::gather(base + k, slot, 3); };
+    const auto component = [&](const float* base, int k) {
+      return F::gather(base + k, slot, bodies.velocity_stride);
+    };
     return {
         {component(bodies.linear, 0), component(bodies.linear, 1), component(bodies.linear, 2)},
         {component(bodies.angular, 0), component(bodies.angular, 1), component(bodies.angular, 2)}};
@@ -87,8 +89,8 @@ struct LaneBody {
     angular.z.store(v[5]);
     for (int lane = 0; lane < W; ++lane) {
       if (moves[lane] == 0) continue;
-      float* l = bodies.linear + 3 * static_cast<std::size_t>(slot[lane]);
-      float* a = bodies.angular + 3 * static_cast<std::size_t>(slot[lane]);
+      float* l = bodies.linear + bodies.velocity_stride * slot[lane];
+      float* a = bodies.angular + bodies.velocity_stride * slot[lane];
       for (int k = 0; k < 3; ++k) {
         l[k] = v[k][lane];
         a[k] = v[3 + k][lane];

@@ -77,8 +77,9 @@ struct alignas(32) ManifoldBlock {
 struct LaneBodies {
   float* linear;
   float* angular;
-  const float* moved;   // unit: m
-  const float* turned;  // the rotation since the step's start
+  std::size_t velocity_stride;  // floats from one slot's velocities to the next's
+  const float* moved;           // unit: m
+  const float* turned;          // the rotation since the step's start
 };
 
 struct LaneSettings {

@@ -74,7 +74,7 @@ void SoftStepSolver::use_portable_lanes(bool portable) {
 // own masses. (Scaled by the load the pair carried instead, a heap's supported bunnies turned so
 // heavy that falling ones went 19% of a bunny deep into the 1,000-bunny heap.)
 void SoftStepSolver::find_support_levels() {
-  const std::size_t slots = linear_.size();
+  const std::size_t slots = velocity_.size();
   fill_buffer(immovable_, slots, std::uint8_t{0});
   for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
   pairs_.clear();
@@ -116,9 +116,8 @@ void SoftStepSolver::set_masses(Constraint& c) const {
 }
 
 void SoftStepSolver::load_bodies(const BodyStore& bodies, const Parallel& parallel) {
-  load_solver_bodies(bodies, parallel, linear_, angular_, position_, inverse_mass_,
-                     inverse_inertia_);
-  const std::size_t slots = linear_.size();
+  load_solver_bodies(bodies, parallel, velocity_, position_, inverse_mass_, inverse_inertia_);
+  const std::size_t slots = velocity_.size();
   resize_buffer(rotation_, slots);
   resize_buffer(moved_, slots);
   resize_buffer(turned_, slots);
@@ -136,7 +135,7 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
                              std::span<const ContactMemory> memory, const SolverSettings& settings,
                              const Vec3& gravity, float substep, const Parallel& parallel,
                              ContactSolverStats& stats) {
-  const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
+  const auto ground = static_cast<std::uint32_t>(velocity_.size() - 1);
   // Impulses were kept per substep of the last step's length; a substep of another length needs
   // them in proportion.
   const float rescale = kept_substep_ > 0.0f ? substep / kept_substep_ : 1.0f;
@@ -172,8 +171,10 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
           }
           c.carried = weight_per_substep > 0.0f ? c.normal_impulse / weight_per_substep : 0.0f;
           c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
-          c.approach = c.normal.dot(linear_[c.b] + angular_[c.b].cross(c.rb) - linear_[c.a] -
-                                    angular_[c.a].cross(c.ra));
+          const SolverVelocity& va = velocity_[c.a];
+          const SolverVelocity& vb = velocity_[c.b];
+          c.approach =
+              c.normal.dot(vb.linear + vb.angular.cross(c.rb) - va.linear - va.angular.cross(c.ra));
           c.contact = k;
           constraints_[j] = c;
         }
@@ -262,7 +263,7 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
     manifold_bodies_.push_back({c.a, c.b, c.a_moves, c.b_moves});
     first = end;
   }
-  colouring_.colour(manifold_bodies_, linear_.size(), colours_);
+  colouring_.colour(manifold_bodies_, velocity_.size(), colours_);
   // By colour, and within a colour by point count, most first: a block's lanes then hold
   // manifolds of one count, and no lane idles through points past its manifold's last. A
   // colour's manifolds share no moving body, so their order within it changes no result.
@@ -285,7 +286,7 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
     blocks += (count + kLaneWidth - 1) / kLaneWidth;
   }
   block_begin_[kColours] = static_cast<std::uint32_t>(blocks);
-  const auto ground = static_cast<std::uint32_t>(linear_.size() - 1);
+  const auto ground = static_cast<std::uint32_t>(velocity_.size() - 1);
   const auto empty = [&](auto& block) {
     block = {};
     std::fill(std::begin(block.body_a), std::end(block.body_a), ground);
@@ -319,8 +320,8 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
 }
 
 LaneBodies SoftStepSolver::lane_bodies() {
-  return {linear_.data()->data(), angular_.data()->data(), moved_.data()->data(),
-          turned_.data()->data()};
+  return {velocity_.data()->linear.data(), velocity_.data()->angular.data(), kVelocityStride,
+          moved_.data()->data(), turned_.data()->data()};
 }
 
 // Awake bodies in runs of this many per item of an integration stage. unit: bodies
@@ -400,7 +401,7 @@ void SoftStepSolver::run_pass(const LaneKernels<W>& kernels, Work work,
 void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
                                           float substep) {
   const Vec3 gained = gravity * substep;
-  for (const std::uint32_t i : awake) linear_[i] += gained;
+  for (const std::uint32_t i : awake) velocity_[i].linear += gained;
 }
 
 // The bodies' poses by the solved velocities (rigid_body.h's integrator), and their motion since
@@ -410,11 +411,13 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
   const std::span<Transform> poses = bodies.poses();
   const float most_spin = kMostTurnPerSubstep / substep;
   for (const std::uint32_t i : awake) {
-    const float spin = angular_[i].norm();
-    if (spin > most_spin) angular_[i] *= most_spin / spin;
+    Vec3& angular = velocity_[i].angular;
+    const float spin = angular.norm();
+    if (spin > most_spin) angular *= most_spin / spin;
     // The angular velocity changes too: the angular momentum is kept as the inertia turns.
-    integrate_position_keeping_spin(poses[i], linear_[i], angular_[i], bodies.inertias_body()[i],
-                                    bodies.inverse_inertias_body()[i], substep);
+    integrate_position_keeping_spin(poses[i], velocity_[i].linear, angular,
+                                    bodies.inertias_body()[i], bodies.inverse_inertias_body()[i],
+                                    substep);
     moved_[i] = poses[i].translation - position_[i];
     turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
   }
@@ -507,7 +510,7 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
     run_item(stages_[stage], item, bodies, gravity, substep, lane_settings);
   });
   stats.bounces = bounces_.load();
-  store_solver_velocities(linear_, angular_, parallel, bodies);
+  store_solver_velocities(velocity_, parallel, bodies);
   keep_impulses(memory, parallel);
   kept_substep_ = substep;
   return stats;

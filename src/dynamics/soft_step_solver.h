@@ -18,6 +18,7 @@
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/contact_levels.h"
+#include "dynamics/solver_bodies.h"
 #include "dynamics/solver_stats.h"
 #include "sphys/body_store.h"
 #include "sphys/collision_detector.h"
@@ -170,8 +171,7 @@ class SoftStepSolver {
   std::atomic<std::uint32_t> bounces_{0};  // restitution's pass, counted across its items
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one lane that holds it in a colour.
-  std::vector<Vec3> linear_;
-  std::vector<Vec3> angular_;
+  std::vector<SolverVelocity> velocity_;
   std::vector<Vec3> position_;  // at the step's start. unit: m
   std::vector<Quat> rotation_;  // at the step's start
   std::vector<float> inverse_mass_;

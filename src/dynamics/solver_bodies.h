@@ -19,24 +19,31 @@ namespace sphys {
 // Slots or bodies per item of the threaded loops that copy them. unit: slots
 inline constexpr std::size_t kSlotsPerRun = 256;
 
+// A slot's velocities, a cache line to itself: the threads solving one colour write the
+// velocities of different bodies, and bodies sharing a line would pass it to and fro.
+struct alignas(64) SolverVelocity {
+  Vec3 linear = Vec3::Zero();   // unit: m/s
+  Vec3 angular = Vec3::Zero();  // unit: rad/s
+};
+// Floats from one slot's velocities to the next's.
+inline constexpr std::size_t kVelocityStride = sizeof(SolverVelocity) / sizeof(float);
+
 // Fills the slots: every body's position; velocities, inverse mass and world inverse inertia of
 // the awake bodies, zero for the others and the ground, so that an impulse leaves them as they
 // are.
 inline void load_solver_bodies(const BodyStore& bodies, const Parallel& parallel,
-                               std::vector<Vec3>& linear, std::vector<Vec3>& angular,
-                               std::vector<Vec3>& position, std::vector<float>& inverse_mass,
+                               std::vector<SolverVelocity>& velocity, std::vector<Vec3>& position,
+                               std::vector<float>& inverse_mass,
                                std::vector<Mat3>& inverse_inertia) {
   const std::size_t slots = bodies.slots() + 1;
-  resize_buffer(linear, slots);
-  resize_buffer(angular, slots);
+  resize_buffer(velocity, slots);
   resize_buffer(position, slots);
   resize_buffer(inverse_mass, slots);
   resize_buffer(inverse_inertia, slots);
   const std::span<const Transform> poses = bodies.poses();
   parallel.for_each_run(slots, kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      linear[i] = Vec3::Zero();
-      angular[i] = Vec3::Zero();
+      velocity[i] = SolverVelocity{};
       position[i] = i < poses.size() ? poses[i].translation : Vec3::Zero();
       inverse_mass[i] = 0.0f;
       inverse_inertia[i] = Mat3::Zero();
@@ -45,8 +52,7 @@ inline void load_solver_bodies(const BodyStore& bodies, const Parallel& parallel
   const std::span<const std::uint32_t> awake = bodies.awake();
   parallel.for_each_run(awake.size(), kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
     for (const std::uint32_t i : awake.subspan(begin, end - begin)) {
-      linear[i] = bodies.linear_velocities()[i];
-      angular[i] = bodies.angular_velocities()[i];
+      velocity[i] = {bodies.linear_velocities()[i], bodies.angular_velocities()[i]};
       inverse_mass[i] = bodies.inverse_masses()[i];
       inverse_inertia[i] = bodies.inverse_inertias_world()[i];
     }
@@ -54,13 +60,13 @@ inline void load_solver_bodies(const BodyStore& bodies, const Parallel& parallel
 }
 
 // The solved velocities of the awake bodies into the store.
-inline void store_solver_velocities(std::span<const Vec3> linear, std::span<const Vec3> angular,
+inline void store_solver_velocities(std::span<const SolverVelocity> velocity,
                                     const Parallel& parallel, BodyStore& bodies) {
   const std::span<const std::uint32_t> awake = bodies.awake();
   parallel.for_each_run(awake.size(), kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
     for (const std::uint32_t i : awake.subspan(begin, end - begin)) {
-      bodies.linear_velocities()[i] = linear[i];
-      bodies.angular_velocities()[i] = angular[i];
+      bodies.linear_velocities()[i] = velocity[i].linear;
+      bodies.angular_velocities()[i] = velocity[i].angular;
     }
   });
 }

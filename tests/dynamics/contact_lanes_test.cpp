@@ -30,7 +30,7 @@ struct BodyArrays {
   std::vector<float> angular = std::vector<float>(3 * kLaneBodies);
   std::vector<float> moved = std::vector<float>(3 * kLaneBodies);
   std::vector<float> turned = std::vector<float>(9 * kLaneBodies);
-  LaneBodies view() { return {linear.data(), angular.data(), moved.data(), turned.data()}; }
+  LaneBodies view() { return {linear.data(), angular.data(), 3, moved.data(), turned.data()}; }
 };
 
 struct Scenario {
