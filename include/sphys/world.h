@@ -184,7 +184,7 @@ class World {
   std::vector<PairMaterial> materials_;  // per contact
   std::vector<std::uint8_t> touching_;
   std::vector<std::uint32_t> sleep_changes_;       // bodies woken or fallen asleep, scratch
-  std::vector<std::uint32_t> non_finite_in_run_;   // integrate_velocities' scratch, per run
+  std::vector<std::uint32_t> non_finite_in_run_;   // the integrations' scratch, per run
   std::vector<std::uint32_t> removed_neighbours_;  // remove_body's scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
   // Plausible mode's machinery, private to the library.

@@ -4,37 +4,20 @@
 
 #include <cmath>
 
-#include "core/buffers.h"
 #include "core/stopwatch.h"
 #include "sphys/world.h"
+#include "world/awake_runs.h"
 
 namespace sphys {
-namespace {
-
-// Awake bodies per item of the threaded loop. unit: bodies
-constexpr std::size_t kBodiesPerRun = 256;
-// No body: a run whose bodies' motions were all finite.
-constexpr std::uint32_t kNoBody = ~std::uint32_t{0};
-
-}  // namespace
 
 void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
   const StepClock::time_point start = StepClock::now();
-  // In runs of bodies on the threads, each body its own; a run that meets a body whose motion is
-  // not finite notes the first such, and the step stops at the first of all in the awake order.
-  const std::span<const std::uint32_t> awake = store_->awake();
-  const std::size_t runs = (awake.size() + kBodiesPerRun - 1) / kBodiesPerRun;
-  fill_buffer(non_finite_in_run_, runs, kNoBody);
-  parallel_->for_each_run(awake.size(), kBodiesPerRun, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      if (integrate_velocity(awake[k], dt, plausible)) continue;
-      non_finite_in_run_[begin / kBodiesPerRun] = awake[k];
-      return;
-    }
-  });
-  for (const std::uint32_t body : non_finite_in_run_) {
-    if (body == kNoBody) continue;
-    stats.non_finite_body = body;
+  // A body whose motion is not finite stops the step at the first such in the awake order.
+  const std::uint32_t failed = first_failed_awake_body(
+      store_->awake(), *parallel_, non_finite_in_run_,
+      [&](std::uint32_t body) { return integrate_velocity(body, dt, plausible); });
+  if (failed != kNoFailedBody) {
+    stats.non_finite_body = failed;
     stopped_ = true;
     return;
   }
