@@ -179,7 +179,15 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
           constraints_[j] = c;
         }
       });
-  find_support_levels();
+  // Two serial jobs on the constraints as made, neither needing the other: the support levels
+  // (for the masses next) and the manifolds' colours (for the packing), side by side.
+  parallel.for_each(2, [&](std::size_t job) {
+    if (job == 0) {
+      find_support_levels();
+    } else {
+      colour_manifolds();
+    }
+  });
   parallel.for_each_run(constraints_.size(), kConstraintsPerRun,
                         [&](std::size_t begin, std::size_t end) {
                           for (std::size_t j = begin; j < end; ++j) {
@@ -246,7 +254,7 @@ void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& mat
   block.point_count = std::max(block.point_count, manifold.count);
 }
 
-void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Parallel& parallel) {
+void SoftStepSolver::colour_manifolds() {
   // A body pair's contacts come one after another (the detector and the reducer emit them by
   // pair), cut into manifolds of at most kManifoldPoints.
   manifolds_.clear();
@@ -286,6 +294,10 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
     blocks += (count + kLaneWidth - 1) / kLaneWidth;
   }
   block_begin_[kColours] = static_cast<std::uint32_t>(blocks);
+}
+
+void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Parallel& parallel) {
+  const std::size_t blocks = block_begin_[kColours];
   const auto ground = static_cast<std::uint32_t>(velocity_.size() - 1);
   const auto empty = [&](auto& block) {
     block = {};

@@ -118,7 +118,10 @@ class SoftStepSolver {
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                const SolverSettings& settings, const Vec3& gravity, float substep,
                const Parallel& parallel, ContactSolverStats& stats);
-  // The constraints cut into manifolds, coloured and packed into blocks, colour by colour.
+  // The constraints cut into manifolds (a body pair's, kManifoldPoints at most), coloured and
+  // listed by colour, and each colour's blocks counted.
+  void colour_manifolds();
+  // The manifolds into their blocks' lanes, on the threads.
   void pack(std::span<const PairMaterial> materials, const Parallel& parallel);
   template <int W>
   void pack_lane(const Manifold& manifold, const PairMaterial& material, ManifoldBlock<W>& block,

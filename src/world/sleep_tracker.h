@@ -11,6 +11,7 @@
 
 #include "sphys/body_store.h"
 #include "sphys/contact.h"
+#include "sphys/parallel.h"
 #include "sphys/world.h"
 
 namespace sphys {
@@ -49,12 +50,12 @@ class SleepTracker final : public SlotArrays {
   // settings.speed at the last update()), appending them to `woken`.
   void wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                       std::vector<std::uint32_t>& woken);
-  // Measures each awake body's speed (its fastest point's) and counts how long it has been
-  // still, then puts to sleep every body still for long enough (settings.time, or more in an
-  // island with a restless body) that touches no restless body, appending them to
+  // Measures each awake body's speed (its fastest point's, on `parallel`'s threads) and counts
+  // how long it has been still, then puts to sleep every body still for long enough (settings.time,
+  // or more in an island with a restless body) that touches no restless body, appending them to
   // `fell_asleep`. Returns the number of islands.
   std::uint32_t update(std::span<const Contact> contacts, float dt, const SleepSettings& settings,
-                       std::vector<std::uint32_t>& fell_asleep);
+                       const Parallel& parallel, std::vector<std::uint32_t>& fell_asleep);
 
  private:
   // Union-find over body slots: path halving, the smaller slot the root of a set.

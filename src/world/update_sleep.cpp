@@ -11,7 +11,8 @@ void World::update_sleep(float dt, StepStats& stats) {
   const StepClock::time_point start = StepClock::now();
   // The bodies that fall asleep stop there, in the store.
   sleep_changes_.clear();
-  stats.islands = sleep_->update(detector_->contacts(), dt, settings_.sleep, sleep_changes_);
+  stats.islands =
+      sleep_->update(detector_->contacts(), dt, settings_.sleep, *parallel_, sleep_changes_);
   stats.sleep_ms += elapsed_ms(start);
 }
 

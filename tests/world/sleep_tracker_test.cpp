@@ -83,7 +83,8 @@ std::vector<std::uint32_t> settle(Bodies& bodies, const std::vector<float>& spee
                                   const std::vector<Contact>& contacts) {
   std::vector<std::uint32_t> fell_asleep;
   bodies.move_at(speeds);
-  (void)bodies.tracker.update(contacts, 2.0f * SleepSettings{}.time, SleepSettings{}, fell_asleep);
+  (void)bodies.tracker.update(contacts, 2.0f * SleepSettings{}.time, SleepSettings{}, Parallel{},
+                              fell_asleep);
   return fell_asleep;
 }
 
@@ -129,13 +130,13 @@ TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMoves) {
   speeds[0] = 0.5f * settings.speed;
   speeds[3] = 0.0f;
   bodies.move_at(speeds);
-  (void)bodies.tracker.update({}, 0.0f, settings, fell_asleep);
+  (void)bodies.tracker.update({}, 0.0f, settings, Parallel{}, fell_asleep);
   bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_TRUE(woken.empty());
   // Body 0 moves: body 1 wakes, body 2 beyond it sleeps on.
   speeds[0] = 2.0f * settings.speed;
   bodies.move_at(speeds);
-  (void)bodies.tracker.update({}, 0.0f, settings, fell_asleep);
+  (void)bodies.tracker.update({}, 0.0f, settings, Parallel{}, fell_asleep);
   bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_EQ(woken, (std::vector<std::uint32_t>{1}));
   EXPECT_TRUE(bodies.store.asleep(2));
