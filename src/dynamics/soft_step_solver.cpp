@@ -281,16 +281,12 @@ void SoftStepSolver::colour_manifolds() {
         return colours_[k] * kManifoldPoints + kManifoldPoints - manifolds_[k].count;
       },
       count_begin_, by_colour_);
-  resize_buffer(colour_begin_, kColours + 2);
-  for (std::uint32_t colour = 0; colour <= kColours + 1; ++colour) {
-    colour_begin_[colour] = count_begin_[colour * kManifoldPoints];
-  }
   // Each colour's manifolds, kLaneWidth to a block; the overflow's one to a block.
   fill_buffer(block_begin_, kColours + 1, 0u);
   std::size_t blocks = 0;
   for (std::uint32_t colour = 0; colour < kColours; ++colour) {
     block_begin_[colour] = static_cast<std::uint32_t>(blocks);
-    const std::size_t count = colour_begin_[colour + 1] - colour_begin_[colour];
+    const std::size_t count = colour_first(colour + 1) - colour_first(colour);
     blocks += (count + kLaneWidth - 1) / kLaneWidth;
   }
   block_begin_[kColours] = static_cast<std::uint32_t>(blocks);
@@ -314,16 +310,16 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
     ManifoldBlock<kLaneWidth>& block = blocks_[b];
     empty(block);
     const std::uint32_t first =
-        colour_begin_[colour] + (static_cast<std::uint32_t>(b) - block_begin_[colour]) * kLaneWidth;
-    const std::uint32_t end = std::min(colour_begin_[colour + 1], first + kLaneWidth);
+        colour_first(colour) + (static_cast<std::uint32_t>(b) - block_begin_[colour]) * kLaneWidth;
+    const std::uint32_t end = std::min(colour_first(colour + 1), first + kLaneWidth);
     for (std::uint32_t k = first; k < end; ++k) {
       const Manifold& manifold = manifolds_[by_colour_[k]];
       pack_lane(manifold, materials[constraints_[manifold.first].contact], block,
                 static_cast<int>(k - first));
     }
   });
-  const std::uint32_t overflow_begin = colour_begin_[kOverflowColour];
-  resize_buffer(overflow_, colour_begin_[kOverflowColour + 1] - overflow_begin);
+  const std::uint32_t overflow_begin = colour_first(kOverflowColour);
+  resize_buffer(overflow_, colour_first(kOverflowColour + 1) - overflow_begin);
   for (std::size_t k = 0; k < overflow_.size(); ++k) {
     empty(overflow_[k]);
     const Manifold& manifold = manifolds_[by_colour_[overflow_begin + k]];

@@ -121,6 +121,10 @@ class SoftStepSolver {
   // The constraints cut into manifolds (a body pair's, kManifoldPoints at most), coloured and
   // listed by colour, and each colour's blocks counted.
   void colour_manifolds();
+  // Where colour c's manifolds start in by_colour_ (c up to kOverflowColour + 1, their end).
+  [[nodiscard]] std::uint32_t colour_first(std::uint32_t colour) const {
+    return count_begin_[colour * kManifoldPoints];
+  }
   // The manifolds into their blocks' lanes, on the threads.
   void pack(std::span<const PairMaterial> materials, const Parallel& parallel);
   template <int W>
@@ -160,8 +164,9 @@ class SoftStepSolver {
   std::vector<std::uint8_t> immovable_;                         // per slot, for levels_
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // the constraints' body pairs
   std::vector<std::uint32_t> colours_;                          // per manifold
-  std::vector<std::uint32_t> colour_begin_;  // manifolds by colour, as group_by lists them
-  std::vector<std::uint32_t> count_begin_;   // by colour and point count (most first)
+  // Where each (colour, point count) group of manifolds starts in by_colour_, as group_by lists
+  // them: by colour, and within a colour by point count, most first.
+  std::vector<std::uint32_t> count_begin_;
   std::vector<std::uint32_t> by_colour_;
   // Colour c's blocks are blocks_[block_begin_[c], block_begin_[c + 1]); the overflow's
   // manifolds are solved one by one.

@@ -4,6 +4,8 @@
 #include <limits>
 #include <numeric>
 
+#include "world/awake_runs.h"
+
 namespace sphys {
 namespace {
 
@@ -17,8 +19,6 @@ constexpr float kPatience = 2.0f;
 constexpr float kWokenStillShare = 0.5f;
 // The speed of a body set moving from outside until update() measures it: moving. unit: m/s
 constexpr float kUnmeasured = std::numeric_limits<float>::infinity();
-// Awake bodies per item of the threaded speed measurement. unit: bodies
-constexpr std::size_t kBodiesPerRun = 256;
 
 }  // namespace
 
@@ -121,7 +121,7 @@ std::uint32_t SleepTracker::update(std::span<const Contact> contacts, float dt,
                                    std::vector<std::uint32_t>& fell_asleep) {
   // Each awake body's speed and stillness, its own, on the threads.
   const std::span<const std::uint32_t> awake = store_->awake();
-  parallel.for_each_run(awake.size(), kBodiesPerRun, [&](std::size_t begin, std::size_t end) {
+  parallel.for_each_run(awake.size(), kAwakeBodiesPerRun, [&](std::size_t begin, std::size_t end) {
     for (const std::uint32_t i : awake.subspan(begin, end - begin)) {
       speed_[i] = store_->fastest_point_speed(i);
       still_time_[i] = speed_[i] < settings.speed ? still_time_[i] + dt : 0.0f;
