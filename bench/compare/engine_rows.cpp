@@ -4,16 +4,12 @@
 #include <limits>
 #include <numeric>
 
+#include "sphys/tools/median.h"
+
 namespace sphys::compare {
 namespace {
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  if (values.size() % 2 == 1) return *middle;
-  return 0.5 * (*middle + *std::max_element(values.begin(), middle));
-}
+using tools::median;
 
 double mean(const std::vector<double>& values) {
   double sum = 0.0;

@@ -27,6 +27,7 @@
 #include "robot_arm/robot_arm.h"
 #include "sphys/configuration_check.h"
 #include "sphys/error.h"
+#include "sphys/tools/median.h"
 #include "sphys/tools/sph_file.h"
 #include "sphys/world_query.h"
 
@@ -35,6 +36,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using Rng = std::mt19937;
+using tools::median;
 
 struct Options {
   int ray_stacks = 100;  // × 10 bunnies
@@ -49,13 +51,6 @@ struct Options {
 
 double microseconds(Clock::duration d) {
   return std::chrono::duration<double, std::micro>(d).count();
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 float uniform(Rng& rng, float low, float high) {

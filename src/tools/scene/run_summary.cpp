@@ -11,17 +11,11 @@
 
 #include "experiment/plausibility_json.h"
 #include "io/json_number.h"
+#include "sphys/tools/median.h"
 #include "sphys/tools/overlap.h"
 
 namespace sphys::tools {
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // The longest bounding-box side of the largest body, the yardstick of penetrations. unit: m
 double largest_body_size(const SimulationSetup& setup) {
