@@ -153,6 +153,9 @@ class CollisionDetector final : public SlotArrays {
   [[nodiscard]] Aabb bounds(std::uint32_t slot) const;
   // The sphere-tree a body joined with (body frame).
   [[nodiscard]] const SphereTree& tree(std::uint32_t slot) const { return *bodies_[slot].tree; }
+  [[nodiscard]] const std::shared_ptr<const SphereTree>& shared_tree(std::uint32_t slot) const {
+    return bodies_[slot].tree;
+  }
 
  private:
   using PairRecord = PairCache::Record;

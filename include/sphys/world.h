@@ -97,13 +97,34 @@ struct BodyDesc {
 
 class SoftStepSolver;
 class SleepTracker;
+class WorldAccess;
 
+// One world may be called from any thread, one call at a time: calls that overlap throw
+// sphys::Error ("... the world is being stepped on another thread ...") rather than race, whatever
+// they are, while a step, a change (add, remove, velocities, impulses, materials, budgets) or a
+// read is under way (docs/reliability.md). Reads may overlap reads. A call takes its turn only for
+// its own duration: a reference it returns (bodies(), contacts(), stats(), ...) is read safely
+// while a Reading is held, or on the thread that steps.
 class World {
  public:
   explicit World(const WorldSettings& settings = {});
   ~World();
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
+
+  // Holds the world for reading across several calls, e.g. while another thread copies bodies()
+  // row by row: until it goes, a step or change on any thread throws sphys::Error. Making one
+  // throws sphys::Error while a step or change is under way.
+  class Reading {
+   public:
+    explicit Reading(const World& world);
+    ~Reading();
+    Reading(const Reading&) = delete;
+    Reading& operator=(const Reading&) = delete;
+
+   private:
+    WorldAccess* access_;
+  };
 
   // Throws sphys::Error naming what is wrong: no tree, a non-finite pose or velocity, a rotation
   // that is not a unit quaternion (within 1e-3), a mass that is not positive and finite, an
@@ -114,9 +135,9 @@ class World {
   // BodyId throws sphys::Error for a stale or unknown id, or the null one (BodyId{}).
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
-  [[nodiscard]] RigidBody body(BodyId body) const { return store_->body(slot_of(body)); }
+  [[nodiscard]] RigidBody body(BodyId body) const;
   // The body's sphere-tree, in the body frame.
-  [[nodiscard]] const SphereTree& tree(BodyId body) const { return detector_->tree(slot_of(body)); }
+  [[nodiscard]] const SphereTree& tree(BodyId body) const;
   // Changes a body's velocities (e.g. a shot); the pose stays; a sleeping body wakes, and the
   // sleeping bodies it touches wake as it moves them. Non-finite values throw.
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
@@ -127,35 +148,40 @@ class World {
   void set_pair_material(BodyId a, BodyId b, const PairMaterial& material);
   [[nodiscard]] bool asleep(BodyId body) const;
   // Body slots, alive or removed; id_of(i) is the id of slot i's body (or of its last one).
-  [[nodiscard]] std::uint32_t body_slots() const { return store_->slots(); }
+  [[nodiscard]] std::uint32_t body_slots() const;
   // Throws sphys::Error for a slot the world never had.
   [[nodiscard]] BodyId id_of(std::uint32_t slot) const;
   // True for the id of a body in the world, false for a stale or unknown one or the null one.
-  [[nodiscard]] bool alive(BodyId body) const { return store_->alive(body); }
+  [[nodiscard]] bool alive(BodyId body) const;
   // The slot of a body in the world (its row in bodies()); throws sphys::Error for a stale,
   // unknown or null id.
   [[nodiscard]] std::uint32_t slot_of(BodyId body) const;
 
   // Advances the world by dt (unit: s, positive and finite, else sphys::Error). Never throws
-  // otherwise; when a body's state stops being finite the step reports it in
-  // StepStats::non_finite_body and the world stays stopped (later steps do nothing).
+  // otherwise, but for a call on another thread under way (see above); when a body's state stops
+  // being finite the step reports it in StepStats::non_finite_body and the world stays stopped
+  // (later steps do nothing).
   const StepStats& step(float dt);
-  [[nodiscard]] const StepStats& stats() const { return stats_; }
+  [[nodiscard]] const StepStats& stats() const;
   // The contacts the last step (its last substep) responded to: after reduction, when reduced.
-  [[nodiscard]] std::span<const Contact> contacts() const { return detector_->contacts(); }
-  [[nodiscard]] bool stopped() const { return stopped_; }
+  [[nodiscard]] std::span<const Contact> contacts() const;
+  [[nodiscard]] bool stopped() const;
 
   // The time-critical narrow phase's budgets (CollisionSettings::max_sphere_tests and
   // max_microseconds) from the next step on, e.g. from a viewer's slider; 0 turns one off. A time
   // that is negative or not finite throws sphys::Error.
   void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
 
-  [[nodiscard]] const WorldSettings& settings() const { return settings_; }
-  [[nodiscard]] const CollisionDetector& detector() const { return *detector_; }
+  [[nodiscard]] const WorldSettings& settings() const;
+  [[nodiscard]] const CollisionDetector& detector() const;
   // Every body's state by slot (id_of(slot) names it), e.g. all poses as one array.
-  [[nodiscard]] const BodyStore& bodies() const { return *store_; }
+  [[nodiscard]] const BodyStore& bodies() const;
+  // The body's sphere-tree, shared: it outlives the body's removal while a holder keeps it.
+  [[nodiscard]] std::shared_ptr<const SphereTree> shared_tree(BodyId body) const;
 
  private:
+  // slot_of without taking a turn, for the calls that hold one.
+  [[nodiscard]] std::uint32_t checked_slot(BodyId body) const;
   [[nodiscard]] std::uint32_t substeps_for(float dt) const;
   // The stages of a substep, in order, each in the file named for it (docs/architecture.md).
   void substep(float dt, StepStats& stats);
@@ -194,6 +220,8 @@ class World {
   std::unique_ptr<Parallel> parallel_;
   StepStats stats_;
   bool stopped_ = false;
+  // Turns of the calls (world/world_access.h); on the heap so that the world stays movable.
+  std::unique_ptr<WorldAccess> access_;
 };
 
 }  // namespace sphys

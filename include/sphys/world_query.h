@@ -87,10 +87,13 @@ namespace query_detail {
 struct Snapshot;
 }
 
-// The world's bodies as they were when the query was made (or last refreshed): their poses,
+// The world's bodies as they were when the query was made (or last refreshed): their ids, poses,
 // trees and sleep. A query object made once answers many questions; after the world steps or
-// changes, refresh() reads it again. Its const calls may run on many threads at once. The world
-// must outlive it.
+// changes, refresh() reads it again. Its const calls read that copy alone, never the world: they
+// may run on many threads at once, and beside the world's steps and changes on other threads.
+// Making or refreshing one reads the world, so it takes its turn (sphys/world.h): it throws
+// sphys::Error while the world is being stepped or changed. The world must outlive it for
+// refresh() alone.
 class WorldQuery {
  public:
   explicit WorldQuery(const World& world);
@@ -98,7 +101,7 @@ class WorldQuery {
   WorldQuery(WorldQuery&&) noexcept;
   WorldQuery& operator=(WorldQuery&&) noexcept;
 
-  // Reads the world's bodies again.
+  // Reads the world's bodies again; not beside this query's own calls on other threads.
   void refresh();
   [[nodiscard]] const World& world() const { return *world_; }
 

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -70,7 +72,9 @@ void bind_experiment(py::module_& m);
 
 namespace sphys {
 struct WorldSettings;
-}
+class World;
+class WorldQuery;
+}  // namespace sphys
 
 namespace sphys::python {
 
@@ -82,5 +86,36 @@ namespace sphys::python {
 WorldSettings settings_from(const py::handle& mapping, WorldSettings base);
 // Every setting of the table by its dotted field, with Python values.
 py::dict settings_dict(const WorldSettings& settings);
+
+// Python threads take turns on a world (docs/python.md): every call on it first takes its turn,
+// waiting with the GIL released, so that calls from many threads run one after another where the
+// C++ world would turn the second away (sphys/world.h). A Simulation and its world share one turn.
+using Turn = std::timed_mutex;
+
+// Takes the turn, waiting with the GIL released (called with the GIL held); between waits of
+// 50 ms it takes the GIL back to let Ctrl-C through.
+std::unique_lock<Turn> take_turn(Turn& turn);
+
+// The Python World: the world and its turn. `world` owns the world, or points into a Simulation
+// that the Python object keeps alive.
+struct SharedWorld {
+  std::shared_ptr<World> world;
+  std::shared_ptr<Turn> turn = std::make_shared<Turn>();
+};
+
+// The Python WorldQuery: the query's snapshot of the world, replaced whole by refresh() (which
+// takes the world's turn), so that queries on many threads at once each read one snapshot whole.
+class SharedQuery {
+ public:
+  explicit SharedQuery(SharedWorld world);
+  // The query as last made or refreshed, kept alive for the caller's query.
+  [[nodiscard]] std::shared_ptr<const WorldQuery> current() const;
+  void refresh();
+
+ private:
+  SharedWorld world_;
+  mutable std::mutex swap_;  // guards `query_` while it is copied or replaced
+  std::shared_ptr<const WorldQuery> query_;
+};
 
 }  // namespace sphys::python

@@ -135,6 +135,23 @@ constexpr const char* kCheckDoc =
 
 }  // namespace
 
+SharedQuery::SharedQuery(SharedWorld world) : world_(std::move(world)) { refresh(); }
+
+std::shared_ptr<const WorldQuery> SharedQuery::current() const {
+  const std::lock_guard lock(swap_);
+  return query_;
+}
+
+void SharedQuery::refresh() {
+  std::shared_ptr<const WorldQuery> fresh;
+  {
+    const std::unique_lock turn = take_turn(*world_.turn);
+    fresh = std::make_shared<const WorldQuery>(*world_.world);
+  }
+  const std::lock_guard lock(swap_);
+  query_.swap(fresh);  // the old snapshot goes with `fresh` once its last query is done
+}
+
 void bind_query(py::module_& m) {
   py::class_<QueryFilter>(m, "QueryFilter",
                           "Which bodies a query sees: not those in skip, only those whose category "
@@ -151,17 +168,21 @@ void bind_query(py::module_& m) {
       .def_readwrite("categories", &QueryFilter::categories)
       .def_readwrite("skip_sleeping", &QueryFilter::skip_sleeping);
 
-  py::class_<WorldQuery>(m, "WorldQuery",
-                         "Questions asked of a world's leaf spheres without stepping it, as the "
-                         "world was when made or last refreshed (refresh() after stepping).")
-      .def(py::init<const World&>(), py::arg("world"), py::keep_alive<1, 2>())
-      .def("refresh", &WorldQuery::refresh)
+  py::class_<SharedQuery>(m, "WorldQuery",
+                          "Questions asked of a world's leaf spheres without stepping it, as the "
+                          "world was when made or last refreshed (refresh() after stepping). "
+                          "Once made, any number of threads may query it at once, while the "
+                          "world steps; refresh() takes the world's turn.")
+      .def(py::init([](const SharedWorld& world) { return std::make_unique<SharedQuery>(world); }),
+           py::arg("world"), py::keep_alive<1, 2>())
+      .def("refresh", &SharedQuery::refresh)
       .def(
           "cast_ray",
-          [](const WorldQuery& q, const py::object& origin, const py::object& direction,
+          [](const SharedQuery& shared, const py::object& origin, const py::object& direction,
              float max_distance, const QueryFilter& filter) -> py::object {
+            const std::shared_ptr<const WorldQuery> q = shared.current();
             const std::optional<RayHit> hit =
-                q.cast_ray(ray_from(origin, direction, max_distance), filter);
+                q->cast_ray(ray_from(origin, direction, max_distance), filter);
             return hit ? py::object(hit_dict(*hit)) : py::object(py::none());
           },
           py::arg("origin"), py::arg("direction"), py::arg("max_distance") = kInfinity,
@@ -169,11 +190,12 @@ void bind_query(py::module_& m) {
           "The nearest hit as a dict (body, leaf, point, normal, distance in m) or None.")
       .def(
           "cast_ray_all",
-          [](const WorldQuery& q, const py::object& origin, const py::object& direction,
+          [](const SharedQuery& shared, const py::object& origin, const py::object& direction,
              float max_distance, const QueryFilter& filter) {
+            const std::shared_ptr<const WorldQuery> q = shared.current();
             py::list hits;
             for (const RayHit& hit :
-                 q.cast_ray_all(ray_from(origin, direction, max_distance), filter)) {
+                 q->cast_ray_all(ray_from(origin, direction, max_distance), filter)) {
               hits.append(hit_dict(hit));
             }
             return hits;
@@ -182,8 +204,9 @@ void bind_query(py::module_& m) {
           py::arg("filter") = QueryFilter{}, "Every body hit, once at its nearest, nearest first.")
       .def(
           "cast_rays",
-          [](const WorldQuery& q, const py::object& origins, const py::object& directions,
+          [](const SharedQuery& shared, const py::object& origins, const py::object& directions,
              float max_distance, const QueryFilter& filter, std::uint32_t threads) {
+            const std::shared_ptr<const WorldQuery> q = shared.current();
             const FloatRows o = float_array(origins, "origins", {-1, 3}, "an (N, 3) array (m)");
             const FloatRows d =
                 float_array(directions, "directions", {o.shape(0), 3}, "an (N, 3) array");
@@ -198,7 +221,7 @@ void bind_query(py::module_& m) {
             {
               py::gil_scoped_release unlocked;
               const Parallel parallel(threads);
-              q.cast_rays(rays, filter, hits, &parallel);
+              q->cast_rays(rays, filter, hits, &parallel);
             }
             const auto rows = static_cast<py::ssize_t>(n);
             py::array_t<std::int32_t> body({rows});
@@ -228,76 +251,89 @@ void bind_query(py::module_& m) {
           "normal (N, 3).")
       .def(
           "overlap_sphere",
-          [](const WorldQuery& q, const py::object& center, float radius,
+          [](const SharedQuery& shared, const py::object& center, float radius,
              const QueryFilter& filter) {
-            return q.overlap_sphere(vec3_from(center, "center"), radius, filter);
+            const std::shared_ptr<const WorldQuery> q = shared.current();
+            return q->overlap_sphere(vec3_from(center, "center"), radius, filter);
           },
           py::arg("center"), py::arg("radius"), py::arg("filter") = QueryFilter{},
           "The bodies with a leaf sphere touching the sphere (m), by slot.")
       .def(
           "overlap_aabb",
-          [](const WorldQuery& q, const py::object& low, const py::object& high,
+          [](const SharedQuery& shared, const py::object& low, const py::object& high,
              const QueryFilter& filter) {
-            return q.overlap_aabb({vec3_from(low, "low"), vec3_from(high, "high")}, filter);
+            const std::shared_ptr<const WorldQuery> q = shared.current();
+            return q->overlap_aabb({vec3_from(low, "low"), vec3_from(high, "high")}, filter);
           },
           py::arg("low"), py::arg("high"), py::arg("filter") = QueryFilter{},
           "The bodies with a leaf sphere touching the axis-aligned box [low, high] (m).")
       .def(
           "overlap_box",
-          [](const WorldQuery& q, const py::object& center, const py::object& half_extents,
+          [](const SharedQuery& shared, const py::object& center, const py::object& half_extents,
              const py::object& orientation, const QueryFilter& filter) {
+            const std::shared_ptr<const WorldQuery> q = shared.current();
             OrientedBox box;
             box.pose.translation = vec3_from(center, "center");
             box.pose.rotation = quat_from(orientation, "orientation");
             box.half_extents = vec3_from(half_extents, "half_extents");
-            return q.overlap_box(box, filter);
+            return q->overlap_box(box, filter);
           },
           py::arg("center"), py::arg("half_extents"),
           py::arg("orientation") = py::make_tuple(0, 0, 0, 1), py::arg("filter") = QueryFilter{},
           "The bodies with a leaf sphere touching the box (m; orientation (x, y, z, w)).")
       .def(
           "overlap_body",
-          [](const WorldQuery& q, BodyId body, const py::object& position,
+          [](const SharedQuery& shared, BodyId body, const py::object& position,
              const py::object& orientation, const QueryFilter& filter) {
+            const std::shared_ptr<const WorldQuery> q = shared.current();
             Transform pose;
             pose.translation = vec3_from(position, "position");
             pose.rotation = quat_from(orientation, "orientation");
-            return q.overlap_body(body, pose, filter);
+            return q->overlap_body(body, pose, filter);
           },
           py::arg("body"), py::arg("position"), py::arg("orientation") = py::make_tuple(0, 0, 0, 1),
           py::arg("filter") = QueryFilter{},
           "The bodies a body's tree would touch at another pose (the body itself left out).")
       .def(
           "distance",
-          [](const WorldQuery& q, BodyId a, const py::object& b, std::uint64_t max_sphere_tests,
-             double max_microseconds) {
+          [](const SharedQuery& shared, BodyId a, const py::object& b,
+             std::uint64_t max_sphere_tests, double max_microseconds) {
+            const std::shared_ptr<const WorldQuery> q = shared.current();
             const DistanceBudget budget{max_sphere_tests, max_microseconds};
             if (py::isinstance<BodyId>(b))
-              return distance_dict(q.distance(a, b.cast<BodyId>(), budget));
-            return distance_dict(q.distance(a, vec3_from(b, "b"), budget));
+              return distance_dict(q->distance(a, b.cast<BodyId>(), budget));
+            return distance_dict(q->distance(a, vec3_from(b, "b"), budget));
           },
           py::arg("a"), py::arg("b"), py::kw_only(), py::arg("max_sphere_tests") = 0,
           py::arg("max_microseconds") = 0.0,
           "The smallest gap (m) between the leaf spheres of body a and body b (a BodyId) or a "
           "point (3 numbers), with the closest pair; a budget may stop early, then exact is "
           "False and distance a lower bound.")
-      .def("check_configurations", &check_configurations, py::arg("spheres"), py::arg("links"),
-           py::kw_only(), py::arg("self_collision") = false,
-           py::arg("allowed_pairs") = std::vector<std::array<std::int32_t, 2>>{},
-           py::arg("filter") = QueryFilter{}, py::arg("threads") = 1, kCheckDoc);
+      .def(
+          "check_configurations",
+          [](const SharedQuery& shared, const py::object& spheres, const py::object& links,
+             bool self_collision, const std::vector<std::array<std::int32_t, 2>>& allowed_pairs,
+             const QueryFilter& filter, std::uint32_t threads) {
+            return check_configurations(*shared.current(), spheres, links, self_collision,
+                                        allowed_pairs, filter, threads);
+          },
+          py::arg("spheres"), py::arg("links"), py::kw_only(), py::arg("self_collision") = false,
+          py::arg("allowed_pairs") = std::vector<std::array<std::int32_t, 2>>{},
+          py::arg("filter") = QueryFilter{}, py::arg("threads") = 1, kCheckDoc);
 
-  // The same from a world directly, through a query made for the call.
-  auto world = py::reinterpret_borrow<py::class_<World>>(m.attr("World"));
+  // The same from a world directly, through a query made for the call in the world's turn; the
+  // check itself reads the query's snapshot alone, so other calls on the world go on meanwhile.
+  auto world = py::reinterpret_borrow<py::class_<SharedWorld>>(m.attr("World"));
   world.def(
-      "query", [](const World& w) { return WorldQuery(w); }, py::keep_alive<0, 1>(),
-      "A WorldQuery of the world as it is now.");
+      "query", [](const SharedWorld& w) { return std::make_unique<SharedQuery>(w); },
+      py::keep_alive<0, 1>(), "A WorldQuery of the world as it is now.");
   world.def(
       "check_configurations",
-      [](const World& w, const py::object& spheres, const py::object& links, bool self_collision,
-         const std::vector<std::array<std::int32_t, 2>>& allowed_pairs, const QueryFilter& filter,
-         std::uint32_t threads) {
-        return check_configurations(WorldQuery(w), spheres, links, self_collision, allowed_pairs,
-                                    filter, threads);
+      [](const SharedWorld& w, const py::object& spheres, const py::object& links,
+         bool self_collision, const std::vector<std::array<std::int32_t, 2>>& allowed_pairs,
+         const QueryFilter& filter, std::uint32_t threads) {
+        return check_configurations(*SharedQuery(w).current(), spheres, links, self_collision,
+                                    allowed_pairs, filter, threads);
       },
       py::arg("spheres"), py::arg("links"), py::kw_only(), py::arg("self_collision") = false,
       py::arg("allowed_pairs") = std::vector<std::array<std::int32_t, 2>>{},

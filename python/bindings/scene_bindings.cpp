@@ -28,6 +28,8 @@ struct Simulation {
   tools::SimulationSetup setup;
   tools::RunTotals totals;
   int frame = 0;
+  // The turn of every call on the simulation and on its world (bindings.h).
+  std::shared_ptr<Turn> turn = std::make_shared<Turn>();
 };
 
 // What Simulation() accepts as its scene: a Scene, a dict in the scene-file format, a preset's
@@ -60,8 +62,8 @@ py::array_t<float> scene_poses(const Simulation& sim) {
   return array;
 }
 
-StepStats step_simulation(Simulation& sim, int frames) {
-  if (frames < 1) throw Error("frames must be at least 1, got " + std::to_string(frames));
+// Steps `frames` frames in the caller's turn, without the GIL.
+StepStats step_frames(Simulation& sim, int frames) {
   const auto dt = static_cast<float>(sim.scene.time_step);
   StepStats stats;
   for (int i = 0; i < frames; ++i) {
@@ -80,6 +82,13 @@ StepStats step_simulation(Simulation& sim, int frames) {
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
   return stats;
+}
+
+// Steps in one turn: other threads' calls on the simulation or its world wait for all the frames.
+StepStats step_simulation(Simulation& sim, int frames) {
+  if (frames < 1) throw Error("frames must be at least 1, got " + std::to_string(frames));
+  const std::unique_lock turn = take_turn(*sim.turn);
+  return step_frames(sim, frames);
 }
 
 // Read-only strided views of one member of every BodyPose (positions or orientations): no copy.
@@ -191,17 +200,36 @@ void bind_scene(py::module_& m) {
            "sphere-trees (built trees cached as the command line caches them unless cache=False). "
            "depth replaces every built tree's depth; threads as the world's setting (0: all).")
       .def_property_readonly(
-          "world", [](Simulation& sim) -> World& { return *sim.setup.world; },
-          py::return_value_policy::reference_internal)
+          "world",
+          // A getter made with keep_alive itself: a property's own extras ignore it.
+          py::cpp_function(
+              [](Simulation& sim) {
+                // Not owning: the returned object keeps the simulation alive instead.
+                return SharedWorld{
+                    std::shared_ptr<World>(std::shared_ptr<World>(), sim.setup.world.get()),
+                    sim.turn};
+              },
+              py::keep_alive<0, 1>()),
+          "The simulation's world; its calls take turns with the simulation's.")
       .def_property_readonly(
           "scene", [](const Simulation& sim) { return sim.scene; },
           "A copy of the scene the simulation was built from (changing it changes nothing).")
       .def_property_readonly(
           "body_ids", [](const Simulation& sim) { return sim.setup.bodies; },
           "The scene's bodies' ids, in scene order.")
-      .def_readonly("frame", &Simulation::frame, "Frames stepped so far.")
       .def_property_readonly(
-          "time", [](const Simulation& sim) { return sim.frame * sim.scene.time_step; },
+          "frame",
+          [](const Simulation& sim) {
+            const std::unique_lock turn = take_turn(*sim.turn);
+            return sim.frame;
+          },
+          "Frames stepped so far.")
+      .def_property_readonly(
+          "time",
+          [](const Simulation& sim) {
+            const std::unique_lock turn = take_turn(*sim.turn);
+            return sim.frame * sim.scene.time_step;
+          },
           "Simulated time so far. unit: s")
       .def("step", &step_simulation, py::arg("frames") = 1,
            "Steps `frames` frames of the scene's time step with the GIL released; returns the last "
@@ -210,16 +238,23 @@ void bind_scene(py::module_& m) {
       .def(
           "run",
           [](Simulation& sim) {
-            if (sim.frame < sim.scene.frames) step_simulation(sim, sim.scene.frames - sim.frame);
+            const std::unique_lock turn = take_turn(*sim.turn);
+            if (sim.frame < sim.scene.frames) step_frames(sim, sim.scene.frames - sim.frame);
             return from_json_text(tools::run_summary_json(sim.scene, sim.setup, sim.totals));
           },
           "Steps to the scene's last frame and returns summary().")
-      .def("poses", &scene_poses,
-           "(B, 7) float32 of the scene's bodies in scene order: position (m), then orientation "
-           "(x, y, z, w). The same numbers as a recording's frame.")
+      .def(
+          "poses",
+          [](const Simulation& sim) {
+            const std::unique_lock turn = take_turn(*sim.turn);
+            return scene_poses(sim);
+          },
+          "(B, 7) float32 of the scene's bodies in scene order: position (m), then orientation "
+          "(x, y, z, w). The same numbers as a recording's frame.")
       .def(
           "summary",
           [](const Simulation& sim) {
+            const std::unique_lock turn = take_turn(*sim.turn);
             return from_json_text(tools::run_summary_json(sim.scene, sim.setup, sim.totals));
           },
           "The figures of `sphys simulate --json` over the frames stepped so far, as a dict.");

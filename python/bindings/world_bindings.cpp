@@ -1,6 +1,7 @@
 // Worlds: settings, bodies, stepping (the GIL released), poses, velocities and contacts as arrays.
 
 #include <Python.h>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -89,9 +90,12 @@ std::vector<std::uint32_t> slots_of(const World& world,
   return slots;
 }
 
-// Steps `steps` times without the GIL; between steps, takes it back to let Ctrl-C through.
-StepStats step_world(World& world, float dt, int steps) {
+// Steps `steps` times without the GIL, in one turn; between steps, takes the GIL back to let
+// Ctrl-C through.
+StepStats step_world(SharedWorld& shared, float dt, int steps) {
   if (steps < 1) throw Error("steps must be at least 1, got " + std::to_string(steps));
+  const std::unique_lock turn = take_turn(*shared.turn);
+  World& world = *shared.world;
   StepStats stats;
   for (int i = 0; i < steps; ++i) {
     {
@@ -143,6 +147,20 @@ py::dict stats_dict(const StepStats& s) {
 }
 
 }  // namespace
+
+std::unique_lock<Turn> take_turn(Turn& turn) {
+  // How long a wait lasts before Ctrl-C is looked at. unit: ms
+  constexpr std::chrono::milliseconds kSignalCheck(50);
+  std::unique_lock lock(turn, std::try_to_lock);
+  while (!lock.owns_lock()) {
+    {
+      const py::gil_scoped_release unlocked;
+      (void)lock.try_lock_for(kSignalCheck);
+    }
+    if (!lock.owns_lock() && PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  return lock;
+}
 
 WorldSettings settings_from(const py::handle& mapping, WorldSettings base) {
   std::vector<std::pair<std::string, py::object>> fields;
@@ -264,11 +282,13 @@ void bind_world(py::module_& m) {
       },
       "Every world setting: its field, unit, valid values, default and what it does.");
 
-  py::class_<World>(m, "World",
-                    "A world of rigid bodies with sphere-trees. Settings are keyword arguments "
-                    "named as in scene files, nested for the solver and sleep "
-                    "(World(gravity=(0, -9.81, 0), solver={'soft_substeps': 8})); see "
-                    "settings_table(). ground_plane: height (m) of an exact ground plane, or None.")
+  // Every method takes the world's turn first (take_turn); step holds it for all its steps.
+  py::class_<SharedWorld>(m, "World",
+                          "A world of rigid bodies with sphere-trees. Settings are keyword "
+                          "arguments named as in scene files, nested for the solver and sleep "
+                          "(World(gravity=(0, -9.81, 0), solver={'soft_substeps': 8})); see "
+                          "settings_table(). ground_plane: height (m) of an exact ground plane, or "
+                          "None. Any thread may call it: calls take turns (docs/python.md).")
       .def(py::init([](const py::object& ground_plane, const py::kwargs& settings) {
              WorldSettings world_settings = settings_from(settings, WorldSettings{});
              if (!ground_plane.is_none()) {
@@ -282,19 +302,26 @@ void bind_world(py::module_& m) {
                if (!std::isfinite(height)) throw Error("ground_plane must be finite or None");
                world_settings.collision.ground_plane_height = static_cast<float>(height);
              }
-             return std::make_unique<World>(world_settings);
+             return SharedWorld{std::make_shared<World>(world_settings)};
            }),
            py::kw_only(), py::arg("ground_plane") = py::none())
       .def_property_readonly(
-          "settings", [](const World& world) { return settings_dict(world.settings()); },
+          "settings",
+          [](const SharedWorld& w) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return settings_dict(w.world->settings());
+          },
           "Every setting by its dotted field.")
       .def_property_readonly(
           "ground_plane",
-          [](const World& world) { return world.settings().collision.ground_plane_height; },
+          [](const SharedWorld& w) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return w.world->settings().collision.ground_plane_height;
+          },
           "Height of the exact ground plane (m), or None.")
       .def(
           "add_body",
-          [](World& world, const std::shared_ptr<SphereTree>& tree, const py::object& position,
+          [](SharedWorld& w, const std::shared_ptr<SphereTree>& tree, const py::object& position,
              const py::object& orientation, const py::object& linear_velocity,
              const py::object& angular_velocity, float mass, const py::object& inertia,
              float restitution, float friction, bool is_static) {
@@ -318,7 +345,8 @@ void bind_world(py::module_& m) {
             desc.restitution = restitution;
             desc.friction = friction;
             desc.is_static = is_static;
-            return world.add_body(desc);
+            const std::unique_lock turn = take_turn(*w.turn);
+            return w.world->add_body(desc);
           },
           py::arg("tree"), py::kw_only(), py::arg("position") = py::make_tuple(0, 0, 0),
           py::arg("orientation") = py::make_tuple(0, 0, 0, 1),
@@ -330,67 +358,112 @@ void bind_world(py::module_& m) {
           "position (m); orientation a unit quaternion (x, y, z, w); velocities in m/s and rad/s "
           "(world frame); mass (kg); inertia 3x3 about the centre of mass in body axes (kg·m², "
           "identity if None); restitution 0..1; friction >= 0. Returns its BodyId.")
-      .def("remove_body", &World::remove_body, py::arg("body"))
-      .def("alive", &World::alive, py::arg("body"))
-      .def("asleep", &World::asleep, py::arg("body"))
+      .def(
+          "remove_body",
+          [](SharedWorld& w, BodyId body) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            w.world->remove_body(body);
+          },
+          py::arg("body"))
+      .def(
+          "alive",
+          [](const SharedWorld& w, BodyId body) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return w.world->alive(body);
+          },
+          py::arg("body"))
+      .def(
+          "asleep",
+          [](const SharedWorld& w, BodyId body) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return w.world->asleep(body);
+          },
+          py::arg("body"))
       .def(
           "body_ids",
-          [](const World& world) {
+          [](const SharedWorld& w) {
+            const std::unique_lock turn = take_turn(*w.turn);
             std::vector<BodyId> ids;
-            for (const std::uint32_t slot : slots_of(world, std::nullopt))
-              ids.push_back(world.id_of(slot));
+            for (const std::uint32_t slot : slots_of(*w.world, std::nullopt))
+              ids.push_back(w.world->id_of(slot));
             return ids;
           },
           "The bodies in the world, in the order of poses() and velocities().")
-      .def("__len__", [](const World& world) { return slots_of(world, std::nullopt).size(); })
+      .def("__len__",
+           [](const SharedWorld& w) {
+             const std::unique_lock turn = take_turn(*w.turn);
+             return slots_of(*w.world, std::nullopt).size();
+           })
       .def(
           "set_velocity",
-          [](World& world, BodyId body, const py::object& linear, const py::object& angular) {
-            world.set_velocity(body, vec3_from(linear, "linear"), vec3_from(angular, "angular"));
+          [](SharedWorld& w, BodyId body, const py::object& linear, const py::object& angular) {
+            const Vec3 v = vec3_from(linear, "linear");
+            const Vec3 omega = vec3_from(angular, "angular");
+            const std::unique_lock turn = take_turn(*w.turn);
+            w.world->set_velocity(body, v, omega);
           },
           py::arg("body"), py::arg("linear"), py::arg("angular") = py::make_tuple(0, 0, 0),
           "Sets a body's velocities (m/s, rad/s, world frame) and wakes it.")
       .def(
           "apply_impulse",
-          [](World& world, BodyId body, const py::object& impulse, const py::object& point) {
-            world.apply_impulse(body, vec3_from(impulse, "impulse"), vec3_from(point, "point"));
+          [](SharedWorld& w, BodyId body, const py::object& impulse, const py::object& point) {
+            const Vec3 j = vec3_from(impulse, "impulse");
+            const Vec3 at = vec3_from(point, "point");
+            const std::unique_lock turn = take_turn(*w.turn);
+            w.world->apply_impulse(body, j, at);
           },
           py::arg("body"), py::arg("impulse"), py::arg("point"),
           "An impulse (N·s, world frame) at a world point (m); wakes the body.")
       .def(
           "set_pair_material",
-          [](World& world, BodyId a, BodyId b, float friction, float restitution) {
+          [](SharedWorld& w, BodyId a, BodyId b, float friction, float restitution) {
             if (a == b) throw Error("set_pair_material: a and b are the same body");
-            world.set_pair_material(a, b, PairMaterial{friction, restitution});
+            const std::unique_lock turn = take_turn(*w.turn);
+            w.world->set_pair_material(a, b, PairMaterial{friction, restitution});
           },
           py::arg("a"), py::arg("b"), py::kw_only(), py::arg("friction"), py::arg("restitution"),
           "The friction (>= 0) and restitution (0..1) of contacts between two bodies.")
       .def("step", &step_world, py::arg("dt") = 1.0 / 60.0, py::arg("steps") = 1,
-           "Advances the world `steps` times by dt (s) with the GIL released; returns the last "
-           "step's StepStats. Ctrl-C stops between steps. A world whose state went non-finite "
-           "stops (StepStats.non_finite_body says which body).")
+           "Advances the world `steps` times by dt (s) with the GIL released, in one turn: other "
+           "threads' calls wait for all the steps; returns the last step's StepStats. Ctrl-C stops "
+           "between steps. A world whose state went non-finite stops (StepStats.non_finite_body "
+           "says which body).")
       .def_property_readonly(
-          "stats", [](const World& world) { return world.stats(); }, "The last step's StepStats.")
-      .def_property_readonly("stopped", &World::stopped, "True once the state went non-finite.")
+          "stats",
+          [](const SharedWorld& w) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return w.world->stats();
+          },
+          "The last step's StepStats.")
+      .def_property_readonly(
+          "stopped",
+          [](const SharedWorld& w) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return w.world->stopped();
+          },
+          "True once the state went non-finite.")
       .def(
           "poses",
-          [](const World& world, const std::optional<std::vector<BodyId>>& ids) {
-            return rows_of(world, slots_of(world, ids), 7, true);
+          [](const SharedWorld& w, const std::optional<std::vector<BodyId>>& ids) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return rows_of(*w.world, slots_of(*w.world, ids), 7, true);
           },
           py::arg("ids") = std::nullopt,
           "(N, 7) float32: position (m) then orientation (x, y, z, w) of the given bodies, or of "
           "every body in body_ids() order. A copy: it does not change as the world steps.")
       .def(
           "velocities",
-          [](const World& world, const std::optional<std::vector<BodyId>>& ids) {
-            return rows_of(world, slots_of(world, ids), 6, false);
+          [](const SharedWorld& w, const std::optional<std::vector<BodyId>>& ids) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            return rows_of(*w.world, slots_of(*w.world, ids), 6, false);
           },
           py::arg("ids") = std::nullopt,
           "(N, 6) float32: linear (m/s) then angular (rad/s) velocity, world frame.")
       .def(
           "contacts",
-          [](const World& world) {
-            const auto contacts = world.contacts();
+          [](const SharedWorld& w) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            const auto contacts = w.world->contacts();
             const auto n = static_cast<py::ssize_t>(contacts.size());
             py::array_t<std::uint32_t> bodies({n, py::ssize_t{2}});
             py::array_t<float> points({n, py::ssize_t{3}});
@@ -421,9 +494,14 @@ void bind_world(py::module_& m) {
           "GROUND_PLANE_BODY for the ground plane), points (K, 3) m, normals (K, 3) unit vectors "
           "from the first body to the second, "
           "depths (K,) m.")
-      .def("set_detection_budget", &World::set_detection_budget, py::arg("max_sphere_tests"),
-           py::arg("max_microseconds"),
-           "The narrow phase's budgets from the next step on; 0 turns one off.");
+      .def(
+          "set_detection_budget",
+          [](SharedWorld& w, std::uint64_t max_sphere_tests, double max_microseconds) {
+            const std::unique_lock turn = take_turn(*w.turn);
+            w.world->set_detection_budget(max_sphere_tests, max_microseconds);
+          },
+          py::arg("max_sphere_tests"), py::arg("max_microseconds"),
+          "The narrow phase's budgets from the next step on; 0 turns one off.");
 }
 
 }  // namespace sphys::python

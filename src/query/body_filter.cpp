@@ -6,27 +6,24 @@
 
 namespace sphys::query_detail {
 
-std::uint32_t checked_slot(const World& world, const Snapshot& snapshot, BodyId body,
-                           std::string_view argument) {
-  std::uint32_t slot = 0;
-  try {
-    slot = world.slot_of(body);
-  } catch (const Error& error) {
-    throw Error(std::string(argument) + ": " + error.what());
+std::uint32_t checked_slot(const Snapshot& snapshot, BodyId body, std::string_view argument) {
+  if (body.is_null()) {
+    throw Error(std::string(argument) + ": the null body id (BodyId{}) names no body");
   }
-  if (slot >= snapshot.trees.size() || snapshot.trees[slot] == nullptr) {
-    throw Error(std::string(argument) + ": body " + std::to_string(body.index) + "." +
+  if (body.index >= snapshot.ids.size() || snapshot.ids[body.index] != body) {
+    throw Error(std::string(argument) + ": no body with id " + std::to_string(body.index) + "." +
                 std::to_string(body.generation) +
-                " was added after the query was made or refreshed");
+                " in the world as the query last read it (removed, added since the query was "
+                "made or refreshed, or never added)");
   }
-  return slot;
+  return body.index;
 }
 
-BodyFilter::BodyFilter(const World& world, const Snapshot& snapshot, const QueryFilter& filter)
+BodyFilter::BodyFilter(const Snapshot& snapshot, const QueryFilter& filter)
     : snapshot_(snapshot), filter_(filter) {
   skip_.reserve(filter.skip.size());
   for (const BodyId body : filter.skip) {
-    skip_.push_back(checked_slot(world, snapshot, body, "filter.skip"));
+    skip_.push_back(checked_slot(snapshot, body, "filter.skip"));
   }
 }
 

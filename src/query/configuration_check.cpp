@@ -59,7 +59,7 @@ ConfigurationChecker::ConfigurationChecker(const WorldQuery& query,
     link_count_ = std::max(link_count_, static_cast<std::size_t>(links_[i]) + 1);
   }
   const Snapshot& snapshot = query.snapshot();
-  const query_detail::BodyFilter filter(query.world(), snapshot, settings.filter);
+  const query_detail::BodyFilter filter(snapshot, settings.filter);
   group_seen_.reserve(snapshot.groups.size());
   for (const LeafGroup& group : snapshot.groups) {
     group_seen_.push_back(filter.sees(group.body) ? 1 : 0);

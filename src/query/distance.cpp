@@ -141,8 +141,8 @@ void check_budget(const DistanceBudget& budget) {
 }  // namespace
 
 DistanceResult WorldQuery::distance(BodyId a, BodyId b, const DistanceBudget& budget) const {
-  const std::uint32_t slot_a = query_detail::checked_slot(*world_, *snapshot_, a, "body_a");
-  const std::uint32_t slot_b = query_detail::checked_slot(*world_, *snapshot_, b, "body_b");
+  const std::uint32_t slot_a = query_detail::checked_slot(*snapshot_, a, "body_a");
+  const std::uint32_t slot_b = query_detail::checked_slot(*snapshot_, b, "body_b");
   if (slot_a == slot_b) throw Error("body_b: the same body as body_a");
   check_budget(budget);
   const int depth = snapshot_->tree_depth;
@@ -152,7 +152,7 @@ DistanceResult WorldQuery::distance(BodyId a, BodyId b, const DistanceBudget& bu
 
 DistanceResult WorldQuery::distance(BodyId body, const Vec3& point,
                                     const DistanceBudget& budget) const {
-  const std::uint32_t slot = query_detail::checked_slot(*world_, *snapshot_, body, "body");
+  const std::uint32_t slot = query_detail::checked_slot(*snapshot_, body, "body");
   query_detail::check_finite(point, "point");
   check_budget(budget);
   return closest(Side(*snapshot_->trees[slot], snapshot_->poses[slot], snapshot_->tree_depth),

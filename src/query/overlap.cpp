@@ -21,9 +21,8 @@ using query_detail::Snapshot;
 
 // The bodies of the groups within `bounds` that `touches` accepts, as ids by increasing slot.
 template <class Touches>
-std::vector<BodyId> bodies_touching(const World& world, const Snapshot& snapshot,
-                                    const BodyFilter& filter, const Aabb& bounds,
-                                    const Touches& touches) {
+std::vector<BodyId> bodies_touching(const Snapshot& snapshot, const BodyFilter& filter,
+                                    const Aabb& bounds, const Touches& touches) {
   std::vector<std::uint32_t> found;
   query_detail::walk_boxes(
       snapshot, [&](const Aabb& box) { return box.overlaps(bounds); },
@@ -37,7 +36,7 @@ std::vector<BodyId> bodies_touching(const World& world, const Snapshot& snapshot
   std::ranges::sort(found);
   std::vector<BodyId> out;
   out.reserve(found.size());
-  for (const std::uint32_t slot : found) out.push_back(world.id_of(slot));
+  for (const std::uint32_t slot : found) out.push_back(snapshot.ids[slot]);
   return out;
 }
 
@@ -47,9 +46,9 @@ std::vector<BodyId> WorldQuery::overlap_sphere(const Vec3& center, float radius,
                                                const QueryFilter& filter) const {
   query_detail::check_finite(center, "center");
   query_detail::check_size(radius, "radius");
-  const BodyFilter seen(*world_, *snapshot_, filter);
+  const BodyFilter seen(*snapshot_, filter);
   return bodies_touching(
-      *world_, *snapshot_, seen, Aabb::around_sphere(center, radius), [&](const LeafGroup& group) {
+      *snapshot_, seen, Aabb::around_sphere(center, radius), [&](const LeafGroup& group) {
         return query_detail::group_touches_sphere(*snapshot_, group, center, radius);
       });
 }
@@ -58,8 +57,8 @@ std::vector<BodyId> WorldQuery::overlap_aabb(const Aabb& box, const QueryFilter&
   query_detail::check_finite(box.min, "box.min");
   query_detail::check_finite(box.max, "box.max");
   query_detail::check_size(Vec3(box.max - box.min), "box.max - box.min");
-  const BodyFilter seen(*world_, *snapshot_, filter);
-  return bodies_touching(*world_, *snapshot_, seen, box, [&](const LeafGroup& group) {
+  const BodyFilter seen(*snapshot_, filter);
+  return bodies_touching(*snapshot_, seen, box, [&](const LeafGroup& group) {
     return query_detail::group_touches_aabb(*snapshot_, group, box);
   });
 }
@@ -68,12 +67,12 @@ std::vector<BodyId> WorldQuery::overlap_box(const OrientedBox& box,
                                             const QueryFilter& filter) const {
   query_detail::check_pose(box.pose, "box.pose");
   query_detail::check_size(box.half_extents, "box.half_extents");
-  const BodyFilter seen(*world_, *snapshot_, filter);
+  const BodyFilter seen(*snapshot_, filter);
   const Mat3 rotation = box.pose.rotation.normalized().toRotationMatrix();
   // The world box around the turned box: each world axis gets |R| times the half extents.
   const Vec3 reach = rotation.cwiseAbs() * box.half_extents;
   const Aabb bounds{box.pose.translation - reach, box.pose.translation + reach};
-  return bodies_touching(*world_, *snapshot_, seen, bounds, [&](const LeafGroup& group) {
+  return bodies_touching(*snapshot_, seen, bounds, [&](const LeafGroup& group) {
     return query_detail::group_touches_oriented_box(*snapshot_, group, rotation,
                                                     box.pose.translation, box.half_extents);
   });
@@ -83,7 +82,7 @@ std::vector<BodyId> WorldQuery::overlap_tree(const SphereTree& tree, const Trans
                                              const QueryFilter& filter) const {
   query_detail::check_pose(pose, "pose");
   if (tree.empty()) throw Error("tree: empty");
-  const BodyFilter seen(*world_, *snapshot_, filter);
+  const BodyFilter seen(*snapshot_, filter);
   // The tree's leaves in the world frame, each with its box.
   const query_detail::LeafRange range = query_detail::leaf_range(tree, snapshot_->tree_depth);
   const Mat3 rotation = pose.rotation.normalized().toRotationMatrix();
@@ -97,7 +96,7 @@ std::vector<BodyId> WorldQuery::overlap_tree(const SphereTree& tree, const Trans
     boxes.push_back(Aabb::around_sphere(leaf.center, leaf.radius));
     bounds.extend(boxes.back());
   }
-  return bodies_touching(*world_, *snapshot_, seen, bounds, [&](const LeafGroup& group) {
+  return bodies_touching(*snapshot_, seen, bounds, [&](const LeafGroup& group) {
     for (std::size_t i = 0; i < leaves.size(); ++i) {
       if (boxes[i].overlaps(group.bounds) &&
           query_detail::group_touches_sphere(*snapshot_, group, leaves[i].center,
@@ -111,7 +110,7 @@ std::vector<BodyId> WorldQuery::overlap_tree(const SphereTree& tree, const Trans
 
 std::vector<BodyId> WorldQuery::overlap_body(BodyId body, const Transform& pose,
                                              QueryFilter filter) const {
-  const std::uint32_t slot = query_detail::checked_slot(*world_, *snapshot_, body, "body");
+  const std::uint32_t slot = query_detail::checked_slot(*snapshot_, body, "body");
   filter.skip.push_back(body);
   return overlap_tree(*snapshot_->trees[slot], pose, filter);
 }

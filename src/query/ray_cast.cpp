@@ -92,9 +92,9 @@ std::optional<LaneHit> nearest(const Snapshot& snapshot, const BodyFilter& filte
   return best;
 }
 
-RayHit named(const World& world, const Snapshot& snapshot, const UnitRay& ray, const LaneHit& hit) {
+RayHit named(const Snapshot& snapshot, const UnitRay& ray, const LaneHit& hit) {
   RayHit out;
-  out.body = world.id_of(hit.body);
+  out.body = snapshot.ids[hit.body];
   out.leaf = snapshot.node[hit.sphere];
   out.distance = hit.distance;
   out.point = ray.origin + hit.distance * ray.direction;
@@ -110,15 +110,15 @@ RayHit named(const World& world, const Snapshot& snapshot, const UnitRay& ray, c
 
 std::optional<RayHit> WorldQuery::cast_ray(const Ray& ray, const QueryFilter& filter) const {
   const UnitRay unit = checked(ray);
-  const BodyFilter seen(*world_, *snapshot_, filter);
+  const BodyFilter seen(*snapshot_, filter);
   const std::optional<LaneHit> hit = nearest(*snapshot_, seen, unit);
   if (!hit) return std::nullopt;
-  return named(*world_, *snapshot_, unit, *hit);
+  return named(*snapshot_, unit, *hit);
 }
 
 std::vector<RayHit> WorldQuery::cast_ray_all(const Ray& ray, const QueryFilter& filter) const {
   const UnitRay unit = checked(ray);
-  const BodyFilter seen(*world_, *snapshot_, filter);
+  const BodyFilter seen(*snapshot_, filter);
   std::vector<LaneHit> per_body;  // each body's nearest hit
   float limit = unit.max_distance;
   query_detail::walk_ray(
@@ -138,7 +138,7 @@ std::vector<RayHit> WorldQuery::cast_ray_all(const Ray& ray, const QueryFilter& 
   });
   std::vector<RayHit> out;
   out.reserve(per_body.size());
-  for (const LaneHit& hit : per_body) out.push_back(named(*world_, *snapshot_, unit, hit));
+  for (const LaneHit& hit : per_body) out.push_back(named(*snapshot_, unit, hit));
   return out;
 }
 
@@ -151,14 +151,14 @@ void WorldQuery::cast_rays(std::span<const Ray> rays, const QueryFilter& filter,
   std::vector<UnitRay> units;
   units.reserve(rays.size());
   for (const Ray& ray : rays) units.push_back(checked(ray));
-  const BodyFilter seen(*world_, *snapshot_, filter);
+  const BodyFilter seen(*snapshot_, filter);
   // Runs of rays per task: one ray is too little work to hand to a thread. unit: rays
   constexpr std::size_t kRaysPerRun = 64;
   for_each_on(parallel, (rays.size() + kRaysPerRun - 1) / kRaysPerRun, [&](std::size_t run) {
     const std::size_t end = std::min(rays.size(), (run + 1) * kRaysPerRun);
     for (std::size_t i = run * kRaysPerRun; i < end; ++i) {
       const std::optional<LaneHit> hit = nearest(*snapshot_, seen, units[i]);
-      hits[i] = hit ? std::optional(named(*world_, *snapshot_, units[i], *hit)) : std::nullopt;
+      hits[i] = hit ? std::optional(named(*snapshot_, units[i], *hit)) : std::nullopt;
     }
   });
 }

@@ -50,10 +50,13 @@ LeafRange leaf_range(const SphereTree& tree, int depth) {
 }
 
 void Snapshot::read(const World& world) {
+  // One state of the world, read whole: a step or change on another thread throws meanwhile.
+  const World::Reading reading(world);
   tree_depth = world.settings().collision.tree_depth;
   const BodyStore& store = world.bodies();
   const std::uint32_t slots = store.slots();
   poses.assign(store.poses().begin(), store.poses().end());
+  ids.assign(slots, BodyId{});
   trees.assign(slots, nullptr);
   asleep.assign(slots, 0);
   x.clear();
@@ -64,8 +67,9 @@ void Snapshot::read(const World& world) {
   std::vector<LeafGroup> made;
   for (std::uint32_t slot = 0; slot < slots; ++slot) {
     if (!store.alive(slot)) continue;
-    const SphereTree& tree = world.tree(world.id_of(slot));
-    trees[slot] = &tree;
+    ids[slot] = store.id_of(slot);
+    trees[slot] = world.detector().shared_tree(slot);
+    const SphereTree& tree = *trees[slot];
     asleep[slot] = store.asleep(slot) ? 1 : 0;
     const Transform& pose = poses[slot];
     const Mat3 rotation = pose.rotation.toRotationMatrix();

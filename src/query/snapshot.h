@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -76,9 +77,11 @@ struct Snapshot {
   std::vector<std::uint32_t> node;  // each sphere's node in its body's tree
   std::vector<LeafGroup> groups;    // in the hierarchy's leaf order
   std::vector<BvhNode> bvh;         // node 0 the root; empty when the world has no body
-  // Per body slot, as in the world when the snapshot was made.
+  // Per body slot, as in the world when the snapshot was made. The trees are shared, so that a
+  // snapshot stays whole while the world removes bodies.
   std::vector<Transform> poses;
-  std::vector<const SphereTree*> trees;  // null for a free slot
+  std::vector<BodyId> ids;                               // the null id for a free slot
+  std::vector<std::shared_ptr<const SphereTree>> trees;  // null for a free slot
   std::vector<std::uint8_t> asleep;
   int tree_depth = 0;  // CollisionSettings::tree_depth: the levels in use, 0 for all
 

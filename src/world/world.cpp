@@ -10,6 +10,7 @@
 #include "sphys/error.h"
 #include "sphys/settings_table.h"
 #include "world/sleep_tracker.h"
+#include "world/world_access.h"
 
 namespace sphys {
 namespace {
@@ -84,7 +85,8 @@ World::World(const WorldSettings& settings)
       store_(std::make_unique<BodyStore>()),
       detector_(std::make_unique<CollisionDetector>(collision_settings(settings))),
       solver_(std::make_unique<SoftStepSolver>()),
-      sleep_(std::make_unique<SleepTracker>(*store_)) {
+      sleep_(std::make_unique<SleepTracker>(*store_)),
+      access_(std::make_unique<WorldAccess>()) {
   check_world_settings(settings);
   parallel_ = std::make_unique<Parallel>(settings.threads);
   detector_->set_parallel(parallel_.get());
@@ -100,16 +102,83 @@ std::uint64_t World::pair_key(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t{a} << 32) | b;
 }
 
-std::uint32_t World::slot_of(BodyId id) const {
+World::Reading::Reading(const World& world) : access_(world.access_.get()) {
+  access_->hold_shared("World::Reading");
+}
+
+World::Reading::~Reading() { access_->release_shared(); }
+
+std::uint32_t World::checked_slot(BodyId id) const {
   if (id.is_null()) throw Error("the null body id (BodyId{}) names no body");
-  if (!alive(id)) {
+  if (!store_->alive(id)) {
     throw Error("no body with id " + std::to_string(id.index) + "." +
                 std::to_string(id.generation) + " in the world (removed, or never added)");
   }
   return id.index;
 }
 
+std::uint32_t World::slot_of(BodyId id) const {
+  const WorldAccess::Shared turn(*access_, "slot_of");
+  return checked_slot(id);
+}
+
+RigidBody World::body(BodyId id) const {
+  const WorldAccess::Shared turn(*access_, "body");
+  return store_->body(checked_slot(id));
+}
+
+const SphereTree& World::tree(BodyId id) const {
+  const WorldAccess::Shared turn(*access_, "tree");
+  return detector_->tree(checked_slot(id));
+}
+
+std::shared_ptr<const SphereTree> World::shared_tree(BodyId id) const {
+  const WorldAccess::Shared turn(*access_, "shared_tree");
+  return detector_->shared_tree(checked_slot(id));
+}
+
+bool World::alive(BodyId id) const {
+  const WorldAccess::Shared turn(*access_, "alive");
+  return store_->alive(id);
+}
+
+std::uint32_t World::body_slots() const {
+  const WorldAccess::Shared turn(*access_, "body_slots");
+  return store_->slots();
+}
+
+const StepStats& World::stats() const {
+  const WorldAccess::Shared turn(*access_, "stats");
+  return stats_;
+}
+
+std::span<const Contact> World::contacts() const {
+  const WorldAccess::Shared turn(*access_, "contacts");
+  return detector_->contacts();
+}
+
+bool World::stopped() const {
+  const WorldAccess::Shared turn(*access_, "stopped");
+  return stopped_;
+}
+
+const WorldSettings& World::settings() const {
+  const WorldAccess::Shared turn(*access_, "settings");
+  return settings_;
+}
+
+const CollisionDetector& World::detector() const {
+  const WorldAccess::Shared turn(*access_, "detector");
+  return *detector_;
+}
+
+const BodyStore& World::bodies() const {
+  const WorldAccess::Shared turn(*access_, "bodies");
+  return *store_;
+}
+
 BodyId World::id_of(std::uint32_t slot) const {
+  const WorldAccess::Shared turn(*access_, "id_of");
   if (slot >= store_->slots()) {
     throw Error("no body slot " + std::to_string(slot) + " in the world, which has " +
                 std::to_string(store_->slots()));
@@ -118,6 +187,7 @@ BodyId World::id_of(std::uint32_t slot) const {
 }
 
 BodyId World::add_body(const BodyDesc& desc) {
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "add_body");
   check_body(desc);
   RigidBody body;
   body.pose = desc.pose;
@@ -151,7 +221,8 @@ void World::wake(std::uint32_t index) {
 }
 
 void World::remove_body(BodyId id) {
-  const std::uint32_t index = slot_of(id);
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "remove_body");
+  const std::uint32_t index = checked_slot(id);
   // The sleeping bodies it touched (which may rest on it, asleep, awake or static) lose a
   // support.
   wake(index);
@@ -168,6 +239,7 @@ void World::remove_body(BodyId id) {
 }
 
 void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds) {
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "set_detection_budget");
   WorldSettings settings = settings_;
   settings.collision.max_sphere_tests = max_sphere_tests;
   settings.collision.max_microseconds = max_microseconds;
@@ -177,7 +249,8 @@ void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_micr
 }
 
 void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
-  const std::uint32_t index = slot_of(id);
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "set_velocity");
+  const std::uint32_t index = checked_slot(id);
   if (!linear.allFinite() || !angular.allFinite()) {
     throw Error("a body's velocities must be finite");
   }
@@ -188,7 +261,8 @@ void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {
 }
 
 void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
-  const std::uint32_t index = slot_of(id);
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "apply_impulse");
+  const std::uint32_t index = checked_slot(id);
   if (!impulse.allFinite() || !point.allFinite()) {
     throw Error("an impulse and its point must be finite");
   }
@@ -201,13 +275,17 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
 }
 
 void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
-  const std::uint32_t ia = slot_of(a);
-  const std::uint32_t ib = slot_of(b);
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "set_pair_material");
+  const std::uint32_t ia = checked_slot(a);
+  const std::uint32_t ib = checked_slot(b);
   check_material(material.restitution, material.friction);
   pair_materials_[pair_key(ia, ib)] = material;
 }
 
-bool World::asleep(BodyId id) const { return store_->asleep(slot_of(id)); }
+bool World::asleep(BodyId id) const {
+  const WorldAccess::Shared turn(*access_, "asleep");
+  return store_->asleep(checked_slot(id));
+}
 
 std::uint32_t World::substeps_for(float dt) const {
   const std::uint32_t fewest = settings_.substeps;
@@ -228,6 +306,7 @@ std::uint32_t World::substeps_for(float dt) const {
 }
 
 const StepStats& World::step(float dt) {
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kStep, "step");
   if (!(dt > 0.0f) || !std::isfinite(dt)) {
     throw Error("the time step must be positive and finite, got " + std::to_string(dt));
   }
