@@ -15,6 +15,13 @@ ProgressBar::~ProgressBar() {
   if (drawn_) std::fprintf(stderr, "\r\033[K");
 }
 
+void ProgressBar::note(const std::string& line) {
+  if (drawn_) std::fprintf(stderr, "\r\033[K");
+  drawn_ = false;
+  std::fprintf(stderr, "%s\n", line.c_str());
+  std::fflush(stderr);
+}
+
 void ProgressBar::update(double fraction) {
   // Every long loop reports its progress here, so this is where it notices Ctrl-C.
   tools::throw_if_interrupted();

@@ -17,6 +17,9 @@ class ProgressBar {
   // Draws `fraction` (0..1); throws tools::Interrupted when Ctrl-C or SIGTERM came in the
   // meantime (see sphys/tools/interrupt.h).
   void update(double fraction);
+  // Prints a line of its own on standard error (whether or not it is a terminal), the bar, if
+  // drawn, cleared first and drawn again at the next update().
+  void note(const std::string& line);
 
  private:
   std::string label_;

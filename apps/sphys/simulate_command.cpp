@@ -309,6 +309,7 @@ void run(const SimulateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   {
     ProgressBar bar("simulating " + scene.name);
+    bool crowd_noted = false;  // a crowd is reported once, at its first frame
     for (int frame = 1; frame <= scene.frames; ++frame) {
       // Unwinding from here removes the recording's temporary file; earlier outputs stay whole.
       tools::throw_if_interrupted();
@@ -318,6 +319,14 @@ void run(const SimulateOptions& options) {
         break;
       }
       totals.add(stats, setup);
+      if (stats.pairs_deferred > 0 && !crowd_noted) {
+        crowd_noted = true;
+        bar.note("sphys: frame " + std::to_string(frame) + ": " +
+                 std::to_string(stats.crowded_bodies) +
+                 " bodies overlap en masse; until they part, each is paired with its nearest "
+                 "only (collision.crowd_pairs_per_body; StepStats.pairs_deferred counts the "
+                 "pairs left out)");
+      }
       rows.push_back(frame_row(frame, frame * scene.time_step, stats));
       recording.add_frame(poses(setup));
       bar.update(static_cast<double>(frame) / scene.frames);

@@ -63,6 +63,12 @@ struct CollisionSettings {
   // The deepest and mean penetration of the leaf pairs in CollisionStats: a pass over every leaf
   // pair, so only on request.
   bool measure_penetration = false;
+  // Crowds (docs/collision.md, "Crowds"): where bodies piled on each other overlap more than this
+  // many others each on average, the broad phase pairs a body that overlaps more than this many
+  // (a crowded one) with only its nearest half as many crowded ones, and such a pair makes one
+  // contact from its trees' roots, its depth capped, so that a step's work stays bounded while
+  // they part. 0 turns it off. unit: overlapping bodies per body
+  std::uint32_t crowd_pairs_per_body = 32;
   // Fixed when the detector is made (set_settings() keeps it).
   BroadPhaseKind broad_phase = BroadPhaseKind::kSweepAndPrune;
 };
@@ -82,6 +88,10 @@ struct CollisionStats {
   // Pairs of two dynamic bodies that had contacts in their last narrow phase and have none now
   // (or that the broad phase dropped): the islands they joined may have split.
   std::uint32_t parted_pairs = 0;
+  // Crowds (CollisionSettings::crowd_pairs_per_body): overlapping pairs the broad phase left out,
+  // and the moving bodies in a crowd.
+  std::uint64_t pairs_deferred = 0;
+  std::uint32_t crowded_bodies = 0;
   // With CollisionSettings::measure_penetration, over the leaf pairs that overlap.
   float deepest_penetration = 0.0f;  // unit: m
   double penetration_sum = 0.0;      // unit: m
@@ -120,11 +130,10 @@ class CollisionDetector final : public SlotArrays {
   void set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach);
   [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
   // The broad phase stays the one the detector was made with.
-  void set_settings(const CollisionSettings& settings) {
-    const BroadPhaseKind kept = settings_.broad_phase;
-    settings_ = settings;
-    settings_.broad_phase = kept;
-  }
+  void set_settings(const CollisionSettings& settings);
+  // Whether the broad phase found the body's box in a crowd at the last detect()
+  // (CollisionSettings::crowd_pairs_per_body).
+  [[nodiscard]] bool crowded(std::uint32_t slot) const;
   // The threads the narrow phase and the contacts run on (none: the caller's thread). The
   // contacts and figures do not depend on them. A time-critical budget is spent pair after pair
   // in order, so with one the narrow phase runs on the caller's thread. `parallel` must outlive
@@ -189,6 +198,7 @@ class CollisionDetector final : public SlotArrays {
     std::uint32_t leaves_begin = 0;
     std::uint32_t leaves_end = 0;
     bool reused = false;               // the leaves are the record's kept contacts at the new poses
+    bool crowd = false;                // two crowded bodies: their roots' contact
     std::uint32_t contacts_begin = 0;  // its contacts in the chunk's output
   };
 
@@ -203,6 +213,7 @@ class CollisionDetector final : public SlotArrays {
 
   [[nodiscard]] const Transform& pose_of(std::uint32_t slot) const { return store_->poses()[slot]; }
   [[nodiscard]] bool moves(std::uint32_t slot) const { return store_->moving()[slot] != 0; }
+
   // Whether a record joined two dynamic bodies by contacts in its last narrow phase.
   [[nodiscard]] bool links_dynamic_bodies(const PairRecord& record) const;
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
@@ -231,6 +242,7 @@ class CollisionDetector final : public SlotArrays {
   std::vector<Body> bodies_;    // per slot of the store
   std::vector<std::uint32_t> body_of_proxy_;
   std::variant<SweepAndPrune, CellSweepAndPrune> broad_phase_;
+  bool crowd_ = false;  // the broad phase's last update found a crowd
   PairCache cache_;
   std::vector<Job> jobs_;
   std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;

@@ -35,8 +35,11 @@ inline constexpr float kCoincidentCentreFraction = 1e-6f;
 }
 
 // The normal to use when two spheres' centres coincide: the unit direction from body a's centre of
-// mass to body b's, or +y (up) when those coincide too. Both points in the world frame, unit: m.
-[[nodiscard]] Vec3 fallback_normal(const Vec3& center_of_mass_a, const Vec3& center_of_mass_b);
+// mass to body b's, or when those coincide too, a direction drawn from `pair_seed` (the same seed
+// gives the same direction; seeds spread uniformly over the sphere). Both points in the world
+// frame, unit: m.
+[[nodiscard]] Vec3 fallback_normal(const Vec3& center_of_mass_a, const Vec3& center_of_mass_b,
+                                   std::uint64_t pair_seed);
 
 // Fills contact.point, .normal and .depth for sphere a (of body a) and sphere b (of body b), both
 // in the world frame, and leaves the ids alone:

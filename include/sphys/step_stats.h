@@ -47,6 +47,11 @@ struct StepStats {
   // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
   std::uint32_t descended_pairs = 0;
   std::uint32_t reused_pairs = 0;
+  // Crowds (CollisionSettings::crowd_pairs_per_body): overlapping body pairs the broad phase left
+  // out to keep the step's work bounded, and the moving bodies in a crowd (their largest count
+  // over the substeps).
+  std::uint64_t pairs_deferred = 0;
+  std::uint32_t crowded_bodies = 0;
   std::uint32_t movable_bodies = 0;  // bodies that are not static
   std::uint32_t bodies_asleep = 0;
 

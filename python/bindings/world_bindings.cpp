@@ -133,6 +133,8 @@ py::dict stats_dict(const StepStats& s) {
   d["islands"] = s.islands;
   d["descended_pairs"] = s.descended_pairs;
   d["reused_pairs"] = s.reused_pairs;
+  d["pairs_deferred"] = s.pairs_deferred;
+  d["crowded_bodies"] = s.crowded_bodies;
   d["movable_bodies"] = s.movable_bodies;
   d["bodies_asleep"] = s.bodies_asleep;
   d["deepest_penetration"] = s.deepest_penetration;
@@ -248,6 +250,8 @@ void bind_world(py::module_& m) {
       .def_readonly("islands", &StepStats::islands)
       .def_readonly("descended_pairs", &StepStats::descended_pairs)
       .def_readonly("reused_pairs", &StepStats::reused_pairs)
+      .def_readonly("pairs_deferred", &StepStats::pairs_deferred)
+      .def_readonly("crowded_bodies", &StepStats::crowded_bodies)
       .def_readonly("movable_bodies", &StepStats::movable_bodies)
       .def_readonly("bodies_asleep", &StepStats::bodies_asleep)
       .def_readonly("deepest_penetration", &StepStats::deepest_penetration)

@@ -87,6 +87,7 @@ void CellSweepAndPrune::update(const Parallel* parallel) {
   }
   changed_.clear();
   update_cells(parallel);
+  mark_crowded();
   update_wide();
   release_empty_cells();
   merge_changes();
@@ -236,6 +237,7 @@ std::uint32_t CellSweepAndPrune::cell_at(const std::array<std::int32_t, 3>& coor
   if (free_cells_.empty()) {
     it->second = static_cast<std::uint32_t>(cells_.size());
     cells_.emplace_back();
+    cells_.back().sweep.set_crowd_limit(crowd_limit_);
     cell_changed_.push_back(0);
   } else {
     it->second = free_cells_.back();
@@ -268,6 +270,27 @@ void CellSweepAndPrune::update_cells(const Parallel* parallel) {
     }
     for (const ProxyPair& pair : cell.sweep.pairs_left()) {
       count_pair(proxy_of(pair.a), proxy_of(pair.b), false);
+    }
+  }
+}
+
+void CellSweepAndPrune::set_crowd_limit(std::uint32_t pairs_per_box) {
+  crowd_limit_ = pairs_per_box;
+  for (Cell& cell : cells_) cell.sweep.set_crowd_limit(pairs_per_box);
+}
+
+// The boxes crowded in some cell, and the pairs the cells left out.
+void CellSweepAndPrune::mark_crowded() {
+  pairs_deferred_ = 0;
+  crowded_.clear();
+  if (crowd_limit_ == 0) return;
+  for (const Cell& cell : cells_) {
+    if (!cell.sweep.has_crowd()) continue;
+    if (crowded_.empty()) crowded_.assign(proxies_.size(), 0);
+    pairs_deferred_ += cell.sweep.pairs_deferred();
+    for (ProxyId local = 0; local < cell.proxy_of_local.size(); ++local) {
+      const ProxyId id = cell.proxy_of_local[local];
+      if ((id & kLeftBit) == 0 && cell.sweep.crowded(local)) crowded_[id] = 1;
     }
   }
 }

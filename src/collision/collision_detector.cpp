@@ -45,6 +45,23 @@ constexpr std::size_t kBodiesPerChunk = 256;
 
 CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {
   if (settings.broad_phase == BroadPhaseKind::kCells) broad_phase_.emplace<CellSweepAndPrune>();
+  set_settings(settings);
+}
+
+void CollisionDetector::set_settings(const CollisionSettings& settings) {
+  const BroadPhaseKind kept = settings_.broad_phase;
+  settings_ = settings;
+  settings_.broad_phase = kept;
+  std::visit(
+      [&](auto& broad_phase) { broad_phase.set_crowd_limit(settings_.crowd_pairs_per_body); },
+      broad_phase_);
+}
+
+bool CollisionDetector::crowded(std::uint32_t slot) const {
+  return crowd_ &&
+         std::visit(
+             [&](const auto& broad_phase) { return broad_phase.crowded(bodies_[slot].proxy); },
+             broad_phase_);
 }
 CollisionDetector::~CollisionDetector() = default;
 
@@ -137,6 +154,13 @@ const CollisionStats& CollisionDetector::detect() {
       broad_phase_);
   const std::span<const ProxyPair> pairs =
       std::visit([](const auto& broad_phase) { return broad_phase.pairs(); }, broad_phase_);
+  stats_.pairs_deferred = std::visit(
+      [](const auto& broad_phase) { return broad_phase.pairs_deferred(); }, broad_phase_);
+  crowd_ =
+      std::visit([](const auto& broad_phase) { return broad_phase.has_crowd(); }, broad_phase_);
+  if (crowd_) {
+    for (const std::uint32_t slot : store_->awake()) stats_.crowded_bodies += crowded(slot) ? 1 : 0;
+  }
   stats_.parted_pairs += cache_.follow(
       pairs, [&](const PairRecord& record) { return links_dynamic_bodies(record); }, parallel_);
   stats_.candidate_pairs = static_cast<std::uint32_t>(pairs.size());

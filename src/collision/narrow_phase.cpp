@@ -28,6 +28,10 @@ float pose_change(const Transform& from, const Transform& to, float extent) {
   return (to.translation - from.translation).norm() + angle * extent;
 }
 
+// The deepest a crowd's root contact reports, as a share of the smaller root's radius (see
+// make_contacts()). unit: dimensionless
+constexpr float kCrowdDepth = 0.5f;
+
 }  // namespace
 
 // The gap up to which two bodies' spheres make contacts: the margin plus, with speculative
@@ -126,14 +130,22 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
     const Transform& pose_a = pose_of(ia);
     const Transform& pose_b = pose_of(ib);
     const Transform relative = relative_pose(pose_a, pose_b);
-    pair.reused = reuse(record, relative, margin, store_->extents()[ib], ia, ib, chunk);
+    // Two crowded bodies touch at their roots alone: a crowd has pairs by the square of its
+    // bodies, each of whose descents would overlap at every level.
+    const bool crowd = crowded(ia) && crowded(ib);
+    pair.crowd = crowd;
+    pair.reused = !crowd && reuse(record, relative, margin, store_->extents()[ib], ia, ib, chunk);
     if (!pair.reused) {
       const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
       chunk.node_pairs.clear();
       // The clock is read only for a time budget: a read per pair cost 1.7% of a step at 1,000
       // bunnies.
       const double spent = settings_.max_microseconds > 0.0 ? 1e3 * elapsed_ms(start) : 0.0;
-      const DescentSettings settings = descent_budget(spent, chunk.sphere_tests, looked);
+      DescentSettings settings = descent_budget(spent, chunk.sphere_tests, looked);
+      if (crowd) {
+        settings.depth_a = 1;
+        settings.depth_b = 1;
+      }
       const DescentStats descent =
           chunk.descent.descend(*a.tree, pose_a, *b.tree, pose_b, settings, chunk.node_pairs);
       chunk.sphere_tests += descent.sphere_tests;
@@ -145,7 +157,7 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
                                 chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
       }
       record.relative = relative;
-      record.descent_margin = looked;
+      record.descent_margin = crowd ? -1.0f : looked;  // roots' contacts are not to be reused
       ++chunk.descended_pairs;
     }
     record.done = true;
@@ -197,7 +209,8 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
     // The pairs of one body pair share one fallback normal.
     const Vec3 fallback = plane ? Vec3::UnitY()
                                 : fallback_normal(pose_of(first.body_a).translation,
-                                                  pose_of(first.body_b).translation);
+                                                  pose_of(first.body_b).translation,
+                                                  pair_key(first.body_a, first.body_b));
     chunk.run.clear();
     for (std::uint32_t l = pair.leaves_begin; l < pair.leaves_end; ++l) {
       const LeafSpheres& leaves = chunk.leaves[l];
@@ -215,6 +228,13 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
         chunk.deepest_penetration = std::max(chunk.deepest_penetration, contact.depth);
         chunk.penetration_sum += contact.depth;
         ++chunk.penetrating_contacts;
+      }
+      if (pair.crowd) {
+        // The soft step pushes a pair apart the faster the deeper it overlaps, and a crowd's
+        // pushes add up from body to body: at the full depth of bodies spawned on each other, a
+        // crowd bursts at several m/s. Capped, it parts as a pile of bodies overlapping a little.
+        contact.depth = std::min(
+            contact.depth, kCrowdDepth * std::min(leaves.sphere_a.radius, leaves.sphere_b.radius));
       }
       chunk.run.push_back(contact);
     }

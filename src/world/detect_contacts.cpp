@@ -19,6 +19,8 @@ void World::add_detection(const CollisionStats& detection, StepStats& stats) con
   stats.coincident_centres += detection.coincident_centres;
   stats.descended_pairs += detection.descended_pairs;
   stats.reused_pairs += detection.reused_pairs;
+  stats.pairs_deferred += detection.pairs_deferred;
+  stats.crowded_bodies = std::max(stats.crowded_bodies, detection.crowded_bodies);
   if (!settings_.plausibility_figures) return;
   const double depth_sum = stats.mean_penetration * stats.penetrating_contacts;
   stats.deepest_penetration = std::max(stats.deepest_penetration, detection.deepest_penetration);

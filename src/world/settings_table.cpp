@@ -83,6 +83,10 @@ using S = SolverSettings;
 using Z = SleepSettings;
 using C = CollisionSettings;
 
+// A crowd limit past any pile's: 2^20 overlapping bodies per body is a limit no world reaches, so
+// larger values are mistakes. unit: bodies
+constexpr std::uint32_t kMaxCrowdPairsPerBody = 1u << 20;
+
 // Kept in the order of docs/scenes.md; the command line finds an entry by its field.
 const auto kTable = std::to_array<Setting>({
     vector<Top<&W::gravity>>({
@@ -311,6 +315,20 @@ const auto kTable = std::to_array<Setting>({
         .kind = SettingKind::kBool,
         .doc = "Compute StepStats' plausibility figures (penetration, kinetic energy, rest, "
                "jitter) every step: each a pass over every leaf pair or body.",
+    }),
+    scalar<Nested<&W::collision, &C::crowd_pairs_per_body>>({
+        .key = "crowd_pairs_per_body",
+        .in_scene = false,
+        .field = "collision.crowd_pairs_per_body",
+        .kind = SettingKind::kInteger,
+        .unit = "bodies",
+        .range = between(0, kMaxCrowdPairsPerBody),
+        .doc =
+            "Crowds: where bodies piled on each other overlap more than this many others each "
+            "on average, a body that overlaps more than this many is paired only with its "
+            "nearest half as many (StepStats.pairs_deferred counts the pairs left out), with one "
+            "contact of the trees' roots, so that a step's work stays bounded while they part; "
+            "0 turns it off.",
     }),
     scalar<Nested<&W::collision, &C::max_microseconds>>({
         .key = "max_microseconds",

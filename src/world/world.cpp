@@ -296,7 +296,10 @@ std::uint32_t World::substeps_for(float dt) const {
   float needed = 0.0f;  // substeps, fractional
   const std::span<const float> extents = store_->extents();
   for (const std::uint32_t i : store_->awake()) {
-    if (!(extents[i] > 0.0f)) continue;
+    // A crowded body's pairs are overlaps served at its root (CollisionSettings::
+    // crowd_pairs_per_body): there is nothing for it to pass through unseen, and a crowd parting
+    // would otherwise run every pass of the step for all its bodies.
+    if (!(extents[i] > 0.0f) || detector_->crowded(i)) continue;
     const float travel = (store_->fastest_point_speed(i) + gravity_speed) * dt;
     needed = std::max(needed, travel / (settings_.substep_travel * extents[i]));
   }
