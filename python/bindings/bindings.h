@@ -4,6 +4,8 @@
 // one area of the API to the module (module.cpp calls them in order).
 
 #include <array>
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <memory>
 #include <mutex>
@@ -12,6 +14,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphys/error.h"
@@ -90,11 +93,42 @@ py::dict settings_dict(const WorldSettings& settings);
 // Python threads take turns on a world (docs/python.md): every call on it first takes its turn,
 // waiting with the GIL released, so that calls from many threads run one after another where the
 // C++ world would turn the second away (sphys/world.h). A Simulation and its world share one turn.
-using Turn = std::timed_mutex;
+// A flag under a mutex with a condition variable rather than a timed mutex: ThreadSanitizer does
+// not see a timed mutex's timed lock (glibc's pthread_mutex_clocklock) and reports its unlock.
+class Turn {
+ public:
+  // The turn, held until it goes.
+  class Held {
+   public:
+    explicit Held(Turn& turn) : turn_(&turn) {}
+    Held(Held&& other) noexcept : turn_(std::exchange(other.turn_, nullptr)) {}
+    Held(const Held&) = delete;
+    Held& operator=(const Held&) = delete;
+    Held& operator=(Held&&) = delete;
+    ~Held() {
+      if (turn_ != nullptr) turn_->give_back();
+    }
+
+   private:
+    Turn* turn_;
+  };
+
+  // Takes the turn now if it is free.
+  [[nodiscard]] bool try_take();
+  // Waits up to `wait` for the turn (called without the GIL); true when taken.
+  [[nodiscard]] bool take_within(std::chrono::milliseconds wait);
+
+ private:
+  void give_back();
+
+  std::mutex mutex_;
+  std::condition_variable freed_;
+  bool taken_ = false;  // guarded by mutex_
+};
 
 // Takes the turn, waiting with the GIL released (called with the GIL held); between waits of
 // 50 ms it takes the GIL back to let Ctrl-C through.
-std::unique_lock<Turn> take_turn(Turn& turn);
+[[nodiscard]] Turn::Held take_turn(Turn& turn);
 
 // The Python World: the world and its turn. `world` owns the world, or points into a Simulation
 // that the Python object keeps alive.

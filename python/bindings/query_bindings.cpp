@@ -145,7 +145,7 @@ std::shared_ptr<const WorldQuery> SharedQuery::current() const {
 void SharedQuery::refresh() {
   std::shared_ptr<const WorldQuery> fresh;
   {
-    const std::unique_lock turn = take_turn(*world_.turn);
+    const Turn::Held turn = take_turn(*world_.turn);
     fresh = std::make_shared<const WorldQuery>(*world_.world);
   }
   const std::lock_guard lock(swap_);

@@ -87,7 +87,7 @@ StepStats step_frames(Simulation& sim, int frames) {
 // Steps in one turn: other threads' calls on the simulation or its world wait for all the frames.
 StepStats step_simulation(Simulation& sim, int frames) {
   if (frames < 1) throw Error("frames must be at least 1, got " + std::to_string(frames));
-  const std::unique_lock turn = take_turn(*sim.turn);
+  const Turn::Held turn = take_turn(*sim.turn);
   return step_frames(sim, frames);
 }
 
@@ -220,14 +220,14 @@ void bind_scene(py::module_& m) {
       .def_property_readonly(
           "frame",
           [](const Simulation& sim) {
-            const std::unique_lock turn = take_turn(*sim.turn);
+            const Turn::Held turn = take_turn(*sim.turn);
             return sim.frame;
           },
           "Frames stepped so far.")
       .def_property_readonly(
           "time",
           [](const Simulation& sim) {
-            const std::unique_lock turn = take_turn(*sim.turn);
+            const Turn::Held turn = take_turn(*sim.turn);
             return sim.frame * sim.scene.time_step;
           },
           "Simulated time so far. unit: s")
@@ -238,7 +238,7 @@ void bind_scene(py::module_& m) {
       .def(
           "run",
           [](Simulation& sim) {
-            const std::unique_lock turn = take_turn(*sim.turn);
+            const Turn::Held turn = take_turn(*sim.turn);
             if (sim.frame < sim.scene.frames) step_frames(sim, sim.scene.frames - sim.frame);
             return from_json_text(tools::run_summary_json(sim.scene, sim.setup, sim.totals));
           },
@@ -246,7 +246,7 @@ void bind_scene(py::module_& m) {
       .def(
           "poses",
           [](const Simulation& sim) {
-            const std::unique_lock turn = take_turn(*sim.turn);
+            const Turn::Held turn = take_turn(*sim.turn);
             return scene_poses(sim);
           },
           "(B, 7) float32 of the scene's bodies in scene order: position (m), then orientation "
@@ -254,7 +254,7 @@ void bind_scene(py::module_& m) {
       .def(
           "summary",
           [](const Simulation& sim) {
-            const std::unique_lock turn = take_turn(*sim.turn);
+            const Turn::Held turn = take_turn(*sim.turn);
             return from_json_text(tools::run_summary_json(sim.scene, sim.setup, sim.totals));
           },
           "The figures of `sphys simulate --json` over the frames stepped so far, as a dict.");

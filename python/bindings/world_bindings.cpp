@@ -94,7 +94,7 @@ std::vector<std::uint32_t> slots_of(const World& world,
 // Ctrl-C through.
 StepStats step_world(SharedWorld& shared, float dt, int steps) {
   if (steps < 1) throw Error("steps must be at least 1, got " + std::to_string(steps));
-  const std::unique_lock turn = take_turn(*shared.turn);
+  const Turn::Held turn = take_turn(*shared.turn);
   World& world = *shared.world;
   StepStats stats;
   for (int i = 0; i < steps; ++i) {
@@ -150,18 +150,40 @@ py::dict stats_dict(const StepStats& s) {
 
 }  // namespace
 
-std::unique_lock<Turn> take_turn(Turn& turn) {
+bool Turn::try_take() {
+  const std::lock_guard lock(mutex_);
+  if (taken_) return false;
+  taken_ = true;
+  return true;
+}
+
+bool Turn::take_within(std::chrono::milliseconds wait) {
+  std::unique_lock lock(mutex_);
+  if (!freed_.wait_for(lock, wait, [&] { return !taken_; })) return false;
+  taken_ = true;
+  return true;
+}
+
+void Turn::give_back() {
+  {
+    const std::lock_guard lock(mutex_);
+    taken_ = false;
+  }
+  freed_.notify_one();
+}
+
+Turn::Held take_turn(Turn& turn) {
   // How long a wait lasts before Ctrl-C is looked at. unit: ms
   constexpr std::chrono::milliseconds kSignalCheck(50);
-  std::unique_lock lock(turn, std::try_to_lock);
-  while (!lock.owns_lock()) {
+  bool taken = turn.try_take();
+  while (!taken) {
     {
       const py::gil_scoped_release unlocked;
-      (void)lock.try_lock_for(kSignalCheck);
+      taken = turn.take_within(kSignalCheck);
     }
-    if (!lock.owns_lock() && PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!taken && PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
-  return lock;
+  return Turn::Held(turn);
 }
 
 WorldSettings settings_from(const py::handle& mapping, WorldSettings base) {
@@ -312,14 +334,14 @@ void bind_world(py::module_& m) {
       .def_property_readonly(
           "settings",
           [](const SharedWorld& w) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return settings_dict(w.world->settings());
           },
           "Every setting by its dotted field.")
       .def_property_readonly(
           "ground_plane",
           [](const SharedWorld& w) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return w.world->settings().collision.ground_plane_height;
           },
           "Height of the exact ground plane (m), or None.")
@@ -349,7 +371,7 @@ void bind_world(py::module_& m) {
             desc.restitution = restitution;
             desc.friction = friction;
             desc.is_static = is_static;
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return w.world->add_body(desc);
           },
           py::arg("tree"), py::kw_only(), py::arg("position") = py::make_tuple(0, 0, 0),
@@ -365,28 +387,28 @@ void bind_world(py::module_& m) {
       .def(
           "remove_body",
           [](SharedWorld& w, BodyId body) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             w.world->remove_body(body);
           },
           py::arg("body"))
       .def(
           "alive",
           [](const SharedWorld& w, BodyId body) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return w.world->alive(body);
           },
           py::arg("body"))
       .def(
           "asleep",
           [](const SharedWorld& w, BodyId body) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return w.world->asleep(body);
           },
           py::arg("body"))
       .def(
           "body_ids",
           [](const SharedWorld& w) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             std::vector<BodyId> ids;
             for (const std::uint32_t slot : slots_of(*w.world, std::nullopt))
               ids.push_back(w.world->id_of(slot));
@@ -395,7 +417,7 @@ void bind_world(py::module_& m) {
           "The bodies in the world, in the order of poses() and velocities().")
       .def("__len__",
            [](const SharedWorld& w) {
-             const std::unique_lock turn = take_turn(*w.turn);
+             const Turn::Held turn = take_turn(*w.turn);
              return slots_of(*w.world, std::nullopt).size();
            })
       .def(
@@ -403,7 +425,7 @@ void bind_world(py::module_& m) {
           [](SharedWorld& w, BodyId body, const py::object& linear, const py::object& angular) {
             const Vec3 v = vec3_from(linear, "linear");
             const Vec3 omega = vec3_from(angular, "angular");
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             w.world->set_velocity(body, v, omega);
           },
           py::arg("body"), py::arg("linear"), py::arg("angular") = py::make_tuple(0, 0, 0),
@@ -413,7 +435,7 @@ void bind_world(py::module_& m) {
           [](SharedWorld& w, BodyId body, const py::object& impulse, const py::object& point) {
             const Vec3 j = vec3_from(impulse, "impulse");
             const Vec3 at = vec3_from(point, "point");
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             w.world->apply_impulse(body, j, at);
           },
           py::arg("body"), py::arg("impulse"), py::arg("point"),
@@ -422,7 +444,7 @@ void bind_world(py::module_& m) {
           "set_pair_material",
           [](SharedWorld& w, BodyId a, BodyId b, float friction, float restitution) {
             if (a == b) throw Error("set_pair_material: a and b are the same body");
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             w.world->set_pair_material(a, b, PairMaterial{friction, restitution});
           },
           py::arg("a"), py::arg("b"), py::kw_only(), py::arg("friction"), py::arg("restitution"),
@@ -435,21 +457,21 @@ void bind_world(py::module_& m) {
       .def_property_readonly(
           "stats",
           [](const SharedWorld& w) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return w.world->stats();
           },
           "The last step's StepStats.")
       .def_property_readonly(
           "stopped",
           [](const SharedWorld& w) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return w.world->stopped();
           },
           "True once the state went non-finite.")
       .def(
           "poses",
           [](const SharedWorld& w, const std::optional<std::vector<BodyId>>& ids) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return rows_of(*w.world, slots_of(*w.world, ids), 7, true);
           },
           py::arg("ids") = std::nullopt,
@@ -458,7 +480,7 @@ void bind_world(py::module_& m) {
       .def(
           "velocities",
           [](const SharedWorld& w, const std::optional<std::vector<BodyId>>& ids) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             return rows_of(*w.world, slots_of(*w.world, ids), 6, false);
           },
           py::arg("ids") = std::nullopt,
@@ -466,7 +488,7 @@ void bind_world(py::module_& m) {
       .def(
           "contacts",
           [](const SharedWorld& w) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             const auto contacts = w.world->contacts();
             const auto n = static_cast<py::ssize_t>(contacts.size());
             py::array_t<std::uint32_t> bodies({n, py::ssize_t{2}});
@@ -501,7 +523,7 @@ void bind_world(py::module_& m) {
       .def(
           "set_detection_budget",
           [](SharedWorld& w, std::uint64_t max_sphere_tests, double max_microseconds) {
-            const std::unique_lock turn = take_turn(*w.turn);
+            const Turn::Held turn = take_turn(*w.turn);
             w.world->set_detection_budget(max_sphere_tests, max_microseconds);
           },
           py::arg("max_sphere_tests"), py::arg("max_microseconds"),
