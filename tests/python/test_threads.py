@@ -259,8 +259,11 @@ def test_ctrl_c_stops_a_call_waiting_for_its_turn(isolated):
     # The stepper holds the world's turn for a long run of steps; the main thread's call waits
     # for it and is interrupted while the stepper still steps.
     isolated("""
-import _thread, os, threading, time
+import _thread, os, signal, threading, time
 import sphys
+# Ctrl-C raises KeyboardInterrupt, as in a terminal, even where the interpreter was started with
+# SIGINT ignored (a job a shell sent to the background): interrupt_main() does nothing then.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 world = sphys.World(ground_plane=0.0)
 tree = sphys.SphereTree.from_arrays([[0.0, 0.0, 0.0]], [0.1], [-1], 8)
 for i in range(50):
