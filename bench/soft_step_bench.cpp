@@ -2,9 +2,8 @@
 // a solve and a relax pass each, with the warm start, the integration and the restitution
 // between), from the same state every iteration. Reported: ns per contact point per pass, passes
 // being the solve and relax passes (8 a step), the way StepStats::response_passes counts them;
-// everything else the solver does in the step is inside the time. Arguments: the lanes (0: the
-// build's SIMD lanes, SSE2 or with SPHYS_AVX2 AVX2; 1: plain floats of the same width) and the
-// threads.
+// everything else the solver does in the step is inside the time. Arguments: the lanes
+// (SolverLanes: 1 plain floats, 2 SSE2, 3 AVX2; every one gives the same bits) and the threads.
 
 #include <cstdint>
 #include <vector>
@@ -13,6 +12,7 @@
 
 #include "dynamics/contact_lanes.h"
 #include "dynamics/soft_step_solver.h"
+#include "sphys/error.h"
 #include "sphys/material.h"
 #include "sphys/parallel.h"
 #include "sphys/tools/build_world.h"
@@ -76,7 +76,13 @@ const SettledPile& settled_pile() {
 void soft_step_solver(benchmark::State& state) {
   const SettledPile& pile = settled_pile();
   SoftStepSolver solver;
-  solver.use_portable_lanes(state.range(0) == 1);
+  const auto lanes = static_cast<SolverLanes>(state.range(0));
+  try {
+    solver.use_lanes(resolve_solver_lanes(lanes));
+  } catch (const Error& error) {
+    state.SkipWithError(error.what());
+    return;
+  }
   const Parallel parallel(static_cast<std::uint32_t>(state.range(1)));
   BodyStore bodies = pile.bodies;
   std::vector<ContactMemory> memory = pile.memory;
@@ -90,7 +96,6 @@ void soft_step_solver(benchmark::State& state) {
                          pile.settings.gravity, 1.0f / 60.0f, kSubsteps, parallel);
     benchmark::ClobberMemory();
   }
-  state.counters["lanes"] = kLaneWidth;
   state.counters["contact_points"] = stats.constraints;
   // Seconds per contact point per pass (shown with an SI prefix, "n" for ns).
   state.counters["time_per_point_pass"] = benchmark::Counter(
@@ -98,10 +103,11 @@ void soft_step_solver(benchmark::State& state) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(soft_step_solver)
-    ->ArgNames({"portable", "threads"})
-    ->Args({0, 1})
-    ->Args({1, 1})
-    ->Args({0, 2})
+    ->ArgNames({"lanes", "threads"})
+    ->Args({static_cast<int>(SolverLanes::kAvx2), 1})
+    ->Args({static_cast<int>(SolverLanes::kSse2), 1})
+    ->Args({static_cast<int>(SolverLanes::kPortable), 1})
+    ->Args({static_cast<int>(SolverLanes::kAvx2), 2})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

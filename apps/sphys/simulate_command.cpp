@@ -188,13 +188,15 @@ std::string metres_text(const nlohmann::ordered_json& value) {
   return text;
 }
 
-// "plausible, reduced contacts, 1 substep per frame"
+// "plausible, reduced contacts, avx2 lanes, 1 substep per frame"
 std::string response_text(const nlohmann::ordered_json& s) {
   std::string text = s["response"].get<std::string>();
   if (text == tools::response_mode_name(ResponseMode::kPlausible)) {
     text += ", ";
     text += s["contact_set"].get<std::string>();
-    text += " contacts";
+    text += " contacts, ";
+    text += s["solver_lanes"].get<std::string>();
+    text += " lanes";
   }
   const int fewest = s["substeps"].get<int>();
   const int most = std::max(fewest, s["max_substeps"].get<int>());

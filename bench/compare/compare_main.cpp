@@ -23,6 +23,7 @@
 #include "results_csv.h"
 #include "run_engine.h"
 #include "sphys/error.h"
+#include "sphys/solver_settings.h"
 #include "sphys/tools/machine.h"
 #include "sphys/tools/text_file.h"
 
@@ -184,7 +185,11 @@ int run(const Options& options) {
   }
   if (!options.out.empty()) {
     tools::write_text_file(options.out, report);
-    const RunDescription description{utc_date(), options.command, SPHYS_BUILD_OPTIONS, options.runs,
+    // sphys's worlds run the lanes auto resolves to.
+    const std::string build =
+        std::string(SPHYS_BUILD_OPTIONS) + ", " +
+        std::string(solver_lanes_name(resolve_solver_lanes(SolverLanes::kAuto))) + " lanes";
+    const RunDescription description{utc_date(), options.command, build, options.runs,
                                      options.time_limit};
     write_results_csv(std::filesystem::path(options.out).replace_extension(".csv"), description,
                       scenes);

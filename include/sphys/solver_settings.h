@@ -3,8 +3,25 @@
 // The plausible mode's solver settings (docs/dynamics.md).
 
 #include <cstdint>
+#include <string_view>
 
 namespace sphys {
+
+// The SIMD instructions the soft step solves its contacts with, 8 contacts' manifolds at a time.
+// Every choice computes the same bits; they differ in speed only.
+enum class SolverLanes : std::uint8_t {
+  kAuto,      // SPHYS_SIMD from the environment where it is set, else the widest the CPU has
+  kPortable,  // plain floats: any processor
+  kSse2,      // two SSE2 registers: every x86-64 processor
+  kAvx2,      // one AVX2 register: x86-64 processors with AVX2
+};
+
+// The lanes `requested` stands for on this processor: kAuto resolved (by SPHYS_SIMD, "auto",
+// "portable", "sse2" or "avx2", where it is set). Throws sphys::Error for lanes this processor or
+// build lacks, or an SPHYS_SIMD it cannot read, naming what was asked and what there is.
+[[nodiscard]] SolverLanes resolve_solver_lanes(SolverLanes requested);
+// "auto", "portable", "sse2" or "avx2", as the setting solver.lanes names them.
+[[nodiscard]] std::string_view solver_lanes_name(SolverLanes lanes);
 
 // Which contacts of a body pair the response sees (plausible mode).
 enum class ContactSet {
@@ -48,6 +65,8 @@ struct SolverSettings {
   // substep. Off by default: on a settling pile 2 mm saved 16% of the narrow phase but the wider
   // descent's extra gap contacts cost the solver more (docs/performance.md). unit: m, >= 0
   float reuse_distance = 0.0f;
+  // The instructions of the contacts' passes (World::solver_lanes() names those resolved).
+  SolverLanes lanes = SolverLanes::kAuto;
 };
 
 }  // namespace sphys

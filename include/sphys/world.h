@@ -173,6 +173,8 @@ class World {
   void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
 
   [[nodiscard]] const WorldSettings& settings() const;
+  // The lanes settings().solver.lanes resolved to on this processor (never kAuto).
+  [[nodiscard]] SolverLanes solver_lanes() const;
   [[nodiscard]] const CollisionDetector& detector() const;
   // Every body's state by slot (id_of(slot) names it), e.g. all poses as one array.
   [[nodiscard]] const BodyStore& bodies() const;
@@ -201,6 +203,7 @@ class World {
   [[nodiscard]] static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b);
 
   WorldSettings settings_;
+  SolverLanes solver_lanes_ = SolverLanes::kPortable;
   // The one store of the bodies' state and the owner of every per-slot array. The store, the
   // detector and the sleep tracker hold each other's addresses, so each is on the heap, where
   // moving the world leaves them; the store is declared first, to outlive what is attached to

@@ -339,6 +339,13 @@ void bind_world(py::module_& m) {
           },
           "Every setting by its dotted field.")
       .def_property_readonly(
+          "solver_lanes",
+          [](const SharedWorld& w) {
+            return std::string(solver_lanes_name(w.world->solver_lanes()));
+          },
+          "The SIMD instructions solver.lanes resolved to on this processor: 'avx2', 'sse2' or "
+          "'portable' (fixed when the world is made).")
+      .def_property_readonly(
           "ground_plane",
           [](const SharedWorld& w) {
             const Turn::Held turn = take_turn(*w.turn);

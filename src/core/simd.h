@@ -1,12 +1,13 @@
 #pragma once
 
-// Floats in lanes: the few operations the contact solver does W at a time. Three kinds, each with
+// Floats in lanes: the few operations the contact solver does W at a time. Four kinds, each with
 // the same operations, so that one template serves them all (dynamics/contact_lanes.h):
 // - PortableLanes<W>: plain floats, for any processor, and W = 1 for the colour-less remainder;
 // - Sse2Lanes: 4 lanes of SSE2, x86-64's baseline, always there on x86-64;
+// - Sse2PairLanes: 8 lanes as two SSE2 registers, so that SSE2 solves the blocks AVX2 does;
 // - Avx2Lanes: 8 lanes of AVX2, only where the translation unit is compiled with -mavx2.
 // Every operation is one correctly rounded IEEE operation per lane, and min, max and select
-// follow SSE's rules (min(a, b) is a < b ? a : b), so the three give the same bits lane for lane.
+// follow SSE's rules (min(a, b) is a < b ? a : b), so they all give the same bits lane for lane.
 // None of them fuses a multiply and an add: the library is compiled with -ffp-contract=off.
 
 #include <array>
@@ -143,6 +144,52 @@ struct Sse2Lanes {
   friend bool any(Mask m) { return _mm_movemask_ps(m.on) != 0; }
   friend Sse2Lanes select(Mask m, Sse2Lanes a, Sse2Lanes b) {
     return {_mm_or_ps(_mm_and_ps(m.on, a.v), _mm_andnot_ps(m.on, b.v))};
+  }
+};
+// Eight lanes as two SSE2 registers, lanes 0-3 in `lo` and 4-7 in `hi`: each operation is
+// Sse2Lanes' on each half.
+struct Sse2PairLanes {
+  static constexpr int kWidth = 8;
+  struct Mask {
+    Sse2Lanes::Mask lo, hi;
+  };
+  Sse2Lanes lo, hi;
+
+  static Sse2PairLanes load(const float* p) { return {Sse2Lanes::load(p), Sse2Lanes::load(p + 4)}; }
+  static Sse2PairLanes splat(float x) { return {Sse2Lanes::splat(x), Sse2Lanes::splat(x)}; }
+  static Sse2PairLanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {
+    return {Sse2Lanes::gather(base, index, stride), Sse2Lanes::gather(base, index + 4, stride)};
+  }
+  void store(float* p) const {
+    lo.store(p);
+    hi.store(p + 4);
+  }
+  friend Sse2PairLanes operator+(Sse2PairLanes a, Sse2PairLanes b) {
+    return {a.lo + b.lo, a.hi + b.hi};
+  }
+  friend Sse2PairLanes operator-(Sse2PairLanes a, Sse2PairLanes b) {
+    return {a.lo - b.lo, a.hi - b.hi};
+  }
+  friend Sse2PairLanes operator*(Sse2PairLanes a, Sse2PairLanes b) {
+    return {a.lo * b.lo, a.hi * b.hi};
+  }
+  friend Sse2PairLanes operator/(Sse2PairLanes a, Sse2PairLanes b) {
+    return {a.lo / b.lo, a.hi / b.hi};
+  }
+  friend Sse2PairLanes min(Sse2PairLanes a, Sse2PairLanes b) {
+    return {min(a.lo, b.lo), min(a.hi, b.hi)};
+  }
+  friend Sse2PairLanes max(Sse2PairLanes a, Sse2PairLanes b) {
+    return {max(a.lo, b.lo), max(a.hi, b.hi)};
+  }
+  friend Sse2PairLanes sqrt(Sse2PairLanes a) { return {sqrt(a.lo), sqrt(a.hi)}; }
+  friend Mask operator<(Sse2PairLanes a, Sse2PairLanes b) { return {a.lo < b.lo, a.hi < b.hi}; }
+  friend Mask operator>(Sse2PairLanes a, Sse2PairLanes b) { return {a.lo > b.lo, a.hi > b.hi}; }
+  friend Mask operator<=(Sse2PairLanes a, Sse2PairLanes b) { return {a.lo <= b.lo, a.hi <= b.hi}; }
+  friend Mask operator&(Mask a, Mask b) { return {a.lo & b.lo, a.hi & b.hi}; }
+  friend bool any(Mask m) { return any(m.lo) || any(m.hi); }
+  friend Sse2PairLanes select(Mask m, Sse2PairLanes a, Sse2PairLanes b) {
+    return {select(m.lo, a.lo, b.lo), select(m.hi, a.hi, b.hi)};
   }
 };
 #endif

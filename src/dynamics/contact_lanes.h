@@ -5,11 +5,13 @@
 // solves W manifolds at a time. The manifolds of a block belong to one colour of the constraint
 // graph (constraint_colouring.h): no moving body appears twice in it, so its lanes never touch the
 // same velocities and the order of blocks inside a colour changes nothing. Plain floats only (no
-// Eigen): contact_lanes.cpp may be compiled for AVX2 apart from the rest of the library.
+// Eigen): contact_lanes_avx2.cpp is compiled for AVX2 apart from the rest of the library.
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
+
+#include "sphys/solver_settings.h"
 
 namespace sphys {
 
@@ -17,13 +19,9 @@ namespace sphys {
 // same pair (another colour).
 inline constexpr int kManifoldPoints = 4;
 
-// Lanes of the build's solver: 8 with SPHYS_AVX2 (AVX2), else 4 (SSE2, or plain floats where
-// there is no SSE2).
-#if defined(SPHYS_LANE_WIDTH)
-inline constexpr int kLaneWidth = SPHYS_LANE_WIDTH;
-#else
-inline constexpr int kLaneWidth = 4;
-#endif
+// Manifolds per block, whatever the instructions: AVX2 solves a block in one register a value,
+// SSE2 in two, plain floats one lane after another, so that every choice packs the same blocks.
+inline constexpr int kLaneWidth = 8;
 
 // W manifolds, lane by lane. Every array is a multiple of 4 W bytes, so that each starts on a
 // W-float boundary of the 32-byte-aligned block. A lane with no manifold, or a point past a
@@ -103,10 +101,11 @@ struct LaneKernels {
                              const LaneSettings& settings);
 };
 
-// The build's lanes (SSE2 or AVX2 intrinsics; plain floats elsewhere).
-const LaneKernels<kLaneWidth>& native_lane_kernels();
-// Plain floats, kLaneWidth at a time: bit for bit what the native ones compute.
-const LaneKernels<kLaneWidth>& portable_lane_kernels();
+// The passes in these lanes (resolved: not kAuto), bit for bit the same whichever they are.
+const LaneKernels<kLaneWidth>& lane_kernels(SolverLanes lanes);
+// AVX2's, from contact_lanes_avx2.cpp (the one file compiled for AVX2); null where the build has
+// none (not x86-64). Only for a processor with AVX2.
+const LaneKernels<kLaneWidth>* avx2_lane_kernels();
 // One manifold at a time, plain floats: the manifolds no colour could take.
 const LaneKernels<1>& single_lane_kernels();
 

@@ -59,9 +59,7 @@ float mass_of(float inverse_mass) { return inverse_mass > 0.0f ? 1.0f / inverse_
 
 }  // namespace
 
-void SoftStepSolver::use_portable_lanes(bool portable) {
-  kernels_ = portable ? &portable_lane_kernels() : &native_lane_kernels();
-}
+void SoftStepSolver::use_lanes(SolverLanes lanes) { kernels_ = &lane_kernels(lanes); }
 
 // A body pair's contacts come one after another (the detector and the reducer emit them by
 // pair). Gauss–Seidel passes a heavy body's weight down through a light one slowly, at a rate set

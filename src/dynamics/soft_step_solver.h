@@ -42,9 +42,8 @@ class SoftStepSolver {
                            const SolverSettings& settings, const Vec3& gravity, float dt,
                            std::uint32_t substeps, const Parallel& parallel);
 
-  // Solves with plain floats rather than the build's SIMD lanes: the same bits, slower (for the
-  // tests and the benchmark).
-  void use_portable_lanes(bool portable);
+  // The lanes the passes run in (resolved: resolve_solver_lanes()); the same bits whichever.
+  void use_lanes(SolverLanes lanes);
 
  private:
   // A spring-damper's effect on an impulse in one substep (Catto, "Soft Constraints", GDC 2011):
@@ -175,7 +174,7 @@ class SoftStepSolver {
   std::vector<ManifoldBlock<1>> overflow_;
   std::vector<Stage> stages_;
   std::vector<std::uint32_t> stage_items_;
-  const LaneKernels<kLaneWidth>* kernels_ = &native_lane_kernels();
+  const LaneKernels<kLaneWidth>* kernels_ = &lane_kernels(SolverLanes::kPortable);
   std::atomic<std::uint32_t> bounces_{0};  // restitution's pass, counted across its items
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one lane that holds it in a colour.

@@ -77,6 +77,7 @@ constexpr SettingRange above(double low) { return {.min = low, .min_inclusive = 
 
 constexpr std::array<std::string_view, 2> kResponseChoices = {"paper", "plausible"};
 constexpr std::array<std::string_view, 2> kContactChoices = {"all", "reduced"};
+constexpr std::array<std::string_view, 4> kLaneChoices = {"auto", "portable", "sse2", "avx2"};
 
 using W = WorldSettings;
 using S = SolverSettings;
@@ -329,6 +330,16 @@ const auto kTable = std::to_array<Setting>({
             "nearest half as many (StepStats.pairs_deferred counts the pairs left out), with one "
             "contact of the trees' roots, so that a step's work stays bounded while they part; "
             "0 turns it off.",
+    }),
+    scalar<Nested<&W::solver, &S::lanes>>({
+        .key = "lanes",
+        .in_scene = false,
+        .field = "solver.lanes",
+        .kind = SettingKind::kEnum,
+        .choices = kLaneChoices,
+        .doc = "The SIMD instructions of the soft step's contact passes, 8 manifolds at a time: "
+               "auto takes SPHYS_SIMD from the environment where it is set, else AVX2 where the "
+               "processor has it, else SSE2. Every choice gives the same bits.",
     }),
     scalar<Nested<&W::collision, &C::max_microseconds>>({
         .key = "max_microseconds",

@@ -88,6 +88,8 @@ World::World(const WorldSettings& settings)
       sleep_(std::make_unique<SleepTracker>(*store_)),
       access_(std::make_unique<WorldAccess>()) {
   check_world_settings(settings);
+  solver_lanes_ = resolve_solver_lanes(settings.solver.lanes);
+  solver_->use_lanes(solver_lanes_);
   parallel_ = std::make_unique<Parallel>(settings.threads);
   detector_->set_parallel(parallel_.get());
   detector_->set_bodies(*store_);
@@ -161,6 +163,8 @@ bool World::stopped() const {
   const WorldAccess::Shared turn(*access_, "stopped");
   return stopped_;
 }
+
+SolverLanes World::solver_lanes() const { return solver_lanes_; }
 
 const WorldSettings& World::settings() const {
   const WorldAccess::Shared turn(*access_, "settings");

@@ -15,6 +15,7 @@
 
 #include "apps/cli.h"
 #include "sphys/settings_table.h"
+#include "sphys/solver_settings.h"
 #include "sphys/tools/recording.h"
 #include "sphys/tools/setting_text.h"
 #include "support/temp_file.h"
@@ -137,6 +138,10 @@ TEST(SimulateCommand, JsonSummaryParses) {
   // The runtime's defaults: a preset does not choose.
   EXPECT_EQ(json["response"], "plausible");
   EXPECT_EQ(json["contact_set"], "reduced");
+  // The lanes auto resolved to: never "auto" itself.
+  EXPECT_TRUE(json["solver_lanes"] == "avx2" || json["solver_lanes"] == "sse2" ||
+              json["solver_lanes"] == "portable")
+      << json["solver_lanes"];
   EXPECT_EQ(json["substeps"], 1);
   EXPECT_EQ(json["time_step_s"].get<double>(), 1.0 / 60.0);
   EXPECT_GE(json["contacts_per_frame"]["mean"].get<double>(), 0.0);
@@ -380,9 +385,10 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
   const test::CommandResult plausible =
       sphys_cli({"simulate", scene.string(), "--contacts", "all", "--out", out.string()});
   ASSERT_EQ(plausible.exit_code, 0) << plausible.err;
+  const std::string lanes(solver_lanes_name(resolve_solver_lanes(SolverLanes::kAuto)));
   EXPECT_THAT(plausible.out,
-              HasSubstr("response            plausible, all contacts, 1 to 8 substeps per frame "
-                        "(1.00 on average, 1 at most)\n"));
+              HasSubstr("response            plausible, all contacts, " + lanes +
+                        " lanes, 1 to 8 substeps per frame (1.00 on average, 1 at most)\n"));
 }
 
 }  // namespace

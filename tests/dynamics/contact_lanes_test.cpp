@@ -1,21 +1,26 @@
-// The soft step's passes give the same bits whichever lanes run them: the build's SIMD lanes, plain
-// floats of the same width, and one manifold at a time. Blocks of random manifolds (penetrating
-// and apart, inside and outside their friction discs, bouncing and not) between bodies that no two
-// lanes of a block share, as the constraint graph's colours guarantee.
+// The soft step's passes give the same bits whichever lanes run them: AVX2 (where the processor
+// has it), SSE2, plain floats of the same width, and one manifold at a time. Blocks of random
+// manifolds (penetrating and apart, inside and outside their friction discs, bouncing and not)
+// between bodies that no two lanes of a block share, as the constraint graph's colours guarantee.
 
 #include "dynamics/contact_lanes.h"
 
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstdlib>
 #include <random>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/simd.h"
 #include "dynamics/contact_lane_kernels.h"
+#include "sphys/error.h"
+#include "sphys/solver_settings.h"
+#include "sphys/world.h"
 
 namespace sphys {
 namespace {
@@ -181,16 +186,31 @@ TEST(ContactLanes, SimdLanesPlainFloatsAndSingleLanesGiveTheSameBits) {
     const std::uint32_t portable_bounces =
         run_passes<PortableLanes<kW>>(portable.blocks, portable.bodies);
 
-    // The build's lanes, through the table the solver uses.
-    Scenario native = start;
-    const LaneKernels<kW>& kernels = native_lane_kernels();
-    const LaneBodies view = native.bodies.view();
-    kernels.warm_start(native.blocks, view);
-    kernels.solve(native.blocks, view, kSettings, true);
-    kernels.solve(native.blocks, view, kSettings, false);
-    const std::uint32_t native_bounces = kernels.restitute(native.blocks, view, kSettings);
-    expect_same_bodies(native.bodies, portable.bodies);
-    EXPECT_EQ(native_bounces, portable_bounces);
+    // Each set of lanes this processor has, through the table the solver uses.
+    std::vector<Scenario> by_table;
+    for (const SolverLanes lanes :
+         {SolverLanes::kPortable, SolverLanes::kSse2, SolverLanes::kAvx2}) {
+      SCOPED_TRACE(solver_lanes_name(lanes));
+      try {
+        EXPECT_EQ(resolve_solver_lanes(lanes), lanes);
+      } catch (const Error& error) {
+        // Only AVX2 may be missing, and then the message says so.
+        EXPECT_EQ(lanes, SolverLanes::kAvx2) << error.what();
+        EXPECT_NE(std::string(error.what()).find("avx2"), std::string::npos) << error.what();
+        continue;
+      }
+      Scenario run = start;
+      const LaneKernels<kW>& kernels = lane_kernels(lanes);
+      const LaneBodies view = run.bodies.view();
+      kernels.warm_start(run.blocks, view);
+      kernels.solve(run.blocks, view, kSettings, true);
+      kernels.solve(run.blocks, view, kSettings, false);
+      const std::uint32_t bounces = kernels.restitute(run.blocks, view, kSettings);
+      expect_same_bodies(run.bodies, portable.bodies);
+      EXPECT_EQ(bounces, portable_bounces);
+      by_table.push_back(run);
+    }
+    ASSERT_GE(by_table.size(), 2u);  // portable and SSE2 at least, on x86-64
 
     // Each pass over every lane one at a time, block by block in the same order.
     Scenario single = start;
@@ -209,8 +229,10 @@ TEST(ContactLanes, SimdLanesPlainFloatsAndSingleLanesGiveTheSameBits) {
         for (int i = 0; i < kManifoldPoints; ++i) {
           for (int r = 0; r < 3; ++r) {
             const float expected = portable.blocks[b].points[i].impulse[r][lane];
-            EXPECT_EQ(std::bit_cast<std::uint32_t>(native.blocks[b].points[i].impulse[r][lane]),
-                      std::bit_cast<std::uint32_t>(expected));
+            for (const Scenario& run : by_table) {
+              EXPECT_EQ(std::bit_cast<std::uint32_t>(run.blocks[b].points[i].impulse[r][lane]),
+                        std::bit_cast<std::uint32_t>(expected));
+            }
             EXPECT_EQ(std::bit_cast<std::uint32_t>(one.points[i].impulse[r][0]),
                       std::bit_cast<std::uint32_t>(expected));
           }
@@ -247,7 +269,7 @@ TEST(ContactLanes, EachLaneOperationRoundsAsThePlainFloat) {
       }
     };
 #if defined(__SSE2__)
-    using Native = std::conditional_t<kW == 4, Sse2Lanes, PortableLanes<kW>>;
+    using Native = Sse2PairLanes;
 #else
     using Native = PortableLanes<kW>;
 #endif
@@ -264,6 +286,38 @@ TEST(ContactLanes, EachLaneOperationRoundsAsThePlainFloat) {
     same(select((na > nb) & (nb > Native::splat(0.0f)), na - nb, na * nb),
          select((pa > pb) & (pb > Plain::splat(0.0f)), pa - pb, pa * pb));
   }
+}
+
+// auto takes SPHYS_SIMD where it is set, and refuses a value it cannot read by naming it; unset, it
+// takes the widest lanes there are. A world names the lanes it resolved.
+TEST(SolverLanes, AutoReadsSphysSimdAndTheWorldNamesWhatItResolved) {
+  const SolverLanes widest = resolve_solver_lanes(SolverLanes::kAuto);
+  EXPECT_NE(widest, SolverLanes::kAuto);
+  ASSERT_EQ(setenv("SPHYS_SIMD", "portable", 1), 0);
+  EXPECT_EQ(resolve_solver_lanes(SolverLanes::kAuto), SolverLanes::kPortable);
+  // An explicit setting is not overridden.
+  EXPECT_EQ(resolve_solver_lanes(SolverLanes::kSse2), SolverLanes::kSse2);
+  ASSERT_EQ(setenv("SPHYS_SIMD", "sse2", 1), 0);
+  EXPECT_EQ(resolve_solver_lanes(SolverLanes::kAuto), SolverLanes::kSse2);
+  ASSERT_EQ(setenv("SPHYS_SIMD", "avx512", 1), 0);
+  try {
+    (void)resolve_solver_lanes(SolverLanes::kAuto);
+    ADD_FAILURE() << "SPHYS_SIMD=avx512 was accepted";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("SPHYS_SIMD"), std::string::npos) << message;
+    EXPECT_NE(message.find("\"avx512\""), std::string::npos) << message;
+    EXPECT_NE(message.find("portable, sse2 or avx2"), std::string::npos) << message;
+  }
+  ASSERT_EQ(unsetenv("SPHYS_SIMD"), 0);
+  EXPECT_EQ(resolve_solver_lanes(SolverLanes::kAuto), widest);
+  EXPECT_EQ(solver_lanes_name(SolverLanes::kAvx2), "avx2");
+
+  WorldSettings settings;
+  EXPECT_EQ(World(settings).solver_lanes(), widest);
+  EXPECT_EQ(World(settings).settings().solver.lanes, SolverLanes::kAuto);  // as given
+  settings.solver.lanes = SolverLanes::kPortable;
+  EXPECT_EQ(World(settings).solver_lanes(), SolverLanes::kPortable);
 }
 
 }  // namespace

@@ -739,3 +739,12 @@ def test_world_outlives_its_simulation(isolated):
         assert len(world) == 2, len(world)
         assert world.poses().shape == (2, 7)
     """))
+
+
+def test_the_solver_lanes_are_chosen_when_a_world_is_made_and_named():
+    world = sphys.World()
+    assert world.settings["solver.lanes"] == "auto"  # as given
+    assert world.solver_lanes in ("avx2", "sse2", "portable")
+    assert sphys.World(solver={"lanes": "portable"}).solver_lanes == "portable"
+    with pytest.raises(sphys.Error, match="solver.lanes"):
+        sphys.World(solver={"lanes": "avx512"})

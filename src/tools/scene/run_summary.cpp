@@ -95,6 +95,7 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
   summary["sphere_trees"] = setup.shapes.empty() ? "" : setup.shapes.front().tree_source;
   summary["response"] = response_mode_name(scene.response);
   summary["contact_set"] = contact_set_name(scene.solver.contacts);
+  summary["solver_lanes"] = solver_lanes_name(setup.world->solver_lanes());
   summary["substeps"] = scene.substeps;
   summary["max_substeps"] = scene.max_substeps;
   summary["substeps_per_frame"] = {{"mean", totals.substeps / frames},

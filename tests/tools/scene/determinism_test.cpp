@@ -123,8 +123,9 @@ ThreadedRun expect_the_same_on_one_two_and_four_threads(const Scene& scene, int 
 // at which everything sleeps): the optimised build's state at the end, and the frame after which
 // every body sleeps. A change that alters a result shows here, and must come with new figures
 // and the reason (the sanitizer's build runs fewer frames and checks only that the thread
-// counts agree). The lanes' width does not enter: a colour's lanes share no body, and each does
-// the same arithmetic (contact_lanes_test.cpp).
+// counts agree). The lanes do not enter: a colour's lanes share no body, and each does the same
+// arithmetic whatever the instructions (contact_lanes_test.cpp; PlausibleModeIsTheSameInEveryLanes
+// below).
 
 // The soft step: its contacts coloured into blocks of SIMD lanes, the blocks of a colour and the
 // bodies' integration threaded; 48 bunnies on the plane, run until they all sleep.
@@ -138,6 +139,39 @@ TEST(Determinism, PlausibleModeIsBitIdenticalOnOneTwoAndFourThreadsAndAsCommitte
     // (0xb28780d4fe63af7e, unchanged); the run goes on to the frame where all sleep.
     EXPECT_EQ(one.final_state, kPlausibleState) << std::hex << one.final_state;
     EXPECT_EQ(one.all_asleep_frame, kPlausibleAllAsleepFrame);
+  }
+}
+
+// The same committed figures from every set of lanes this processor has, on one thread and on four
+// (the test above ran those auto resolves to).
+TEST(Determinism, PlausibleModeIsTheSameInEveryLanes) {
+  Scene scene = bunny_stacks_scene(8, 6, 3);
+  scene.ground.kind = GroundSpec::Kind::kPlane;
+  const int frames = test::sanitized_run() ? 25 : kPlausibleFrames;
+  const test::TempDir tree_cache;
+  const SolverLanes chosen = resolve_solver_lanes(SolverLanes::kAuto);
+  const ThreadedRun reference = run_scene(scene, 1, frames, tree_cache.path());
+  int others = 0;
+  for (const SolverLanes lanes : {SolverLanes::kPortable, SolverLanes::kSse2, SolverLanes::kAvx2}) {
+    if (lanes == chosen) continue;
+    try {
+      (void)resolve_solver_lanes(lanes);
+    } catch (const Error&) {
+      continue;  // AVX2 on a processor without it
+    }
+    ++others;
+    scene.solver.lanes = lanes;
+    for (const std::uint32_t threads : {1u, 4u}) {
+      const ThreadedRun run = run_scene(scene, threads, frames, tree_cache.path());
+      EXPECT_EQ(run.steps, reference.steps) << solver_lanes_name(lanes) << ", " << threads;
+      EXPECT_EQ(run.final_state, reference.final_state)
+          << solver_lanes_name(lanes) << ", " << threads;
+      EXPECT_EQ(run.all_asleep_frame, reference.all_asleep_frame) << solver_lanes_name(lanes);
+    }
+  }
+  EXPECT_GE(others, 1);  // portable at least
+  if (!test::sanitized_run()) {
+    EXPECT_EQ(reference.final_state, kPlausibleState) << std::hex << reference.final_state;
   }
 }
 
