@@ -22,15 +22,13 @@ namespace sphys {
 // What a contact carries from one narrow phase to the next for warm starting, matched by its leaf
 // pair within its body pair's record. The response writes it; the detector carries it over.
 struct ContactMemory {
-  float normal_impulse = 0.0f;           // to start the next solve from. unit: N·s
-  Vec3 friction_impulse = Vec3::Zero();  // world frame, in the tangent plane. unit: N·s
+  float normal_impulse = 0.0f;  // to start the next solve from. unit: N·s
+  // Friction is solved per manifold, at its centre: each of its contacts keeps an equal share of
+  // the manifold's tangential impulse (world frame) and of its twist about the normal, and the
+  // next solve sums the shares of the contacts it still has.
+  Vec3 friction_impulse = Vec3::Zero();  // unit: N·s
+  float twist_impulse = 0.0f;            // unit: N·m·s
   bool solved = false;                   // false for a contact the last solve did not have
-  // Static friction's anchors: the material points of each body (in its own frame) that met
-  // where the contact began to stick; the solver pulls them back together, so that a body held
-  // by friction does not creep. Valid while `anchored` (the contact stuck in the last solve).
-  Vec3 anchor_a = Vec3::Zero();  // unit: m
-  Vec3 anchor_b = Vec3::Zero();  // unit: m
-  bool anchored = false;
 };
 
 class PairCache {

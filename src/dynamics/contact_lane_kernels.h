@@ -159,37 +159,59 @@ struct LanePair {
   }
 };
 
+// The manifold's friction frame: its normal, tangent1 and tangent2 = normal × tangent1.
+template <class F>
+struct FrictionFrame {
+  V3<F> normal, tangent1, tangent2;
+
+  explicit FrictionFrame(const ManifoldBlock<F::kWidth>& m)
+      : normal(load3<F>(m.friction_normal)),
+        tangent1(load3<F>(m.tangent1)),
+        tangent2(cross(normal, tangent1)) {}
+};
+
 template <class F>
 void warm_start(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies) {
   constexpr int W = F::kWidth;
   for (ManifoldBlock<W>& m : blocks) {
     LanePair<F> pair(m, bodies);
-    // The points' impulses summed: linear, and their moments about each centre.
+    // The points' normal impulses summed: linear, and their moments about each centre.
     V3<F> linear{F::splat(0.0f), F::splat(0.0f), F::splat(0.0f)};
     V3<F> moment_a = linear;
     V3<F> moment_b = linear;
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
       const auto& p = m.points[i];
-      const V3<F> normal = load3<F>(p.normal);
-      const V3<F> tangent1 = load3<F>(p.tangent1);
-      const V3<F> impulse = F::load(p.impulse[0]) * normal + F::load(p.impulse[1]) * tangent1 +
-                            F::load(p.impulse[2]) * cross(normal, tangent1);
+      const V3<F> impulse = F::load(p.impulse) * load3<F>(p.normal);
       linear = linear + impulse;
       moment_a = moment_a + cross(load3<F>(p.ra), impulse);
       moment_b = moment_b + cross(load3<F>(p.rb), impulse);
     }
+    // Friction at the centre, and the twist about the normal.
+    const FrictionFrame<F> frame(m);
+    const V3<F> friction = F::load(m.friction_impulse[0]) * frame.tangent1 +
+                           F::load(m.friction_impulse[1]) * frame.tangent2;
+    linear = linear + friction;
+    moment_a = moment_a + cross(load3<F>(m.centre_a), friction);
+    moment_b = moment_b + cross(load3<F>(m.centre_b), friction);
+    const V3<F> turn = F::load(m.twist_impulse) * frame.normal + load3<F>(m.rolling_impulse);
     pair.a.linear = pair.a.linear - pair.inverse_mass_a * linear;
     pair.b.linear = pair.b.linear + pair.inverse_mass_b * linear;
-    const V3<F> rolling = load3<F>(m.rolling_impulse);
-    pair.a.angular = pair.a.angular - times<F>(pair.inverse_inertia_a, moment_a + rolling);
-    pair.b.angular = pair.b.angular + times<F>(pair.inverse_inertia_b, moment_b + rolling);
+    pair.a.angular = pair.a.angular - times<F>(pair.inverse_inertia_a, moment_a + turn);
+    pair.b.angular = pair.b.angular + times<F>(pair.inverse_inertia_b, moment_b + turn);
     pair.scatter(m, bodies);
   }
 }
 
+// A vector's length clamped to `limit` (>= 0): the factor that scales it there, 1 inside.
+template <class F>
+F clamp_scale(const F& length_squared, const F& limit) {
+  const auto outside = length_squared > limit * limit;
+  return select(outside, limit / sqrt(length_squared), F::splat(1.0f));
+}
+
 // One pass. With the bias (the solve) a penetrating contact is pushed apart by its spring-damper;
-// without it (the relax) contacts only stop approaching, so that the push leaves no speed behind.
-// A gap may close within the substep and no more, either way.
+// without it (the relax) contacts only stop approaching and sliding, so that the push leaves no
+// speed behind. A gap may close within the substep and no more, either way.
 template <class F>
 void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
            const LaneSettings& settings, bool use_bias) {
@@ -199,14 +221,13 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
   const F inverse_substep = F::splat(settings.inverse_substep);
   const F slop = F::splat(settings.linear_slop);
   const F most_correction = F::splat(-settings.max_correction_speed);
-  const F most_slip_correction = F::splat(settings.max_correction_speed);
   for (ManifoldBlock<W>& m : blocks) {
     LanePair<F> pair(m, bodies);
     const LaneMotion<F> motion_a = LaneMotion<F>::gather(bodies, m.body_a);
     const LaneMotion<F> motion_b = LaneMotion<F>::gather(bodies, m.body_b);
-    const F friction = F::load(m.friction);
     const F bias_rate = F::load(m.bias_rate);
-    F pushed = zero;  // the manifold's normal impulses summed, for its rolling resistance
+    F pushed = zero;       // the points' normal impulses summed: friction's bound
+    F twist_bound = zero;  // each times its lever: the twist's bound
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
       auto& p = m.points[i];
       const V3<F> normal = load3<F>(p.normal);
@@ -221,7 +242,6 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       F mass_scale = one;
       F impulse_scale = zero;
       if (use_bias) {
-        // Penetration within the slop is left alone, so that resting contacts keep touching.
         const F soft_mass = F::load(p.mass_scale);
         // Within the slop the contact is rigid, its spring only pushes what lies deeper: the
         // spring's give under a resting load added up to a millimetre under a deep heap.
@@ -235,43 +255,53 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       // The fastest approach met in the solve passes: a body falling onto a contact within the
       // step meets it at the speed gravity gave it by then, not the step's start speed.
       if (use_bias) min(F::load(p.approach), speed).store(p.approach);
-      const F old_normal = F::load(p.impulse[0]);
-      const F normal_impulse = max(old_normal - F::load(p.mass[0]) * (mass_scale * speed + bias) -
-                                       impulse_scale * old_normal,
-                                   zero);
-      normal_impulse.store(p.impulse[0]);
+      const F old_normal = F::load(p.impulse);
+      const F normal_impulse = max(
+          old_normal - F::load(p.mass) * (mass_scale * speed + bias) - impulse_scale * old_normal,
+          zero);
+      normal_impulse.store(p.impulse);
       max(F::load(p.max_normal_impulse), normal_impulse).store(p.max_normal_impulse);
       pair.push(ra, rb, (normal_impulse - old_normal) * normal);
       pushed = pushed + normal_impulse;
-
-      // Coulomb: the tangential impulse stays inside the disc of radius μ λn.
-      const V3<F> tangent1 = load3<F>(p.tangent1);
-      const V3<F> tangent2 = cross(normal, tangent1);
-      const V3<F> slip = pair.relative_velocity(ra, rb);
-      F slip1 = dot(tangent1, slip);
-      F slip2 = dot(tangent2, slip);
-      if (use_bias) {
-        // Static friction's anchors, apart by what the bodies crept since they stuck, are pulled
-        // back together at the contact spring's rate; the relax pass takes the speed back out.
-        const F rate = F::load(p.mass_scale) * bias_rate;
-        const F apart1 = F::load(p.base_slip[0]) + dot(tangent1, moved);
-        const F apart2 = F::load(p.base_slip[1]) + dot(tangent2, moved);
-        slip1 = slip1 + max(min(rate * apart1, most_slip_correction), most_correction);
-        slip2 = slip2 + max(min(rate * apart2, most_slip_correction), most_correction);
-      }
-      const F old1 = F::load(p.impulse[1]);
-      const F old2 = F::load(p.impulse[2]);
-      F t1 = old1 - F::load(p.mass[1]) * slip1;
-      F t2 = old2 - F::load(p.mass[2]) * slip2;
-      const F limit = friction * normal_impulse;
-      const F length_squared = t1 * t1 + t2 * t2;
-      const auto outside = length_squared > limit * limit;
-      const F scale = limit / sqrt(length_squared);
-      t1 = select(outside, t1 * scale, t1);
-      t2 = select(outside, t2 * scale, t2);
-      t1.store(p.impulse[1]);
-      t2.store(p.impulse[2]);
-      pair.push(ra, rb, (t1 - old1) * tangent1 + (t2 - old2) * tangent2);
+      twist_bound = twist_bound + F::load(p.lever) * normal_impulse;
+    }
+    const F friction = F::load(m.friction);
+    const FrictionFrame<F> frame(m);
+    {
+      // Twist: the bodies' relative spin about the normal, within μ Σ lever λn; in both passes,
+      // as the push out of penetration does not turn bodies about the normal (in the relax pass
+      // only, the 48 bunnies of Determinism.PlausibleMode... slept 81 frames later).
+      const F old_twist = F::load(m.twist_impulse);
+      const F spin = dot(frame.normal, pair.b.angular - pair.a.angular);
+      const F twist_limit = friction * twist_bound;
+      const F twist =
+          max(min(old_twist - F::load(m.twist_mass) * spin, twist_limit), zero - twist_limit);
+      twist.store(m.twist_impulse);
+      pair.turn((twist - old_twist) * frame.normal);
+    }
+    // Friction in the relax pass only (as Box3D): solved beside the solve pass's push out of
+    // penetration, it took part of that impulse along the surface, and a bunny shot at 100 m/s
+    // into another went 5.9% of a bunny deep.
+    if (!use_bias) {
+      // Coulomb at the centre: the tangential impulse stays inside the disc of radius μ Σ λn.
+      const V3<F> ca = load3<F>(m.centre_a);
+      const V3<F> cb = load3<F>(m.centre_b);
+      const V3<F> slip = pair.relative_velocity(ca, cb);
+      const F slip1 = dot(frame.tangent1, slip);
+      const F slip2 = dot(frame.tangent2, slip);
+      const F old1 = F::load(m.friction_impulse[0]);
+      const F old2 = F::load(m.friction_impulse[1]);
+      const F k11 = F::load(m.tangent_mass[0]);
+      const F k12 = F::load(m.tangent_mass[1]);
+      const F k22 = F::load(m.tangent_mass[2]);
+      F t1 = old1 - (k11 * slip1 + k12 * slip2);
+      F t2 = old2 - (k12 * slip1 + k22 * slip2);
+      const F scale = clamp_scale(t1 * t1 + t2 * t2, friction * pushed);
+      t1 = scale * t1;
+      t2 = scale * t2;
+      t1.store(m.friction_impulse[0]);
+      t2.store(m.friction_impulse[1]);
+      pair.push(ca, cb, (t1 - old1) * frame.tangent1 + (t2 - old2) * frame.tangent2);
     }
     // In the relax pass only (as Box2D v3): resisting the turns that the solve pass's push out of
     // penetration gives kept piles rocking.
@@ -280,11 +310,8 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       // spinning), at most the arm times the manifold's normal impulse.
       const V3<F> old = load3<F>(m.rolling_impulse);
       V3<F> rolling = old - times<F>(m.rolling_mass, pair.b.angular - pair.a.angular);
-      const F limit = F::splat(settings.rolling_resistance) * max(pushed, zero);
-      const F length_squared = dot(rolling, rolling);
-      const auto outside = length_squared > limit * limit;
-      const F scale = select(outside, limit / sqrt(length_squared), one);
-      rolling = scale * rolling;
+      const F limit = F::splat(settings.rolling_resistance) * pushed;
+      rolling = clamp_scale(dot(rolling, rolling), limit) * rolling;
       store3(rolling, m.rolling_impulse);
       pair.turn(rolling - old);
     }
@@ -328,14 +355,14 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
       const V3<F> normal = load3<F>(p.normal);
       const V3<F> ra = load3<F>(p.ra);
       const V3<F> rb = load3<F>(p.rb);
-      const F old = F::load(p.impulse[0]);
+      const F old = F::load(p.impulse);
       const F closing_gravity = dot(normal, gravity_b - gravity_a);  // negative when closing
       const F target =
           zero - restitution * approach - (one + restitution) * half_substep * closing_gravity;
       const F speed = dot(normal, pair.relative_velocity(ra, rb));
-      const F total = max(old - F::load(p.mass[0]) * (speed - target), zero);
+      const F total = max(old - F::load(p.mass) * (speed - target), zero);
       const F impulse = select(bounce, total, old);
-      impulse.store(p.impulse[0]);
+      impulse.store(p.impulse);
       pair.push(ra, rb, (impulse - old) * normal);
       bounces = bounces + select(bounce, one, zero);
     }

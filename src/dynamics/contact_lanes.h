@@ -26,29 +26,32 @@ inline constexpr int kLaneWidth = 8;
 // W manifolds, lane by lane. Every array is a multiple of 4 W bytes, so that each starts on a
 // W-float boundary of the 32-byte-aligned block. A lane with no manifold, or a point past a
 // manifold's last, is all zeros (and names the ground's slot): solving it changes nothing.
+//
+// A manifold is solved as a whole (as Box3D's contact solver does): its bodies are loaded once,
+// each point's normal row is solved in turn, then friction once for the manifold, at the centre
+// of its points: two tangent rows solved together (a 2 × 2 effective mass) bounded by μ times the
+// points' normal impulses summed, and a twist row about the normal bounded by μ times each
+// point's normal impulse times its lever arm from the centre.
 template <int W>
 struct alignas(32) ManifoldBlock {
   // What a point keeps is little, so that a pass streams little memory: the Jacobians' angular
-  // parts (r × d) and the inverse inertias times them are made afresh in each pass from the
+  // parts (r × n) and the inverse inertias times them are made afresh in each pass from the
   // anchors and the lane's inverse inertias.
   struct Point {
-    float normal[3][W];    // from body a to body b
-    float tangent1[3][W];  // tangent2 is normal × tangent1 (tangent_basis.h)
-    float ra[3][W];        // contact point from each centre of mass at the step's start. unit: m
+    float normal[3][W];  // from body a to body b
+    float ra[3][W];      // contact point from each centre of mass at the step's start. unit: m
     float rb[3][W];
-    float mass[3][W];  // 1 / inverse effective mass along normal, tangent1, tangent2. unit: kg
+    float mass[W];  // 1 / inverse effective mass along the normal. unit: kg
     // The soft spring's share of the rigid impulse and of the accumulated one (a penetrating
     // contact's solve passes).
     float mass_scale[W];
     float impulse_scale[W];
     // Separation at the step's start less the anchors' offset along the normal. unit: m
     float base_separation[W];
-    // Static friction's anchors apart along tangent1 and tangent2 at the step's start, less the
-    // contact point's offsets from the centres along them (as base_separation). unit: m
-    float base_slip[2][W];
     float approach[W];            // the fastest approach met by the solve passes. unit: m/s
     float max_normal_impulse[W];  // over the step: did the contact push at all. unit: N s
-    float impulse[3][W];          // accumulated, along normal, tangent1, tangent2. unit: N s
+    float impulse[W];             // accumulated along the normal. unit: N s
+    float lever[W];               // from the friction centre, for the twist's bound. unit: m
   };
   Point points[kManifoldPoints];
   float inverse_mass_a[W];  // unit: 1/kg, zero for an immovable body
@@ -58,6 +61,18 @@ struct alignas(32) ManifoldBlock {
   float friction[W];
   float restitution[W];
   float bias_rate[W];  // push-out speed per metre of penetration. unit: 1/s
+  // Friction at the centre: the points' mean normal and a tangent (tangent2 is normal ×
+  // tangent1), the centre from each body's centre of mass at the step's start (unit: m), the
+  // inverse of the tangent rows' 2 × 2 effective mass (t1t1, t1t2, t2t2; unit: kg) and the twist
+  // row's mass (unit: kg m²).
+  float friction_normal[3][W];
+  float tangent1[3][W];
+  float centre_a[3][W];
+  float centre_b[3][W];
+  float tangent_mass[3][W];
+  float twist_mass[W];
+  float friction_impulse[2][W];  // accumulated along tangent1 and tangent2. unit: N s
+  float twist_impulse[W];        // accumulated about the normal, on body b. unit: N m s
   // Rolling resistance: the inverse of the two inverse inertias' sum (column-major; unit: kg m²)
   // and the accumulated angular impulse on body b (unit: N m s).
   float rolling_mass[9][W];

@@ -1,13 +1,12 @@
 #pragma once
 
-// A contact as the solver's constraint: its bodies' slots, whether each moves, its anchors, normal
-// and tangents; and whether two constraints share their body pair. Templates over the solver's
+// A contact as the solver's constraint: its bodies' slots, whether each moves, its anchors and
+// normal; and whether two constraints share their body pair. Templates over the solver's
 // own constraint type, which names these fields.
 
 #include <cstdint>
 #include <vector>
 
-#include "dynamics/tangent_basis.h"
 #include "sphys/contact.h"
 #include "sphys/math.h"
 
@@ -24,8 +23,8 @@ inline bool constrains(const Contact& contact, std::uint32_t ground,
   return inverse_mass[first_slot(contact, ground)] > 0.0f || inverse_mass[contact.body_b] > 0.0f;
 }
 
-// Fills c's bodies, whether each moves, its anchors from the bodies' centres and its normal and
-// tangents, for a contact that constrains().
+// Fills c's bodies, whether each moves, its anchors from the bodies' centres and its normal, for a
+// contact that constrains().
 template <class Constraint>
 void place_constraint(const Contact& contact, std::uint32_t ground,
                       const std::vector<float>& inverse_mass, const std::vector<Vec3>& position,
@@ -37,7 +36,6 @@ void place_constraint(const Contact& contact, std::uint32_t ground,
   c.ra = contact.point - position[c.a];
   c.rb = contact.point - position[c.b];
   c.normal = contact.normal;
-  tangent_basis(c.normal, c.tangent1, c.tangent2);
 }
 
 // Whether two constraints act between the same two bodies (the same body pair).

@@ -1,6 +1,7 @@
 #include "dynamics/soft_step_solver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "core/buffers.h"
@@ -9,6 +10,7 @@
 #include "dynamics/contact_pairs.h"
 #include "dynamics/group_by.h"
 #include "dynamics/solver_bodies.h"
+#include "dynamics/tangent_basis.h"
 
 namespace sphys {
 namespace {
@@ -21,22 +23,20 @@ constexpr float kMostHertzPerSubstepRate = 0.125f;
 // nothing on the other side gives way, and a pile's weight ends on them. unit: dimensionless
 constexpr float kImmovableStiffness = 2.0f;
 
-// Static friction's anchors are given up (the contact sticks afresh where it now is) once they
-// part by more than this along the contact, or by more than kAnchorLift times the slop across it:
-// the bodies slid, or rolled (rolling lifts the anchors off each other while it leaves them
-// together along the surface). unit: m, and slops
-constexpr float kAnchorReach = 0.005f;
-constexpr float kAnchorLift = 2.0f;
-
 // No body turns more than this in a substep (as Box2D bounds rotation): a turn that large is
-// beyond what the integrator and the contacts' anchors follow, and bodies squeezed between two
+// beyond what the integrator and the contacts' separations follow, and bodies squeezed between two
 // 10⁹ times heavier ones were spun up to 10¹⁹ rad/s and overflowed. 283 rad/s at 60 frames of 6
 // substeps a second. unit: rad
 constexpr float kMostTurnPerSubstep = 0.25f * std::numbers::pi_v<float>;
 
-// A contact whose friction impulse reached this share of its Coulomb bound slid: it is anchored
-// afresh in the next step. unit: dimensionless
-constexpr float kSlidingShare = 0.99f;
+// The tangent rows are solved together while their effective mass's determinant is at least this
+// share of its diagonal's product, one by one where it is less (nearly singular). unit:
+// dimensionless
+constexpr double kLeastTangentConditioning = 1e-6;
+
+// A manifold's normals summed to less than this length cancel out (a body wedged between
+// opposite faces): friction takes the first point's normal. unit: dimensionless
+constexpr float kSmallestNormalSum = 1e-3f;
 
 // Contacts per item of the threaded loops that prepare constraints and keep their impulses.
 // unit: contacts
@@ -95,21 +95,18 @@ void SoftStepSolver::scale_supported(Constraint& c) const {
 }
 
 void SoftStepSolver::set_masses(Constraint& c) const {
-  const std::array<Vec3, 3> directions = {c.normal, c.tangent1, c.tangent2};
-  for (std::size_t r = 0; r < 3; ++r) {
-    const Vec3 ra_cross = c.ra.cross(directions[r]);
-    const Vec3 rb_cross = c.rb.cross(directions[r]);
-    c.mass[r] =
-        1.0f / (c.scale_a * (inverse_mass_[c.a] + ra_cross.dot(inverse_inertia_[c.a] * ra_cross)) +
-                c.scale_b * (inverse_mass_[c.b] + rb_cross.dot(inverse_inertia_[c.b] * rb_cross)));
-  }
+  const Vec3 ra_cross = c.ra.cross(c.normal);
+  const Vec3 rb_cross = c.rb.cross(c.normal);
+  c.mass =
+      1.0f / (c.scale_a * (inverse_mass_[c.a] + ra_cross.dot(inverse_inertia_[c.a] * ra_cross)) +
+              c.scale_b * (inverse_mass_[c.b] + rb_cross.dot(inverse_inertia_[c.b] * rb_cross)));
   // The spring's mass M: the heavier body's, or the mass whose weight the contact carried in the
   // last step if more (the bottom of a stack carries the stack).
   const float spring_mass =
       std::max({mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]), c.carried});
   const bool against_immovable = !c.a_moves || !c.b_moves;
   const float spring = against_immovable ? spring_immovable_ : spring_moving_;
-  const float share = c.mass[0] / spring_mass / spring;
+  const float share = c.mass / spring_mass / spring;
   c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
 }
 
@@ -150,7 +147,6 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
     if (warm && memory[k].solved) ++stats.warm_started;
   }
   resize_buffer(constraints_, count);
-  resize_buffer(anchors_, contacts.size());
   parallel.for_each_run(
       constraints_.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
         for (std::size_t j = begin; j < end; ++j) {
@@ -159,13 +155,10 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
           Constraint c;
           place_constraint(contact, ground, inverse_mass_, position_, c);
           const ContactMemory& kept = memory[k];
-          const Vec3 apart = anchor(contact, k, c, kept, settings.linear_slop);
-          c.base_slip = {apart.dot(c.tangent1) - c.tangent1.dot(c.rb - c.ra),
-                         apart.dot(c.tangent2) - c.tangent2.dot(c.rb - c.ra)};
           if (warm && kept.solved) {
             c.normal_impulse = rescale * kept.normal_impulse;
-            c.tangent1_impulse = rescale * kept.friction_impulse.dot(c.tangent1);
-            c.tangent2_impulse = rescale * kept.friction_impulse.dot(c.tangent2);
+            c.friction_impulse = rescale * kept.friction_impulse;
+            c.twist_impulse = rescale * kept.twist_impulse;
           }
           c.carried = weight_per_substep > 0.0f ? c.normal_impulse / weight_per_substep : 0.0f;
           c.base_separation = -contact.depth - c.normal.dot(c.rb - c.ra);
@@ -207,49 +200,125 @@ void put(const Mat3& m, int lane, auto& lanes) {
 
 }  // namespace
 
-// Lane `lane` of `block` from a manifold's constraints; the block was zeroed, so the points past
-// the manifold's last stay empty.
+// Lane `lane` of `block` from a manifold's constraints, and its friction at the centre of its
+// points; the block was zeroed, so the points past the manifold's last stay empty.
 template <int W>
-void SoftStepSolver::pack_lane(const Manifold& manifold, const PairMaterial& material,
+void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material,
                                ManifoldBlock<W>& block, int lane) const {
+  const Manifold& manifold = manifolds_[index];
   const Constraint& first = constraints_[manifold.first];
   block.body_a[lane] = first.a;
   block.body_b[lane] = first.b;
   block.a_moves[lane] = first.a_moves ? 1u : 0u;
   block.b_moves[lane] = first.b_moves ? 1u : 0u;
-  block.inverse_mass_a[lane] = first.scale_a * inverse_mass_[first.a];
-  block.inverse_mass_b[lane] = first.scale_b * inverse_mass_[first.b];
+  const float inverse_mass_a = first.scale_a * inverse_mass_[first.a];
+  const float inverse_mass_b = first.scale_b * inverse_mass_[first.b];
+  block.inverse_mass_a[lane] = inverse_mass_a;
+  block.inverse_mass_b[lane] = inverse_mass_b;
   const Mat3 inverse_inertia_a = first.scale_a * inverse_inertia_[first.a];
   const Mat3 inverse_inertia_b = first.scale_b * inverse_inertia_[first.b];
   put(inverse_inertia_a, lane, block.inverse_inertia_a);
   put(inverse_inertia_b, lane, block.inverse_inertia_b);
   block.friction[lane] = material.friction;
   block.restitution[lane] = material.restitution;
-  block.bias_rate[lane] = first.a_moves && first.b_moves ? bias_rate_moving_ : bias_rate_immovable_;
+  const bool against_immovable = !first.a_moves || !first.b_moves;
+  const float bias_rate = against_immovable ? bias_rate_immovable_ : bias_rate_moving_;
+  block.bias_rate[lane] = bias_rate;
   // Rolling resistance stops the bodies' relative turning: its mass is the inverse of the sum of
   // their inverse inertias. A pair with no inverse inertia at all (point masses) cannot turn.
   const Mat3 sum = inverse_inertia_a + inverse_inertia_b;
   put(inverse_or_zero(sum), lane, block.rolling_mass);
+
+  // The points, and what friction at their centre takes from them: their mean normal and point,
+  // and the friction and twist they kept.
+  Vec3 normal_sum = Vec3::Zero();
+  Vec3 centre_a = Vec3::Zero();
+  Vec3 centre_b = Vec3::Zero();
+  Vec3 friction = Vec3::Zero();
+  float twist = 0.0f;
+  // The points in an order that alternates sides: the first, the one farthest from it, then the
+  // rest. A pass solves them one after another, each pushing until it alone stops approaching;
+  // when a flat face lands on four, solving neighbours in turn tipped the body onto the last and
+  // sent it back up (a box landing at 1.5 m/s left at 0.38 m/s with no restitution), and the
+  // opposite corner next undoes most of the first one's tipping. (The contact reducer orders the
+  // manifolds it reduces so already: a run of four or fewer is kept in the narrow phase's order.)
+  std::array<std::uint32_t, kManifoldPoints> order{0, 1, 2, 3};
+  if (manifold.count > 2) {
+    std::uint32_t far = 1;
+    float farthest = -1.0f;
+    for (std::uint32_t i = 1; i < manifold.count; ++i) {
+      const float d = (constraints_[manifold.first + i].ra - first.ra).squaredNorm();
+      if (d > farthest) {
+        farthest = d;
+        far = i;
+      }
+    }
+    std::swap(order[1], order[far]);
+  }
   for (std::uint32_t i = 0; i < manifold.count; ++i) {
-    const Constraint& c = constraints_[manifold.first + i];
+    const Constraint& c = constraints_[manifold.first + order[i]];
     auto& p = block.points[i];
     put(c.normal, lane, p.normal);
-    put(c.tangent1, lane, p.tangent1);
     put(c.ra, lane, p.ra);
     put(c.rb, lane, p.rb);
-    for (std::size_t r = 0; r < 3; ++r) p.mass[r][lane] = c.mass[r];
+    p.mass[lane] = c.mass;
     p.mass_scale[lane] = c.soft.mass_scale;
     p.impulse_scale[lane] = c.soft.impulse_scale;
     p.base_separation[lane] = c.base_separation;
-    p.base_slip[0][lane] = c.base_slip[0];
-    p.base_slip[1][lane] = c.base_slip[1];
     p.approach[lane] = c.approach;
-    p.impulse[0][lane] = c.normal_impulse;
-    p.impulse[1][lane] = c.tangent1_impulse;
-    p.impulse[2][lane] = c.tangent2_impulse;
+    p.impulse[lane] = c.normal_impulse;
     block.contact[i][lane] = c.contact;
+    normal_sum += c.normal;
+    centre_a += c.ra;
+    centre_b += c.rb;
+    friction += c.friction_impulse;
+    twist += c.twist_impulse;
   }
   block.point_count = std::max(block.point_count, manifold.count);
+  const float share_of_one = 1.0f / static_cast<float>(manifold.count);
+  centre_a *= share_of_one;
+  centre_b *= share_of_one;
+  for (std::uint32_t i = 0; i < manifold.count; ++i) {
+    block.points[i].lever[lane] = (constraints_[manifold.first + order[i]].ra - centre_a).norm();
+  }
+  // Normals that cancel (a body wedged between opposite faces) leave the first point's.
+  const float length = normal_sum.norm();
+  const Vec3 normal = length > kSmallestNormalSum ? Vec3(normal_sum / length) : first.normal;
+  Vec3 tangent1;
+  Vec3 tangent2;
+  tangent_basis(normal, tangent1, tangent2);
+  put(normal, lane, block.friction_normal);
+  put(tangent1, lane, block.tangent1);
+  put(centre_a, lane, block.centre_a);
+  put(centre_b, lane, block.centre_b);
+
+  // The tangent rows' effective mass K (2 × 2, symmetric, positive definite as a body moves) and
+  // its inverse; the twist's about the normal.
+  const Vec3 a1 = centre_a.cross(tangent1);
+  const Vec3 a2 = centre_a.cross(tangent2);
+  const Vec3 b1 = centre_b.cross(tangent1);
+  const Vec3 b2 = centre_b.cross(tangent2);
+  const float moving = inverse_mass_a + inverse_mass_b;
+  const float k11 = moving + a1.dot(inverse_inertia_a * a1) + b1.dot(inverse_inertia_b * b1);
+  const float k22 = moving + a2.dot(inverse_inertia_a * a2) + b2.dot(inverse_inertia_b * b2);
+  const float k12 = a1.dot(inverse_inertia_a * a2) + b1.dot(inverse_inertia_b * b2);
+  // In double, and only where K is far from singular: bodies 10¹⁵ times apart in mass leave a
+  // determinant that float rounds to zero or to a sliver whose inverse overflows.
+  const double determinant = double{k11} * k22 - double{k12} * k12;
+  if (determinant > kLeastTangentConditioning * double{k11} * k22 && std::isfinite(determinant)) {
+    block.tangent_mass[0][lane] = static_cast<float>(k22 / determinant);
+    block.tangent_mass[1][lane] = static_cast<float>(-k12 / determinant);
+    block.tangent_mass[2][lane] = static_cast<float>(k11 / determinant);
+  } else {
+    // Each row on its own.
+    block.tangent_mass[0][lane] = k11 > 0.0f ? 1.0f / k11 : 0.0f;
+    block.tangent_mass[2][lane] = k22 > 0.0f ? 1.0f / k22 : 0.0f;
+  }
+  const float twist_k = normal.dot(sum * normal);
+  block.twist_mass[lane] = twist_k > 0.0f ? 1.0f / twist_k : 0.0f;
+  block.friction_impulse[0][lane] = friction.dot(tangent1);
+  block.friction_impulse[1][lane] = friction.dot(tangent2);
+  block.twist_impulse[lane] = twist;
 }
 
 void SoftStepSolver::colour_manifolds() {
@@ -311,8 +380,8 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
         colour_first(colour) + (static_cast<std::uint32_t>(b) - block_begin_[colour]) * kLaneWidth;
     const std::uint32_t end = std::min(colour_first(colour + 1), first + kLaneWidth);
     for (std::uint32_t k = first; k < end; ++k) {
-      const Manifold& manifold = manifolds_[by_colour_[k]];
-      pack_lane(manifold, materials[constraints_[manifold.first].contact], block,
+      const std::uint32_t manifold = by_colour_[k];
+      pack_lane(manifold, materials[constraints_[manifolds_[manifold].first].contact], block,
                 static_cast<int>(k - first));
     }
   });
@@ -320,8 +389,9 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
   resize_buffer(overflow_, colour_first(kOverflowColour + 1) - overflow_begin);
   for (std::size_t k = 0; k < overflow_.size(); ++k) {
     empty(overflow_[k]);
-    const Manifold& manifold = manifolds_[by_colour_[overflow_begin + k]];
-    pack_lane(manifold, materials[constraints_[manifold.first].contact], overflow_[k], 0);
+    const std::uint32_t manifold = by_colour_[overflow_begin + k];
+    pack_lane(manifold, materials[constraints_[manifolds_[manifold].first].contact], overflow_[k],
+              0);
   }
 }
 
@@ -404,6 +474,16 @@ void SoftStepSolver::run_pass(const LaneKernels<W>& kernels, Work work,
   }
 }
 
+namespace {
+
+// At most `most_spin` (unit: rad/s), the direction kept.
+void bound_spin(Vec3& angular, float most_spin) {
+  const float spin = angular.norm();
+  if (spin > most_spin) angular *= most_spin / spin;
+}
+
+}  // namespace
+
 void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
                                           float substep) {
   const Vec3 gained = gravity * substep;
@@ -418,8 +498,7 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
   const float most_spin = kMostTurnPerSubstep / substep;
   for (const std::uint32_t i : awake) {
     Vec3& angular = velocity_[i].angular;
-    const float spin = angular.norm();
-    if (spin > most_spin) angular *= most_spin / spin;
+    bound_spin(angular, most_spin);
     // The angular velocity changes too: the angular momentum is kept as the inertia turns.
     integrate_position_keeping_spin(poses[i], velocity_[i].linear, angular,
                                     bodies.inertias_body()[i], bodies.inverse_inertias_body()[i],
@@ -429,26 +508,6 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
   }
 }
 
-Vec3 SoftStepSolver::anchor(const Contact& contact, std::size_t k, const Constraint& c,
-                            const ContactMemory& kept, float slop) {
-  const Mat3 turn_a = rotation_[c.a].toRotationMatrix();
-  const Mat3 turn_b = rotation_[c.b].toRotationMatrix();
-  if (kept.anchored) {
-    const Vec3 apart =
-        (position_[c.b] + turn_b * kept.anchor_b) - (position_[c.a] + turn_a * kept.anchor_a);
-    const float across = apart.dot(c.normal);
-    const Vec3 along = apart - across * c.normal;
-    if (std::abs(across) <= kAnchorLift * slop && along.norm() <= kAnchorReach) {
-      anchors_[k] = {kept.anchor_a, kept.anchor_b};
-      return apart;
-    }
-  }
-  // Anchored afresh: both at the contact point.
-  anchors_[k] = {turn_a.transpose() * (contact.point - position_[c.a]),
-                 turn_b.transpose() * (contact.point - position_[c.b])};
-  return Vec3::Zero();
-}
-
 void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory,
                                    const Parallel& parallel) const {
   // Contacts with no moving body were not solved: they start the next step afresh.
@@ -456,24 +515,22 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory,
     for (std::size_t k = begin; k < end; ++k) memory[k] = ContactMemory{};
   });
   const auto keep = [&](const auto& block, int lane) {
-    for (std::uint32_t i = 0; i < kManifoldPoints; ++i) {
-      const auto& p = block.points[i];
-      // An empty point has no mass along its normal.
-      if (!(p.mass[0][lane] > 0.0f)) continue;
+    // An empty point has no mass along its normal.
+    std::uint32_t count = 0;
+    while (count < kManifoldPoints && block.points[count].mass[lane] > 0.0f) ++count;
+    if (count == 0) return;
+    const Vec3 normal(block.friction_normal[0][lane], block.friction_normal[1][lane],
+                      block.friction_normal[2][lane]);
+    const Vec3 tangent1(block.tangent1[0][lane], block.tangent1[1][lane], block.tangent1[2][lane]);
+    const Vec3 friction = block.friction_impulse[0][lane] * tangent1 +
+                          block.friction_impulse[1][lane] * normal.cross(tangent1);
+    const float share = 1.0f / static_cast<float>(count);
+    for (std::uint32_t i = 0; i < count; ++i) {
       ContactMemory& kept = memory[block.contact[i][lane]];
-      kept.normal_impulse = p.impulse[0][lane];
+      kept.normal_impulse = block.points[i].impulse[lane];
       kept.solved = true;
-      const Vec3 normal(p.normal[0][lane], p.normal[1][lane], p.normal[2][lane]);
-      const Vec3 tangent1(p.tangent1[0][lane], p.tangent1[1][lane], p.tangent1[2][lane]);
-      const Vec3 tangent2 = normal.cross(tangent1);
-      kept.friction_impulse = p.impulse[1][lane] * tangent1 + p.impulse[2][lane] * tangent2;
-      // It stuck unless its friction reached the Coulomb bound: then it slid, and sticks afresh
-      // where it stops.
-      const float bound = kSlidingShare * block.friction[lane] * p.impulse[0][lane];
-      kept.anchored = p.impulse[0][lane] > 0.0f && kept.friction_impulse.norm() < bound;
-      const std::array<Vec3, 2>& anchors = anchors_[block.contact[i][lane]];
-      kept.anchor_a = anchors[0];
-      kept.anchor_b = anchors[1];
+      kept.friction_impulse = share * friction;
+      kept.twist_impulse = share * block.twist_impulse[lane];
     }
   };
   // Each contact is in one lane of one block: the blocks keep theirs on the threads.
@@ -516,6 +573,14 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
     run_item(stages_[stage], item, bodies, gravity, substep, lane_settings);
   });
   stats.bounces = bounces_.load();
+  // The relax and restitution passes come after the last substep bounded the turns: the
+  // velocities the step leaves keep the same bound (else a light body squeezed between two 10⁹
+  // times heavier ones gained spin from step to step until its square overflowed).
+  const float most_spin = kMostTurnPerSubstep / substep;
+  const std::span<const std::uint32_t> awake = bodies.awake();
+  parallel.for_each_run(awake.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) bound_spin(velocity_[awake[k]].angular, most_spin);
+  });
   store_solver_velocities(velocity_, parallel, bodies);
   keep_impulses(memory, parallel);
   kept_substep_ = substep;

@@ -60,15 +60,10 @@ class SoftStepSolver {
     Vec3 ra = Vec3::Zero();  // contact point from each centre of mass at the step's start. unit: m
     Vec3 rb = Vec3::Zero();
     Vec3 normal = Vec3::UnitY();  // from a to b
-    Vec3 tangent1 = Vec3::UnitX();
-    Vec3 tangent2 = Vec3::UnitZ();  // normal × tangent1
-    // 1 / (inverse effective mass) along the normal and the tangents. unit: kg
-    std::array<float, 3> mass{};
+    float mass = 0.0f;            // 1 / (inverse effective mass) along the normal. unit: kg
     // Separation at the step's start less the anchors' offset along the normal, so that adding
     // the anchors' current offset gives the current separation. unit: m
     float base_separation = 0.0f;
-    // The same along the tangents for static friction's anchors (ContactMemory::anchor_a). unit: m
-    std::array<float, 2> base_slip{};
     float approach = 0.0f;  // relative normal speed before the step. unit: m/s
     bool a_moves = false;   // the body has mass here (neither static nor asleep nor the ground)
     bool b_moves = false;
@@ -78,10 +73,11 @@ class SoftStepSolver {
     float scale_a = 1.0f;
     float scale_b = 1.0f;
     Softness soft;  // of the solve passes, for a penetrating contact
-    // Accumulated impulses, warm started. unit: N·s
+    // Warm started: the normal impulse (unit: N·s), and this contact's kept share of its
+    // manifold's friction (world frame; unit: N·s) and twist (unit: N·m·s).
     float normal_impulse = 0.0f;
-    float tangent1_impulse = 0.0f;
-    float tangent2_impulse = 0.0f;
+    Vec3 friction_impulse = Vec3::Zero();
+    float twist_impulse = 0.0f;
     std::uint32_t contact = 0;  // its index in the contacts given to solve()
   };
   // A manifold: constraints_[first, first + count) of one body pair, count <= kManifoldPoints.
@@ -127,7 +123,7 @@ class SoftStepSolver {
   // The manifolds into their blocks' lanes, on the threads.
   void pack(std::span<const PairMaterial> materials, const Parallel& parallel);
   template <int W>
-  void pack_lane(const Manifold& manifold, const PairMaterial& material, ManifoldBlock<W>& block,
+  void pack_lane(std::uint32_t manifold, const PairMaterial& material, ManifoldBlock<W>& block,
                  int lane) const;
   // The stages of `substeps` substeps: integrate velocities, warm start, solve, integrate
   // positions, relax; then restitution.
@@ -144,17 +140,10 @@ class SoftStepSolver {
   void integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
                             float substep);
   void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies, float substep);
-  // Static friction's anchors of a contact at the step's start: those it kept while they still
-  // meet near the contact, else its point now. Writes anchors_[k]; returns how far b's anchor is
-  // from a's. unit: m
-  Vec3 anchor(const Contact& contact, std::size_t k, const Constraint& c, const ContactMemory& kept,
-              float slop);
   void keep_impulses(std::span<ContactMemory> memory, const Parallel& parallel) const;
   [[nodiscard]] LaneBodies lane_bodies();
 
   std::vector<Constraint> constraints_;
-  // Per contact: static friction's anchors in each body's frame, as this step started them.
-  std::vector<std::array<Vec3, 2>> anchors_;
   std::vector<Manifold> manifolds_;
   std::vector<ManifoldBodies> manifold_bodies_;
   ConstraintColouring colouring_;
@@ -183,7 +172,8 @@ class SoftStepSolver {
   std::vector<Quat> rotation_;  // at the step's start
   std::vector<float> inverse_mass_;
   std::vector<Mat3> inverse_inertia_;  // world frame, at the step's start
-  // The motion since the step's start: translation and rotation (as a matrix, for the anchors).
+  // The motion since the step's start: translation and rotation (as a matrix, for the contacts'
+  // separations).
   std::vector<Vec3> moved_;
   std::vector<Mat3> turned_;
   // The springs' a2 = h ω (2ζ + h ω) (dimensionless) and bias speed per metre of penetration

@@ -84,18 +84,33 @@ Scenario random_scenario(std::uint32_t seed) {
       m.friction[lane] = 0.5f * positive(random);
       m.restitution[lane] = lane % 2 == 0 ? 0.5f : 0.0f;
       m.bias_rate[lane] = 10.0f * positive(random);
+      // Friction at the centre: a frame and kept impulses (of any size: some inside their bounds
+      // and some outside).
+      for (int k = 0; k < 3; ++k) {
+        m.friction_normal[k][lane] = unit(random);
+        m.tangent1[k][lane] = unit(random);
+        m.centre_a[k][lane] = 0.5f * unit(random);
+        m.centre_b[k][lane] = 0.5f * unit(random);
+      }
+      m.tangent_mass[0][lane] = positive(random);
+      m.tangent_mass[1][lane] = 0.1f * unit(random);
+      m.tangent_mass[2][lane] = positive(random);
+      m.twist_mass[lane] = positive(random);
+      m.friction_impulse[0][lane] = 0.2f * unit(random);
+      m.friction_impulse[1][lane] = 0.2f * unit(random);
+      m.twist_impulse[lane] = 0.05f * unit(random);
       // Lanes with fewer points than the block's most: the rest stay zero.
       const int points = 1 + lane % kManifoldPoints;
       for (int i = 0; i < points; ++i) {
         auto& p = m.points[i];
         for (int k = 0; k < 3; ++k) {
           p.normal[k][lane] = unit(random);
-          p.tangent1[k][lane] = unit(random);
           p.ra[k][lane] = 0.5f * unit(random);
           p.rb[k][lane] = 0.5f * unit(random);
-          p.impulse[k][lane] = 0.2f * positive(random);
         }
-        for (auto& mass : p.mass) mass[lane] = positive(random);
+        p.impulse[lane] = 0.2f * positive(random);
+        p.mass[lane] = positive(random);
+        p.lever[lane] = 0.1f * positive(random);
         p.mass_scale[lane] = 0.5f * positive(random);
         p.impulse_scale[lane] = 0.1f * positive(random);
         // Apart by up to 5 cm or into each other by up to 5 cm.
@@ -137,11 +152,11 @@ ManifoldBlock<1> lane_of(const ManifoldBlock<kW>& m, int lane) {
     const auto& p = m.points[i];
     auto& q = one.points[i];
     copy(p.normal, q.normal);
-    copy(p.tangent1, q.tangent1);
     copy(p.ra, q.ra);
     copy(p.rb, q.rb);
-    copy(p.mass, q.mass);
-    copy(p.impulse, q.impulse);
+    q.mass[0] = p.mass[lane];
+    q.impulse[0] = p.impulse[lane];
+    q.lever[0] = p.lever[lane];
     q.mass_scale[0] = p.mass_scale[lane];
     q.impulse_scale[0] = p.impulse_scale[lane];
     q.base_separation[0] = p.base_separation[lane];
@@ -152,6 +167,14 @@ ManifoldBlock<1> lane_of(const ManifoldBlock<kW>& m, int lane) {
   copy(m.inverse_inertia_b, one.inverse_inertia_b);
   copy(m.rolling_mass, one.rolling_mass);
   copy(m.rolling_impulse, one.rolling_impulse);
+  copy(m.friction_normal, one.friction_normal);
+  copy(m.tangent1, one.tangent1);
+  copy(m.centre_a, one.centre_a);
+  copy(m.centre_b, one.centre_b);
+  copy(m.tangent_mass, one.tangent_mass);
+  copy(m.friction_impulse, one.friction_impulse);
+  one.twist_mass[0] = m.twist_mass[lane];
+  one.twist_impulse[0] = m.twist_impulse[lane];
   one.inverse_mass_a[0] = m.inverse_mass_a[lane];
   one.inverse_mass_b[0] = m.inverse_mass_b[lane];
   one.friction[0] = m.friction[lane];
@@ -222,21 +245,26 @@ TEST(ContactLanes, SimdLanesPlainFloatsAndSingleLanesGiveTheSameBits) {
     expect_same_bodies(single.bodies, portable.bodies);
     EXPECT_EQ(single_bounces, portable_bounces);
 
-    // Impulses too, lane for lane.
+    // Impulses too, lane for lane: the points' normal ones, and each manifold's friction and
+    // twist.
+    const auto same_bits = [&](float x, float expected) {
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(x), std::bit_cast<std::uint32_t>(expected));
+    };
     for (std::size_t b = 0; b < portable.blocks.size(); ++b) {
+      const ManifoldBlock<kW>& expected = portable.blocks[b];
       for (int lane = 0; lane < kW; ++lane) {
         const ManifoldBlock<1>& one = lanes[b * kW + lane];
-        for (int i = 0; i < kManifoldPoints; ++i) {
-          for (int r = 0; r < 3; ++r) {
-            const float expected = portable.blocks[b].points[i].impulse[r][lane];
-            for (const Scenario& run : by_table) {
-              EXPECT_EQ(std::bit_cast<std::uint32_t>(run.blocks[b].points[i].impulse[r][lane]),
-                        std::bit_cast<std::uint32_t>(expected));
-            }
-            EXPECT_EQ(std::bit_cast<std::uint32_t>(one.points[i].impulse[r][0]),
-                      std::bit_cast<std::uint32_t>(expected));
+        const auto each_impulse = [&](const auto& block, int l) {
+          for (int i = 0; i < kManifoldPoints; ++i) {
+            same_bits(block.points[i].impulse[l], expected.points[i].impulse[lane]);
           }
-        }
+          for (int r = 0; r < 2; ++r) {
+            same_bits(block.friction_impulse[r][l], expected.friction_impulse[r][lane]);
+          }
+          same_bits(block.twist_impulse[l], expected.twist_impulse[lane]);
+        };
+        for (const Scenario& run : by_table) each_impulse(run.blocks[b], lane);
+        each_impulse(one, 0);
       }
     }
     // The scenario did exercise what it should: some points bounced, and the passes moved the
