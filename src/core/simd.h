@@ -24,6 +24,9 @@
 
 namespace sphys {
 
+// Floats per row that load_rows and store_rows move between W rows and kRow lane vectors.
+inline constexpr int kRow = 8;
+
 template <int W>
 struct PortableLanes {
   static constexpr int kWidth = W;
@@ -50,6 +53,22 @@ struct PortableLanes {
   }
   void store(float* p) const {
     for (int i = 0; i < W; ++i) p[i] = v[i];
+  }
+  // kRow floats of W rows at once: out[k] takes float k of row base + index[i] * stride in lane
+  // i. The rows must each hold kRow readable floats.
+  static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
+                        PortableLanes (&out)[kRow]) {
+    for (int i = 0; i < W; ++i) {
+      for (int k = 0; k < kRow; ++k) out[k].v[i] = base[index[i] * stride + k];
+    }
+  }
+  // The reverse of load_rows, for the lanes whose `write` is not 0.
+  static void store_rows(const PortableLanes (&in)[kRow], float* base, const std::uint32_t* index,
+                         std::size_t stride, const std::uint32_t* write) {
+    for (int i = 0; i < W; ++i) {
+      if (write[i] == 0) continue;
+      for (int k = 0; k < kRow; ++k) base[index[i] * stride + k] = in[k].v[i];
+    }
   }
   template <class Op>
   friend PortableLanes each(const PortableLanes& a, const PortableLanes& b, Op op) {
@@ -130,6 +149,31 @@ struct Sse2Lanes {
                         base[index[3] * stride])};
   }
   void store(float* p) const { _mm_store_ps(p, v); }
+  // As PortableLanes::load_rows: each row's two halves, transposed four by four.
+  static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
+                        Sse2Lanes (&out)[kRow]) {
+    for (int half = 0; half < 2; ++half) {
+      __m128 r0 = _mm_loadu_ps(base + index[0] * stride + 4 * half);
+      __m128 r1 = _mm_loadu_ps(base + index[1] * stride + 4 * half);
+      __m128 r2 = _mm_loadu_ps(base + index[2] * stride + 4 * half);
+      __m128 r3 = _mm_loadu_ps(base + index[3] * stride + 4 * half);
+      _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+      out[4 * half] = {r0};
+      out[4 * half + 1] = {r1};
+      out[4 * half + 2] = {r2};
+      out[4 * half + 3] = {r3};
+    }
+  }
+  static void store_rows(const Sse2Lanes (&in)[kRow], float* base, const std::uint32_t* index,
+                         std::size_t stride, const std::uint32_t* write) {
+    for (int half = 0; half < 2; ++half) {
+      __m128 r[4] = {in[4 * half].v, in[4 * half + 1].v, in[4 * half + 2].v, in[4 * half + 3].v};
+      _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
+      for (int i = 0; i < 4; ++i) {
+        if (write[i] != 0) _mm_storeu_ps(base + index[i] * stride + 4 * half, r[i]);
+      }
+    }
+  }
   friend Sse2Lanes operator+(Sse2Lanes a, Sse2Lanes b) { return {_mm_add_ps(a.v, b.v)}; }
   friend Sse2Lanes operator-(Sse2Lanes a, Sse2Lanes b) { return {_mm_sub_ps(a.v, b.v)}; }
   friend Sse2Lanes operator*(Sse2Lanes a, Sse2Lanes b) { return {_mm_mul_ps(a.v, b.v)}; }
@@ -163,6 +207,25 @@ struct Sse2PairLanes {
   void store(float* p) const {
     lo.store(p);
     hi.store(p + 4);
+  }
+  static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
+                        Sse2PairLanes (&out)[kRow]) {
+    Sse2Lanes lo[kRow];
+    Sse2Lanes hi[kRow];
+    Sse2Lanes::load_rows(base, index, stride, lo);
+    Sse2Lanes::load_rows(base, index + 4, stride, hi);
+    for (int k = 0; k < kRow; ++k) out[k] = {lo[k], hi[k]};
+  }
+  static void store_rows(const Sse2PairLanes (&in)[kRow], float* base, const std::uint32_t* index,
+                         std::size_t stride, const std::uint32_t* write) {
+    Sse2Lanes lo[kRow];
+    Sse2Lanes hi[kRow];
+    for (int k = 0; k < kRow; ++k) {
+      lo[k] = in[k].lo;
+      hi[k] = in[k].hi;
+    }
+    Sse2Lanes::store_rows(lo, base, index, stride, write);
+    Sse2Lanes::store_rows(hi, base, index + 4, stride, write + 4);
   }
   friend Sse2PairLanes operator+(Sse2PairLanes a, Sse2PairLanes b) {
     return {a.lo + b.lo, a.hi + b.hi};
@@ -212,6 +275,50 @@ struct Avx2Lanes {
                            base[index[6] * stride], base[index[7] * stride])};
   }
   void store(float* p) const { _mm256_store_ps(p, v); }
+  // As PortableLanes::load_rows: eight rows of eight, transposed.
+  static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
+                        Avx2Lanes (&out)[kRow]) {
+    __m256 r[8];
+    for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(base + index[i] * stride);
+    transpose(r);
+    for (int k = 0; k < kRow; ++k) out[k] = {r[k]};
+  }
+  static void store_rows(const Avx2Lanes (&in)[kRow], float* base, const std::uint32_t* index,
+                         std::size_t stride, const std::uint32_t* write) {
+    __m256 r[8];
+    for (int k = 0; k < kRow; ++k) r[k] = in[k].v;
+    transpose(r);
+    for (int i = 0; i < 8; ++i) {
+      if (write[i] != 0) _mm256_storeu_ps(base + index[i] * stride, r[i]);
+    }
+  }
+  // An 8 × 8 transpose in registers: r[k] lane i becomes r[i] lane k.
+  static void transpose(__m256 (&r)[8]) {
+    const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]);
+    const __m256 t1 = _mm256_unpackhi_ps(r[0], r[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]);
+    const __m256 t3 = _mm256_unpackhi_ps(r[2], r[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(r[4], r[5]);
+    const __m256 t5 = _mm256_unpackhi_ps(r[4], r[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(r[6], r[7]);
+    const __m256 t7 = _mm256_unpackhi_ps(r[6], r[7]);
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 u1 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 u3 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 u5 = _mm256_shuffle_ps(t4, t6, _MM_SHUFFLE(3, 2, 3, 2));
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(1, 0, 1, 0));
+    const __m256 u7 = _mm256_shuffle_ps(t5, t7, _MM_SHUFFLE(3, 2, 3, 2));
+    r[0] = _mm256_permute2f128_ps(u0, u4, 0x20);
+    r[1] = _mm256_permute2f128_ps(u1, u5, 0x20);
+    r[2] = _mm256_permute2f128_ps(u2, u6, 0x20);
+    r[3] = _mm256_permute2f128_ps(u3, u7, 0x20);
+    r[4] = _mm256_permute2f128_ps(u0, u4, 0x31);
+    r[5] = _mm256_permute2f128_ps(u1, u5, 0x31);
+    r[6] = _mm256_permute2f128_ps(u2, u6, 0x31);
+    r[7] = _mm256_permute2f128_ps(u3, u7, 0x31);
+  }
   friend Avx2Lanes operator+(Avx2Lanes a, Avx2Lanes b) { return {_mm256_add_ps(a.v, b.v)}; }
   friend Avx2Lanes operator-(Avx2Lanes a, Avx2Lanes b) { return {_mm256_sub_ps(a.v, b.v)}; }
   friend Avx2Lanes operator*(Avx2Lanes a, Avx2Lanes b) { return {_mm256_mul_ps(a.v, b.v)}; }

@@ -61,41 +61,26 @@ V3<F> times(const F (&m)[9], const V3<F>& v) {
           m[2] * v.x + m[5] * v.y + m[8] * v.z};
 }
 
-// One body of each lane, gathered from the solver's arrays by slot and scattered back.
+// One body of each lane, gathered from the solver's rows by slot and scattered back.
 template <class F>
 struct LaneBody {
   static constexpr int W = F::kWidth;
   V3<F> linear;
   V3<F> angular;
+  F rest[2];  // the row's floats past the velocities, written back as they were
 
   static LaneBody gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    const auto component = [&](const float* base, int k) {
-      return F::gather(base + k, slot, bodies.velocity_stride);
-    };
-    return {
-        {component(bodies.linear, 0), component(bodies.linear, 1), component(bodies.linear, 2)},
-        {component(bodies.angular, 0), component(bodies.angular, 1), component(bodies.angular, 2)}};
+    F row[kRow];
+    F::load_rows(bodies.velocity, slot, kBodyRow, row);
+    return {{row[0], row[1], row[2]}, {row[3], row[4], row[5]}, {row[6], row[7]}};
   }
   // Written back only where the lane's body moves: immovable bodies are shared by lanes and by
   // blocks on other threads, and keep their zero velocities.
   void scatter(const LaneBodies& bodies, const std::uint32_t (&slot)[W],
                const std::uint32_t (&moves)[W]) const {
-    alignas(32) float v[6][W];
-    linear.x.store(v[0]);
-    linear.y.store(v[1]);
-    linear.z.store(v[2]);
-    angular.x.store(v[3]);
-    angular.y.store(v[4]);
-    angular.z.store(v[5]);
-    for (int lane = 0; lane < W; ++lane) {
-      if (moves[lane] == 0) continue;
-      float* l = bodies.linear + bodies.velocity_stride * slot[lane];
-      float* a = bodies.angular + bodies.velocity_stride * slot[lane];
-      for (int k = 0; k < 3; ++k) {
-        l[k] = v[k][lane];
-        a[k] = v[3 + k][lane];
-      }
-    }
+    const F row[kRow] = {linear.x,  linear.y,  linear.z, angular.x,
+                         angular.y, angular.z, rest[0],  rest[1]};
+    F::store_rows(row, bodies.velocity, slot, kBodyRow, moves);
   }
 };
 
@@ -107,11 +92,13 @@ struct LaneMotion {
   F turned[9];
 
   static LaneMotion gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    LaneMotion motion{{F::gather(bodies.moved + 0, slot, 3), F::gather(bodies.moved + 1, slot, 3),
-                       F::gather(bodies.moved + 2, slot, 3)},
-                      {}};
-    for (int k = 0; k < 9; ++k) motion.turned[k] = F::gather(bodies.turned + k, slot, 9);
-    return motion;
+    F first[kRow];
+    F second[kRow];
+    F::load_rows(bodies.motion, slot, kBodyRow, first);
+    F::load_rows(bodies.motion + kRow, slot, kBodyRow, second);
+    return {{first[0], first[1], first[2]},
+            {first[3], first[4], first[5], first[6], first[7], second[0], second[1], second[2],
+             second[3]}};
   }
 };
 

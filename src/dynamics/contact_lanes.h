@@ -85,14 +85,16 @@ struct alignas(32) ManifoldBlock {
   std::uint32_t point_count;                  // the most points of any lane
 };
 
-// The bodies' velocities and their motion since the step's start, by slot: 3 floats a slot for
-// the vectors, 9 (column-major) for the rotation matrices.
+// Floats per slot in the solver's body rows (a cache line): the lanes load and store a body as
+// one row, transposed W rows at a time.
+inline constexpr std::size_t kBodyRow = 16;
+
+// The bodies' velocities and their motion since the step's start, one row of kBodyRow floats per
+// slot each: linear velocity (floats 0-2, unit: m/s) and angular velocity (3-5, unit: rad/s);
+// translation (0-2, unit: m) and rotation matrix, column-major (3-11), since the step's start.
 struct LaneBodies {
-  float* linear;
-  float* angular;
-  std::size_t velocity_stride;  // floats from one slot's velocities to the next's
-  const float* moved;           // unit: m
-  const float* turned;          // the rotation since the step's start
+  float* velocity;
+  const float* motion;
 };
 
 struct LaneSettings {

@@ -114,14 +114,12 @@ void SoftStepSolver::load_bodies(const BodyStore& bodies, const Parallel& parall
   load_solver_bodies(bodies, parallel, velocity_, position_, inverse_mass_, inverse_inertia_);
   const std::size_t slots = velocity_.size();
   resize_buffer(rotation_, slots);
-  resize_buffer(moved_, slots);
-  resize_buffer(turned_, slots);
+  resize_buffer(motion_, slots);
   const std::span<const Transform> poses = bodies.poses();
   parallel.for_each_run(slots, kSlotsPerRun, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       rotation_[i] = i < poses.size() ? poses[i].rotation : Quat::Identity();
-      moved_[i] = Vec3::Zero();
-      turned_[i] = Mat3::Identity();
+      motion_[i] = SolverMotion{};
     }
   });
 }
@@ -396,8 +394,7 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
 }
 
 LaneBodies SoftStepSolver::lane_bodies() {
-  return {velocity_.data()->linear.data(), velocity_.data()->angular.data(), kVelocityStride,
-          moved_.data()->data(), turned_.data()->data()};
+  return {velocity_.data()->linear.data(), motion_.data()->moved.data()};
 }
 
 // Awake bodies in runs of this many per item of an integration stage. unit: bodies
@@ -503,8 +500,8 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
     integrate_position_keeping_spin(poses[i], velocity_[i].linear, angular,
                                     bodies.inertias_body()[i], bodies.inverse_inertias_body()[i],
                                     substep);
-    moved_[i] = poses[i].translation - position_[i];
-    turned_[i] = (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix();
+    motion_[i] = {poses[i].translation - position_[i],
+                  (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix()};
   }
 }
 

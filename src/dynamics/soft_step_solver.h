@@ -172,10 +172,8 @@ class SoftStepSolver {
   std::vector<Quat> rotation_;  // at the step's start
   std::vector<float> inverse_mass_;
   std::vector<Mat3> inverse_inertia_;  // world frame, at the step's start
-  // The motion since the step's start: translation and rotation (as a matrix, for the contacts'
-  // separations).
-  std::vector<Vec3> moved_;
-  std::vector<Mat3> turned_;
+  // The motion since the step's start, for the contacts' separations.
+  std::vector<SolverMotion> motion_;
   // The springs' a2 = h ω (2ζ + h ω) (dimensionless) and bias speed per metre of penetration
   // (unit: 1/s), between two moving bodies and against an immovable one.
   float spring_moving_ = 0.0f;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/buffers.h"
+#include "dynamics/contact_lanes.h"
 #include "sphys/body_store.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"
@@ -25,8 +26,16 @@ struct alignas(64) SolverVelocity {
   Vec3 linear = Vec3::Zero();   // unit: m/s
   Vec3 angular = Vec3::Zero();  // unit: rad/s
 };
-// Floats from one slot's velocities to the next's.
-inline constexpr std::size_t kVelocityStride = sizeof(SolverVelocity) / sizeof(float);
+
+// A slot's motion since the step's start, for its contacts' separations: translation and rotation
+// (as a matrix). A row of its own too, which the lanes load as they load the velocities.
+struct alignas(64) SolverMotion {
+  Vec3 moved = Vec3::Zero();       // unit: m
+  Mat3 turned = Mat3::Identity();  // column-major
+};
+static_assert(sizeof(SolverVelocity) == kBodyRow * sizeof(float) &&
+                  sizeof(SolverMotion) == kBodyRow * sizeof(float),
+              "the lanes read a body's velocities and motion as rows of kBodyRow floats");
 
 // Fills the slots: every body's position; velocities, inverse mass and world inverse inertia of
 // the awake bodies, zero for the others and the ground, so that an impulse leaves them as they
