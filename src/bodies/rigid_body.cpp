@@ -56,6 +56,9 @@ constexpr int kMidpointIterations = 2;
 // shrinks the error by about h |ω| (1/80 for 3 rad/s at 240 Hz): four leave the quadratic
 // invariants below float rounding per step.
 constexpr int kMomentumIterations = 4;
+// An iteration that moves the midpoint by less than this share of |L| is the last: the next would
+// change it by about h |ω| times as little, far below float rounding. unit: dimensionless
+constexpr double kMomentumConvergence = 1e-12;
 // Beyond this turn per step (h |ω|) the iterations above stop converging. unit: rad
 constexpr double kMostMomentumTurn = 0.5;
 
@@ -95,15 +98,23 @@ void integrate_position_keeping_spin(Transform& pose, const Vec3& linear_velocit
   const Vec3d momentum =
       inertia_body.cast<double>() * (start_rotation.transpose() * angular_velocity.cast<double>());
   const double step = static_cast<double>(dt);
-  if (!(step * (inverse_inertia * momentum).norm() <= kMostMomentumTurn)) {
+  // |ω| h, squared: the body frame's ω is the world's turned.
+  const double turn = step * step * angular_velocity.cast<double>().squaredNorm();
+  if (!(turn <= kMostMomentumTurn * kMostMomentumTurn)) {
     integrate_position(pose, linear_velocity, angular_velocity, inertia_body, inverse_inertia_body,
                        dt);
     return;
   }
   pose.translation += linear_velocity * dt;
+  // Until an iteration moves the midpoint by less than kMomentumConvergence of |L|: a body at
+  // rest in a pile converges in two or three, a tumbling one takes all four.
+  const double settled = kMomentumConvergence * kMomentumConvergence * momentum.squaredNorm();
   Vec3d middle = momentum;
   for (int i = 0; i < kMomentumIterations; ++i) {
-    middle = momentum + 0.5 * step * middle.cross(inverse_inertia * middle);
+    const Vec3d next = momentum + 0.5 * step * middle.cross(inverse_inertia * middle);
+    const bool converged = (next - middle).squaredNorm() <= settled;
+    middle = next;
+    if (converged) break;
   }
   const Vec3d end = 2.0 * middle - momentum;
   const Eigen::Quaterniond rotation =
