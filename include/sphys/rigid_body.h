@@ -2,6 +2,8 @@
 
 // A rigid body's mass properties and state, and the semi-implicit Euler integrator.
 
+#include <span>
+
 #include "sphys/math.h"
 
 namespace sphys {
@@ -60,6 +62,18 @@ void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angu
 void integrate_position_keeping_spin(Transform& pose, const Vec3& linear_velocity,
                                      Vec3& angular_velocity, const Mat3& inertia_body,
                                      const Mat3& inverse_inertia_body, float dt);
+// A body as integrate_positions_keeping_spin moves it: its pose and angular velocity (updated),
+// its linear velocity and its inertia in its own frame.
+struct SpinningBody {
+  Transform* pose;
+  const Vec3* linear_velocity;
+  Vec3* angular_velocity;
+  const Mat3* inertia_body;
+  const Mat3* inverse_inertia_body;
+};
+// integrate_position_keeping_spin for many bodies, each with the result it has alone: a few at a
+// time side by side, so that their long chains of dependent double operations overlap.
+void integrate_positions_keeping_spin(std::span<const SpinningBody> bodies, float dt);
 // The same for a RigidBody; static bodies are left alone.
 void integrate_position(RigidBody& body, float dt);
 

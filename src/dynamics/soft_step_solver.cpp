@@ -493,13 +493,16 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
                                          float substep) {
   const std::span<Transform> poses = bodies.poses();
   const float most_spin = kMostTurnPerSubstep / substep;
+  // The angular velocity changes too: the angular momentum is kept as the inertia turns.
+  std::array<SpinningBody, kBodiesPerItem> spinning;
+  for (std::size_t k = 0; k < awake.size(); ++k) {
+    const std::uint32_t i = awake[k];
+    bound_spin(velocity_[i].angular, most_spin);
+    spinning[k] = {&poses[i], &velocity_[i].linear, &velocity_[i].angular,
+                   &bodies.inertias_body()[i], &bodies.inverse_inertias_body()[i]};
+  }
+  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), substep);
   for (const std::uint32_t i : awake) {
-    Vec3& angular = velocity_[i].angular;
-    bound_spin(angular, most_spin);
-    // The angular velocity changes too: the angular momentum is kept as the inertia turns.
-    integrate_position_keeping_spin(poses[i], velocity_[i].linear, angular,
-                                    bodies.inertias_body()[i], bodies.inverse_inertias_body()[i],
-                                    substep);
     motion_[i] = {poses[i].translation - position_[i],
                   (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix()};
   }

@@ -139,6 +139,7 @@ class SoftStepSolver {
                 const LaneBodies& lanes, const LaneSettings& settings);
   void integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
                             float substep);
+  // A run of at most kBodiesPerItem awake bodies.
   void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies, float substep);
   void keep_impulses(std::span<ContactMemory> memory, const Parallel& parallel) const;
   [[nodiscard]] LaneBodies lane_bodies();
