@@ -15,6 +15,7 @@
 #include "sphys/tools/primitives.h"
 #include "sphys/tools/scenarios.h"
 #include "sphys/tools/sph_file.h"
+#include "support/obj_text.h"
 #include "support/temp_file.h"
 
 namespace sphys::tools {
@@ -41,20 +42,7 @@ Scene scene_without_ground(std::vector<BodySpec> bodies) {
   return scene;
 }
 
-// The mesh as OBJ text, moved by `offset`.
-std::string obj_text(const TriangleMesh& mesh, const Vec3d& offset = Vec3d::Zero()) {
-  std::string text;
-  for (const Vec3d& v : mesh.vertices) {
-    const Vec3d p = v + offset;
-    text += "v " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
-            std::to_string(p.z()) + "\n";
-  }
-  for (const Triangle& t : mesh.triangles) {
-    text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
-            std::to_string(t[2] + 1) + "\n";
-  }
-  return text;
-}
+using test::obj_text;
 
 BuildWorldOptions with_tree_depth(int depth) {
   BuildWorldOptions options;
