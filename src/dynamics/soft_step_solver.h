@@ -7,7 +7,9 @@
 // bias; restitution and the impulses kept for the next step come once at the end. Contact
 // separations follow the bodies' motion within the step, so speculative contacts close their gaps
 // exactly. The contacts are solved as manifolds in SIMD lanes, colour by colour of the constraint
-// graph (contact_lanes.h, constraint_colouring.h). See docs/dynamics.md.
+// graph (contact_lanes.h, constraint_colouring.h). See docs/dynamics.md. The member functions are
+// defined by job: the constraints in soft_step_constraints.cpp, the manifolds' blocks in
+// soft_step_blocks.cpp, the stages and the step in soft_step_solver.cpp.
 
 #include <array>
 #include <atomic>
@@ -46,6 +48,10 @@ class SoftStepSolver {
   void use_lanes(SolverLanes lanes);
 
  private:
+  // Contacts per item of the threaded loops that prepare constraints and keep their impulses.
+  // unit: contacts
+  static constexpr std::size_t kConstraintsPerRun = 128;
+
   // A spring-damper's effect on an impulse in one substep (Catto, "Soft Constraints", GDC 2011):
   // how much of the rigid impulse and of the accumulated one the soft impulse takes.
   struct Softness {
