@@ -65,8 +65,9 @@ const SettledPile& settled_pile() {
     const Parallel one;
     for (int i = 0; i < 30; ++i) {
       BodyStore bodies = p.bodies;
-      solver.solve(bodies, p.contacts, p.memory, p.materials, p.settings.solver, p.settings.gravity,
-                   static_cast<float>(scene.time_step), kSubsteps, one);
+      solver.solve(bodies, p.contacts, p.memory, p.materials,
+                   SoftStepContext(p.settings.solver, p.settings.gravity,
+                                   static_cast<float>(scene.time_step), kSubsteps, one));
     }
     return p;
   }();
@@ -92,8 +93,9 @@ void soft_step_solver(benchmark::State& state) {
     bodies = pile.bodies;
     memory = pile.memory;
     state.ResumeTiming();
-    stats = solver.solve(bodies, pile.contacts, memory, pile.materials, pile.settings.solver,
-                         pile.settings.gravity, 1.0f / 60.0f, kSubsteps, parallel);
+    stats = solver.solve(bodies, pile.contacts, memory, pile.materials,
+                         SoftStepContext(pile.settings.solver, pile.settings.gravity, 1.0f / 60.0f,
+                                         kSubsteps, parallel));
     benchmark::ClobberMemory();
   }
   state.counters["contact_points"] = stats.constraints;

@@ -40,7 +40,8 @@ void put(const Mat3& m, int lane, auto& lanes) {
 // points; the block was zeroed, so the points past the manifold's last stay empty.
 template <int W>
 void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material,
-                               ManifoldBlock<W>& block, int lane) const {
+                               const SoftStepContext& context, ManifoldBlock<W>& block,
+                               int lane) const {
   const Manifold& manifold = manifolds_[index];
   const Constraint& first = constraints_[manifold.first];
   block.body_a[lane] = first.a;
@@ -58,7 +59,8 @@ void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material
   block.friction[lane] = material.friction;
   block.restitution[lane] = material.restitution;
   const bool against_immovable = !first.a_moves || !first.b_moves;
-  const float bias_rate = against_immovable ? bias_rate_immovable_ : bias_rate_moving_;
+  const float bias_rate =
+      against_immovable ? context.bias_rate_immovable : context.bias_rate_moving;
   block.bias_rate[lane] = bias_rate;
   // Rolling resistance stops the bodies' relative turning: its mass is the inverse of the sum of
   // their inverse inertias. A pair with no inverse inertia at all (point masses) cannot turn.
@@ -195,7 +197,7 @@ void SoftStepSolver::colour_manifolds() {
   block_begin_[kColours] = static_cast<std::uint32_t>(blocks);
 }
 
-void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Parallel& parallel) {
+void SoftStepSolver::pack(std::span<const PairMaterial> materials, const SoftStepContext& context) {
   const std::size_t blocks = block_begin_[kColours];
   const auto ground = static_cast<std::uint32_t>(velocity_.size() - 1);
   const auto empty = [&](auto& block) {
@@ -206,7 +208,7 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
   resize_buffer(blocks_, blocks);
   // Block b holds the manifolds of its colour from the (b - the colour's first block)-th lane's
   // worth on; each block is packed on its own, on the threads.
-  parallel.for_each(blocks, [&](std::size_t b) {
+  context.parallel.for_each(blocks, [&](std::size_t b) {
     const auto colour = static_cast<std::uint32_t>(
         std::upper_bound(block_begin_.begin(), block_begin_.begin() + kColours, b) -
         block_begin_.begin() - 1);
@@ -217,8 +219,8 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
     const std::uint32_t end = std::min(colour_first(colour + 1), first + kLaneWidth);
     for (std::uint32_t k = first; k < end; ++k) {
       const std::uint32_t manifold = by_colour_[k];
-      pack_lane(manifold, materials[constraints_[manifolds_[manifold].first].contact], block,
-                static_cast<int>(k - first));
+      pack_lane(manifold, materials[constraints_[manifolds_[manifold].first].contact], context,
+                block, static_cast<int>(k - first));
     }
   });
   const std::uint32_t overflow_begin = colour_first(kOverflowColour);
@@ -226,8 +228,8 @@ void SoftStepSolver::pack(std::span<const PairMaterial> materials, const Paralle
   for (std::size_t k = 0; k < overflow_.size(); ++k) {
     empty(overflow_[k]);
     const std::uint32_t manifold = by_colour_[overflow_begin + k];
-    pack_lane(manifold, materials[constraints_[manifolds_[manifold].first].contact], overflow_[k],
-              0);
+    pack_lane(manifold, materials[constraints_[manifolds_[manifold].first].contact], context,
+              overflow_[k], 0);
   }
 }
 

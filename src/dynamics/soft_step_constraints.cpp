@@ -59,7 +59,7 @@ void SoftStepSolver::scale_supported(Constraint& c) const {
   (a_below ? c.scale_a : c.scale_b) = std::min(1.0f, lower / upper);
 }
 
-void SoftStepSolver::set_masses(Constraint& c) const {
+void SoftStepSolver::set_masses(Constraint& c, const SoftStepContext& context) const {
   const Vec3 ra_cross = c.ra.cross(c.normal);
   const Vec3 rb_cross = c.rb.cross(c.normal);
   c.mass =
@@ -70,7 +70,7 @@ void SoftStepSolver::set_masses(Constraint& c) const {
   const float spring_mass =
       std::max({mass_of(inverse_mass_[c.a]), mass_of(inverse_mass_[c.b]), c.carried});
   const bool against_immovable = !c.a_moves || !c.b_moves;
-  const float spring = against_immovable ? spring_immovable_ : spring_moving_;
+  const float spring = against_immovable ? context.spring_immovable : context.spring_moving;
   const float share = c.mass / spring_mass / spring;
   c.soft = {1.0f / (1.0f + share), share / (1.0f + share)};
 }
@@ -90,16 +90,17 @@ void SoftStepSolver::load_bodies(const BodyStore& bodies, const Parallel& parall
 }
 
 void SoftStepSolver::prepare(std::span<const Contact> contacts,
-                             std::span<const ContactMemory> memory, const SolverSettings& settings,
-                             const Vec3& gravity, float substep, const Parallel& parallel,
+                             std::span<const ContactMemory> memory, const SoftStepContext& context,
                              ContactSolverStats& stats) {
   const auto ground = static_cast<std::uint32_t>(velocity_.size() - 1);
   // Impulses were kept per substep of the last step's length; a substep of another length needs
   // them in proportion.
+  const float substep = context.substep;
+  const Parallel& parallel = context.parallel;
   const float rescale = kept_substep_ > 0.0f ? substep / kept_substep_ : 1.0f;
   // The impulse that holds up a kilogram against gravity for a substep. unit: N s / kg
-  const float weight_per_substep = gravity.norm() * substep;
-  const bool warm = settings.warm_starting;
+  const float weight_per_substep = context.gravity.norm() * substep;
+  const bool warm = context.warm_starting;
   // The contacts with a moving body, in order, each named by a constraint that is then made on
   // the threads.
   resize_buffer(constraints_, contacts.size());
@@ -146,7 +147,7 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
                         [&](std::size_t begin, std::size_t end) {
                           for (std::size_t j = begin; j < end; ++j) {
                             scale_supported(constraints_[j]);
-                            set_masses(constraints_[j]);
+                            set_masses(constraints_[j], context);
                           }
                         });
   stats.constraints = static_cast<std::uint32_t>(constraints_.size());

@@ -68,26 +68,26 @@ void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool
 }
 
 void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies,
-                              const Vec3& gravity, float substep, const LaneSettings& settings) {
+                              const SoftStepContext& context) {
   if (stage.work == Work::kIntegrateVelocities || stage.work == Work::kIntegratePositions) {
     const std::span<const std::uint32_t> awake = bodies.awake();
     const std::size_t first = std::size_t{item} * kBodiesPerItem;
     const std::span<const std::uint32_t> run =
         awake.subspan(first, std::min<std::size_t>(kBodiesPerItem, awake.size() - first));
     if (stage.work == Work::kIntegrateVelocities) {
-      integrate_velocities(run, gravity, substep);
+      integrate_velocities(run, context);
     } else {
-      integrate_positions(run, bodies, substep);
+      integrate_positions(run, bodies, context);
     }
     return;
   }
   const LaneBodies lanes = lane_bodies();
   if (stage.colour == kOverflowColour) {
-    run_pass(single_lane_kernels(), stage.work, std::span(overflow_), lanes, settings);
+    run_pass(single_lane_kernels(), stage.work, std::span(overflow_), lanes, context.lanes);
     return;
   }
   run_pass(*kernels_, stage.work, std::span(blocks_.data() + block_begin_[stage.colour] + item, 1),
-           lanes, settings);
+           lanes, context.lanes);
 }
 
 template <int W>
@@ -121,18 +121,18 @@ void bound_spin(Vec3& angular, float most_spin) {
 
 }  // namespace
 
-void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
-                                          float substep) {
-  const Vec3 gained = gravity * substep;
+void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake,
+                                          const SoftStepContext& context) {
+  const Vec3 gained = context.gravity * context.substep;
   for (const std::uint32_t i : awake) velocity_[i].linear += gained;
 }
 
 // The bodies' poses by the solved velocities (rigid_body.h's integrator), and their motion since
 // the step's start for the contacts' separations.
 void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies,
-                                         float substep) {
+                                         const SoftStepContext& context) {
   const std::span<Transform> poses = bodies.poses();
-  const float most_spin = kMostTurnPerSubstep / substep;
+  const float most_spin = kMostTurnPerSubstep / context.substep;
   // The angular velocity changes too: the angular momentum is kept as the inertia turns.
   std::array<SpinningBody, kBodiesPerItem> spinning;
   for (std::size_t k = 0; k < awake.size(); ++k) {
@@ -141,21 +141,27 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
     spinning[k] = {&poses[i], &velocity_[i].linear, &velocity_[i].angular,
                    &bodies.inertias_body()[i], &bodies.inverse_inertias_body()[i]};
   }
-  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), substep);
+  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), context.substep);
   for (const std::uint32_t i : awake) {
     motion_[i] = {poses[i].translation - position_[i],
                   (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix()};
   }
 }
 
-ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> contacts,
-                                         std::span<ContactMemory> memory,
-                                         std::span<const PairMaterial> materials,
-                                         const SolverSettings& settings, const Vec3& gravity,
-                                         float dt, std::uint32_t substeps,
-                                         const Parallel& parallel) {
-  ContactSolverStats stats;
-  const float substep = dt / static_cast<float>(substeps);
+SoftStepContext::SoftStepContext(const SolverSettings& settings, const Vec3& step_gravity, float dt,
+                                 std::uint32_t step_substeps, const Parallel& threads)
+    : substeps(step_substeps),
+      substep(dt / static_cast<float>(step_substeps)),
+      gravity(step_gravity),
+      warm_starting(settings.warm_starting),
+      lanes{.substep = substep,
+            .inverse_substep = 1.0f / substep,
+            .gravity = {step_gravity.x(), step_gravity.y(), step_gravity.z()},
+            .linear_slop = settings.linear_slop,
+            .max_correction_speed = settings.max_correction_speed,
+            .rolling_resistance = settings.rolling_resistance,
+            .restitution_threshold = settings.restitution_threshold},
+      parallel(threads) {
   const float hertz = std::min(settings.contact_hertz, kMostHertzPerSubstepRate / substep);
   const auto spring = [&](float omega, float& a2, float& bias_rate) {
     const float a1 = 2.0f * settings.contact_damping_ratio + substep * omega;
@@ -163,35 +169,36 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
     bias_rate = omega / a1;
   };
   const float omega = 2.0f * std::numbers::pi_v<float> * hertz;
-  spring(omega, spring_moving_, bias_rate_moving_);
-  spring(kImmovableStiffness * omega, spring_immovable_, bias_rate_immovable_);
+  spring(omega, spring_moving, bias_rate_moving);
+  spring(kImmovableStiffness * omega, spring_immovable, bias_rate_immovable);
+}
+
+ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> contacts,
+                                         std::span<ContactMemory> memory,
+                                         std::span<const PairMaterial> materials,
+                                         const SoftStepContext& context) {
+  ContactSolverStats stats;
+  const Parallel& parallel = context.parallel;
   load_bodies(bodies, parallel);
-  prepare(contacts, memory, settings, gravity, substep, parallel, stats);
-  pack(materials, parallel);
-  const LaneSettings lane_settings{.substep = substep,
-                                   .inverse_substep = 1.0f / substep,
-                                   .gravity = {gravity.x(), gravity.y(), gravity.z()},
-                                   .linear_slop = settings.linear_slop,
-                                   .max_correction_speed = settings.max_correction_speed,
-                                   .rolling_resistance = settings.rolling_resistance,
-                                   .restitution_threshold = settings.restitution_threshold};
-  plan_stages(bodies.awake().size(), substeps, settings.warm_starting);
+  prepare(contacts, memory, context, stats);
+  pack(materials, context);
+  plan_stages(bodies.awake().size(), context.substeps, context.warm_starting);
   bounces_.store(0);
   parallel.for_each_in_stages(stage_items_, [&](std::size_t stage, std::uint32_t item) {
-    run_item(stages_[stage], item, bodies, gravity, substep, lane_settings);
+    run_item(stages_[stage], item, bodies, context);
   });
   stats.bounces = bounces_.load();
   // The relax and restitution passes come after the last substep bounded the turns: the
   // velocities the step leaves keep the same bound (else a light body squeezed between two 10⁹
   // times heavier ones gained spin from step to step until its square overflowed).
-  const float most_spin = kMostTurnPerSubstep / substep;
+  const float most_spin = kMostTurnPerSubstep / context.substep;
   const std::span<const std::uint32_t> awake = bodies.awake();
   parallel.for_each_run(awake.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) bound_spin(velocity_[awake[k]].angular, most_spin);
   });
   store_solver_velocities(velocity_, parallel, bodies);
   keep_impulses(memory, parallel);
-  kept_substep_ = substep;
+  kept_substep_ = context.substep;
   return stats;
 }
 

@@ -20,6 +20,7 @@
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/contact_levels.h"
+#include "dynamics/soft_step_context.h"
 #include "dynamics/solver_bodies.h"
 #include "dynamics/solver_stats.h"
 #include "sphys/body_store.h"
@@ -34,15 +35,14 @@ namespace sphys {
 
 class SoftStepSolver {
  public:
-  // Advances the store's awake bodies by dt, in `substeps` equal substeps, under `gravity` and
-  // the contacts: their velocities and poses on return are those at the end of the step. The
-  // other bodies count as static. `materials[k]` is contact k's material; `memory[k]` is its warm
-  // start on entry and what it leaves for the next step on return. The colours' blocks are solved
-  // on `parallel`'s threads, and the result does not depend on how many there are.
+  // Advances the store's awake bodies by the context's step, under gravity and the contacts:
+  // their velocities and poses on return are those at the end of the step. The other bodies count
+  // as static. `materials[k]` is contact k's material; `memory[k]` is its warm start on entry and
+  // what it leaves for the next step on return. The colours' blocks are solved on the context's
+  // threads, and the result does not depend on how many there are.
   ContactSolverStats solve(BodyStore& bodies, std::span<const Contact> contacts,
                            std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
-                           const SolverSettings& settings, const Vec3& gravity, float dt,
-                           std::uint32_t substeps, const Parallel& parallel);
+                           const SoftStepContext& context);
 
   // The lanes the passes run in (resolved: resolve_solver_lanes()); the same bits whichever.
   void use_lanes(SolverLanes lanes);
@@ -115,10 +115,9 @@ class SoftStepSolver {
   // body it carries: Constraint::scale_a and scale_b, from support_level_.
   void scale_supported(Constraint& c) const;
   // A constraint's effective masses and spring from its bodies, as scaled.
-  void set_masses(Constraint& c) const;
+  void set_masses(Constraint& c, const SoftStepContext& context) const;
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
-               const SolverSettings& settings, const Vec3& gravity, float substep,
-               const Parallel& parallel, ContactSolverStats& stats);
+               const SoftStepContext& context, ContactSolverStats& stats);
   // The constraints cut into manifolds (a body pair's, kManifoldPoints at most), coloured and
   // listed by colour, and each colour's blocks counted.
   void colour_manifolds();
@@ -127,26 +126,26 @@ class SoftStepSolver {
     return count_begin_[colour * kManifoldPoints];
   }
   // The manifolds into their blocks' lanes, on the threads.
-  void pack(std::span<const PairMaterial> materials, const Parallel& parallel);
+  void pack(std::span<const PairMaterial> materials, const SoftStepContext& context);
   template <int W>
-  void pack_lane(std::uint32_t manifold, const PairMaterial& material, ManifoldBlock<W>& block,
-                 int lane) const;
+  void pack_lane(std::uint32_t manifold, const PairMaterial& material,
+                 const SoftStepContext& context, ManifoldBlock<W>& block, int lane) const;
   // The stages of `substeps` substeps: integrate velocities, warm start, solve, integrate
   // positions, relax; then restitution.
   void plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting);
   void add_stage(Work work, std::uint32_t colour, std::uint32_t items);
   void add_pass(Work work);
   // Item `item` of a stage.
-  void run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies, const Vec3& gravity,
-                float substep, const LaneSettings& settings);
+  void run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies,
+                const SoftStepContext& context);
   // A contact pass (warm start, solve, relax or restitution) over some blocks.
   template <int W>
   void run_pass(const LaneKernels<W>& kernels, Work work, std::span<ManifoldBlock<W>> blocks,
                 const LaneBodies& lanes, const LaneSettings& settings);
-  void integrate_velocities(std::span<const std::uint32_t> awake, const Vec3& gravity,
-                            float substep);
+  void integrate_velocities(std::span<const std::uint32_t> awake, const SoftStepContext& context);
   // A run of at most kBodiesPerItem awake bodies.
-  void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies, float substep);
+  void integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies,
+                           const SoftStepContext& context);
   void keep_impulses(std::span<ContactMemory> memory, const Parallel& parallel) const;
   [[nodiscard]] LaneBodies lane_bodies();
 
@@ -181,12 +180,6 @@ class SoftStepSolver {
   std::vector<Mat3> inverse_inertia_;  // world frame, at the step's start
   // The motion since the step's start, for the contacts' separations.
   std::vector<SolverMotion> motion_;
-  // The springs' a2 = h ω (2ζ + h ω) (dimensionless) and bias speed per metre of penetration
-  // (unit: 1/s), between two moving bodies and against an immovable one.
-  float spring_moving_ = 0.0f;
-  float spring_immovable_ = 0.0f;
-  float bias_rate_moving_ = 0.0f;
-  float bias_rate_immovable_ = 0.0f;
   // The substep length the kept impulses were solved with: they are rescaled to a new one, as an
   // impulse per substep grows with its length. unit: s
   float kept_substep_ = 0.0f;

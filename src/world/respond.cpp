@@ -42,9 +42,9 @@ void World::respond(float dt, bool plausible, StepStats& stats) {
     // into several: sharing them out (a quarter each of four) let a blow into a pile sink bodies
     // 10% of a bunny deep, against 4% (stacks:4x50, depth 2).
     const SolverSettings& solver = settings_.solver;
+    const SoftStepContext context(solver, settings_.gravity, dt, solver.soft_substeps, *parallel_);
     const ContactSolverStats solved =
-        solver_->solve(*store_, contacts, detector_->memory(), materials_, solver,
-                       settings_.gravity, dt, solver.soft_substeps, *parallel_);
+        solver_->solve(*store_, contacts, detector_->memory(), materials_, context);
     stats.impulses += solved.constraints;
     stats.warm_started += solved.warm_started;
     stats.bounces += solved.bounces;

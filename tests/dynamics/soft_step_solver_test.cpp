@@ -54,8 +54,9 @@ Solved solve(BodyStore bodies, const std::vector<Contact>& contacts, const PairM
   Solved solved{std::move(bodies), std::vector<ContactMemory>(contacts.size())};
   SoftStepSolver solver;
   const std::vector<PairMaterial> materials(contacts.size(), material);
-  (void)solver.solve(solved.bodies, contacts, solved.memory, materials, plain_settings(), gravity,
-                     kStep, kSubsteps, Parallel());
+  const Parallel one;
+  (void)solver.solve(solved.bodies, contacts, solved.memory, materials,
+                     SoftStepContext(plain_settings(), gravity, kStep, kSubsteps, one));
   return solved;
 }
 
@@ -95,9 +96,11 @@ TEST(SoftStepSolver, ABallAtRestOnThePlaneTakesItsWeightEachSubstepAndStays) {
   std::vector<ContactMemory> memory(1);
   SoftStepSolver solver;
   const std::vector<PairMaterial> materials(1, PairMaterial{});
+  const Parallel one;
   for (int step = 0; step < 10; ++step) {
-    (void)solver.solve(state, contacts, memory, materials, plain_settings(),
-                       Vec3(0.0f, -gravity, 0.0f), kStep, kSubsteps, Parallel());
+    (void)solver.solve(
+        state, contacts, memory, materials,
+        SoftStepContext(plain_settings(), Vec3(0.0f, -gravity, 0.0f), kStep, kSubsteps, one));
     SCOPED_TRACE(step);
     EXPECT_NEAR(state.linear_velocities()[0].norm(), 0.0f, 1e-5f);
     EXPECT_NEAR(state.poses()[0].translation.y(), kRadius, 1e-6f);
