@@ -23,10 +23,6 @@ constexpr double kLeastTangentConditioning = 1e-6;
 // opposite faces): friction takes the first point's normal. unit: dimensionless
 constexpr float kSmallestNormalSum = 1e-3f;
 
-}  // namespace
-
-namespace {
-
 void put(const Vec3& v, int lane, auto& lanes) {
   for (int k = 0; k < 3; ++k) lanes[k][lane] = v[k];
 }

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <span>
 #include <string>
@@ -326,7 +327,29 @@ TEST(ContactLanes, EachLaneOperationRoundsAsThePlainFloat) {
 
 // auto takes SPHYS_SIMD where it is set, and refuses a value it cannot read by naming it; unset, it
 // takes the widest lanes there are. A world names the lanes it resolved.
+// SPHYS_SIMD as the process had it, put back when the test ends however it ends.
+class KeepSphysSimd {
+ public:
+  KeepSphysSimd() {
+    if (const char* text = std::getenv("SPHYS_SIMD")) saved_ = text;
+    unsetenv("SPHYS_SIMD");
+  }
+  KeepSphysSimd(const KeepSphysSimd&) = delete;
+  KeepSphysSimd& operator=(const KeepSphysSimd&) = delete;
+  ~KeepSphysSimd() {
+    if (saved_) {
+      setenv("SPHYS_SIMD", saved_->c_str(), 1);
+    } else {
+      unsetenv("SPHYS_SIMD");
+    }
+  }
+
+ private:
+  std::optional<std::string> saved_;
+};
+
 TEST(SolverLanes, AutoReadsSphysSimdAndTheWorldNamesWhatItResolved) {
+  const KeepSphysSimd keep;
   const SolverLanes widest = resolve_solver_lanes(SolverLanes::kAuto);
   EXPECT_NE(widest, SolverLanes::kAuto);
   ASSERT_EQ(setenv("SPHYS_SIMD", "portable", 1), 0);
