@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -54,6 +55,14 @@ struct CollisionSettings {
   // kMaxManifoldPoints reduces each pair's to a manifold of at most that many (contact reduction,
   // docs/dynamics.md), persistent from one narrow phase to the next through the pair's record.
   std::uint32_t manifold_points = 0;
+  // With reduced contacts, a body pair whose speculative reach (how far its bodies can close in
+  // the coming step, from set_motion(); the pair's gap less the contact margin) exceeds this is
+  // reduced by parts instead (ContactReducer::reduce_by_parts): a small manifold per pair of parts
+  // that meet, each part a first-level node of its tree with the leaves below it. Two non-convex
+  // bodies closing fast meet at several places at angles one manifold does not follow
+  // (docs/dynamics.md). A body and the ground plane keep their manifold: the plane's contacts
+  // share its one normal. unit: m
+  float fast_pair_reach = std::numeric_limits<float>::infinity();
   // A pair whose bodies moved relative to each other by at most this since its last descent keeps
   // its contacts, recomputed from the same leaf pairs at the new poses, instead of descending and
   // reducing again. The descent looks this much beyond the pair's gap, so no leaf pair it left out
@@ -134,6 +143,7 @@ class CollisionDetector final : public SlotArrays {
   // Whether the broad phase found the body's box in a crowd at the last detect()
   // (CollisionSettings::crowd_pairs_per_body).
   [[nodiscard]] bool crowded(std::uint32_t slot) const;
+
   // The threads the narrow phase and the contacts run on (none: the caller's thread). The
   // contacts and figures do not depend on them. A time-critical budget is spent pair after pair
   // in order, so with one the narrow phase runs on the caller's thread. `parallel` must outlive
@@ -199,6 +209,7 @@ class CollisionDetector final : public SlotArrays {
     std::uint32_t leaves_end = 0;
     bool reused = false;               // the leaves are the record's kept contacts at the new poses
     bool crowd = false;                // two crowded bodies: their roots' contact
+    bool fast = false;                 // two bodies that can close by more than fast_pair_reach
     std::uint32_t contacts_begin = 0;  // its contacts in the chunk's output
   };
 

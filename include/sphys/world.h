@@ -60,7 +60,7 @@ struct WorldSettings {
   // only; a body spinning through a pile meets contacts they did not foresee. 1..64; at most
   // `substeps` turns it off.
   std::uint32_t max_substeps = 8;
-  float substep_travel = 0.15f;  // unit: bounding radii per substep, > 0
+  float substep_travel = 0.3f;  // unit: bounding radii per substep, > 0
   // In plausible mode the world sets collision.contact_margin and collision.speculative from
   // `solver`; in paper mode it turns them off, as the paper makes contacts from overlaps only.
   CollisionSettings collision;

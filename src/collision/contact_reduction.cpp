@@ -236,4 +236,20 @@ void ContactReducer::reduce(std::span<const Contact> run, std::uint32_t max_poin
   }
 }
 
+void ContactReducer::reduce_by_parts(std::span<const Contact> run,
+                                     std::span<const std::uint64_t> parts,
+                                     std::span<const Contact> kept, std::vector<Contact>& reduced) {
+  fill_buffer(part_done_, run.size(), std::uint8_t{0});
+  for (std::size_t i = 0; i < run.size(); ++i) {
+    if (part_done_[i] != 0) continue;
+    part_run_.clear();
+    for (std::size_t j = i; j < run.size(); ++j) {
+      if (parts[j] != parts[i]) continue;
+      part_run_.push_back(run[j]);
+      part_done_[j] = 1;
+    }
+    reduce(part_run_, kPointsPerPart, kept, reduced);
+  }
+}
+
 }  // namespace sphys

@@ -36,6 +36,17 @@ class ContactReducer {
  public:
   void reduce(std::span<const Contact> run, std::uint32_t max_points, std::span<const Contact> kept,
               std::vector<Contact>& reduced);
+  // Reduces a run by parts: `parts[i]` names the pair of parts run[i] lies between (any key, the
+  // same for the contacts of one pair of parts); the contacts of each pair of parts are reduced
+  // on their own, as above, to at most kPointsPerPart, appended in the order the pairs of parts
+  // first appear in the run.
+  void reduce_by_parts(std::span<const Contact> run, std::span<const std::uint64_t> parts,
+                       std::span<const Contact> kept, std::vector<Contact>& reduced);
+
+  // Points per pair of parts: the deepest and the farthest from it. With one, a 1 m box of
+  // depth-3 octree parts falling at 30 m/s onto another tipped on its parts' single points and
+  // sank 6.8% of its size (the bound is 5%); with two it stays within it.
+  static constexpr std::uint32_t kPointsPerPart = 2;
 
   // A depth this close to the deepest lets a kept contact stay the first point. The cluster's
   // deepest overlap is still the manifold's depth there, so nothing goes unresolved. unit: m
@@ -45,7 +56,9 @@ class ContactReducer {
  private:
   std::vector<std::uint32_t> chosen_;
   std::vector<std::uint32_t> cluster_;
-  std::vector<std::uint8_t> was_kept_;  // per contact of the run
+  std::vector<std::uint8_t> was_kept_;   // per contact of the run
+  std::vector<std::uint8_t> part_done_;  // per contact of a run reduced by parts
+  std::vector<Contact> part_run_;        // one pair of parts' contacts
 };
 
 }  // namespace sphys

@@ -24,7 +24,8 @@ struct CollisionDetector::NarrowChunk {
   std::vector<std::uint32_t> plane_stack;
   std::vector<LeafSpheres> leaves;
   std::vector<PairLeaves> pairs;
-  std::vector<Contact> run;  // one pair's leaf contacts, before reduction
+  std::vector<Contact> run;          // one pair's leaf contacts, before reduction
+  std::vector<std::uint64_t> parts;  // per contact of the run, its pair of parts (fast pairs)
   std::vector<Contact> contacts;
   std::vector<ContactShape> shapes;
   std::size_t base = 0;  // where its contacts start in the cache's

@@ -246,6 +246,16 @@ const auto kTable = std::to_array<Setting>({
         .doc = "Widen the margin by how far each pair can close in a step, so that fast bodies "
                "neither tunnel nor sink in.",
     }),
+    scalar<Nested<&W::solver, &S::fast_pair_reach>>({
+        .object = "solver",
+        .key = "fast_pair_reach",
+        .field = "solver.fast_pair_reach",
+        .unit = "m",
+        .range = at_least(0),
+        .doc = "Reduced contacts: two bodies that can close by more than this in a collision "
+               "pass keep two contacts per pair of parts that meet (the trees' first-level "
+               "spheres) instead of one manifold.",
+    }),
     scalar<Nested<&W::solver, &S::reuse_distance>>({
         .object = "solver",
         .key = "reuse_distance",

@@ -36,6 +36,7 @@ CollisionSettings collision_settings(const WorldSettings& settings) {
   collision.manifold_points = plausible && settings.solver.contacts == ContactSet::kReduced
                                   ? settings.solver.manifold_points
                                   : 0;
+  collision.fast_pair_reach = settings.solver.fast_pair_reach;
   // Paper mode makes every overlapping leaf pair a contact afresh, as published.
   collision.reuse_distance = plausible ? settings.solver.reuse_distance : 0.0f;
   collision.measure_penetration = settings.plausibility_figures;

@@ -106,7 +106,7 @@ TEST(ExperimentCommand, PlausibleModeIsRunAndReported) {
   const fs::path out = dir.path() / "experiment";
   const auto run = [&](const std::string& contacts) {
     const test::CommandResult r =
-        sphys_cli({"experiment", "--only", "d2-8x10", "--frames", "30", "--no-plots", "--mode",
+        sphys_cli({"experiment", "--only", "d3-8x10", "--frames", "30", "--no-plots", "--mode",
                    "plausible", "--contacts", contacts, "--out", out.string(), "--json"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out);
@@ -119,8 +119,9 @@ TEST(ExperimentCommand, PlausibleModeIsRunAndReported) {
   report << report_file.rdbuf();
   EXPECT_THAT(report.str(), HasSubstr("\nResponse: plausible ("));
   EXPECT_THAT(report.str(), HasSubstr("\nContacts: all ("));
-  // By frame 30 the lowest bunnies have landed: a reduced manifold keeps at most 4 contacts per
-  // body pair, so the response sees fewer contacts than one per leaf pair.
+  // By frame 30 the lowest bunnies have landed: reduced, a pair keeps a manifold of at most 4
+  // contacts, or closing fast one per pair of its trees' 8-leaf parts that meet, so the response
+  // sees fewer contacts than one per leaf pair.
   const auto reduced = run("reduced");
   EXPECT_EQ(reduced["contacts"], "reduced");
   EXPECT_LT(reduced["rows"][0]["contacts_per_frame"].get<double>(),

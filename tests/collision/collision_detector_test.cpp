@@ -1,5 +1,7 @@
 #include "sphys/collision_detector.h"
 
+#include <algorithm>
+#include <map>
 #include <random>
 #include <set>
 #include <tuple>
@@ -278,6 +280,98 @@ TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
 
 // Two dynamic bodies that touched and no longer do are counted as parted, whether the narrow
 // phase or the broad phase finds them apart; a dynamic body leaving a static one is not.
+// The part a node lies in: its ancestor on the first level below the root.
+std::uint32_t part_of(const SphereTree& tree, std::uint32_t node) {
+  while (tree.level(node) > 1) node = static_cast<std::uint32_t>(tree.parent(node));
+  return node;
+}
+
+TEST(CollisionDetector, AFastPairIsReducedByPartsAndASlowOneToAManifold) {
+  const auto box = octree_of(tools::make_box({0.6, 0.3, 0.4}), 3);
+  CollisionSettings settings;
+  settings.ground_plane_height = 0.0f;
+  settings.contact_margin = 0.02f;
+  settings.speculative = true;
+  settings.manifold_points = 4;
+  settings.fast_pair_reach = 0.03f;
+  Detection detection(settings);
+  Transform pose_a;
+  pose_a.translation = Vec3(0, 0.16f, 0);
+  Transform pose_b;
+  pose_b.translation = Vec3(0.1f, 0.45f, 0.05f);
+  pose_b.rotation = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY()));
+  Transform pose_c;  // far from both, over the plane
+  pose_c.translation = Vec3(3, 0.3f, 0);
+  const std::uint32_t a = detection.add(box, pose_a, false);
+  const std::uint32_t b = detection.add(box, pose_b, false);
+  const std::uint32_t c = detection.add(box, pose_c, false);
+  const auto count = [&](std::span<const Contact> contacts, std::uint32_t one,
+                         std::uint32_t other) {
+    return std::count_if(contacts.begin(), contacts.end(), [&](const Contact& k) {
+      return (k.body_a == one && k.body_b == other) || (k.body_a == other && k.body_b == one);
+    });
+  };
+  std::vector<Contact> contacts;
+
+  // At rest every pair is a manifold of at most four points.
+  detect_into(detection.detector, contacts);
+  ASSERT_GT(count(contacts, a, b), 0);
+  EXPECT_LE(count(contacts, a, b), 4);
+  EXPECT_LE(count(contacts, kGroundPlaneBody, a), 4);
+
+  // b closes on a, and c on the plane, by 20 cm this step.
+  const float closing = 0.2f;
+  detection.detector.set_motion(b, Vec3(0, -closing, 0), 0.0f);
+  detection.detector.set_motion(c, Vec3(0, -closing, 0), 0.0f);
+  detect_into(detection.detector, contacts);
+  const float gap = settings.contact_margin + closing;
+  // The oracle: per pair of parts, the deepest of its leaf pairs within the gap and how many there
+  // are (a's leaf first).
+  std::map<std::pair<std::uint32_t, std::uint32_t>, float> deepest;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> leaf_pairs;
+  for (const std::uint32_t la : used_leaves(*box, 0)) {
+    for (const std::uint32_t lb : used_leaves(*box, 0)) {
+      const Sphere& sa = box->sphere(la);
+      const Sphere& sb = box->sphere(lb);
+      const float depth =
+          sa.radius + sb.radius - (pose_a.apply(sa.center) - pose_b.apply(sb.center)).norm();
+      if (depth < -gap) continue;
+      const auto key = std::pair(part_of(*box, la), part_of(*box, lb));
+      const auto found = deepest.find(key);
+      if (found == deepest.end() || depth > found->second) deepest[key] = depth;
+      ++leaf_pairs[key];
+    }
+  }
+  ASSERT_GT(deepest.size(), 4u) << "too few parts meet for the test to tell";
+  // Each pair of parts that meet: two contacts (one where it has a single leaf pair), one of them
+  // as deep as its deepest leaf pair.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, float> deepest_made;
+  for (const Contact& k : contacts) {
+    if (k.body_a == kGroundPlaneBody || k.body_a == c || k.body_b == c) continue;
+    const bool a_first = k.body_a == a;
+    const std::uint32_t leaf_a = a_first ? k.leaf_a : k.leaf_b;
+    const std::uint32_t leaf_b = a_first ? k.leaf_b : k.leaf_a;
+    const auto key = std::pair(part_of(*box, leaf_a), part_of(*box, leaf_b));
+    ASSERT_TRUE(deepest.contains(key)) << "a contact between parts that do not meet";
+    deepest_made[key] = seen[key]++ == 0 ? k.depth : std::max(deepest_made[key], k.depth);
+  }
+  EXPECT_EQ(seen.size(), deepest.size());
+  for (const auto& [key, contacts_made] : seen) {
+    EXPECT_EQ(contacts_made, std::min(2, leaf_pairs[key]));
+    EXPECT_NEAR(deepest_made[key], deepest[key], 1e-5f);
+  }
+  EXPECT_LE(count(contacts, kGroundPlaneBody, a), 4);
+  // Against the plane, whose contacts share its normal, c keeps a manifold however fast.
+  std::size_t near_plane = 0;
+  for (const std::uint32_t leaf : used_leaves(*box, 0)) {
+    const Sphere& sphere = box->sphere(leaf);
+    if (pose_c.apply(sphere.center).y() - sphere.radius <= gap) ++near_plane;
+  }
+  EXPECT_GT(near_plane, 4u);
+  EXPECT_EQ(count(contacts, kGroundPlaneBody, c), 4);
+}
+
 TEST(CollisionDetector, CountsDynamicPairsThatPart) {
   const auto box = octree_of(tools::make_box({1, 1, 1}), 2);
   Detection detection;

@@ -341,6 +341,46 @@ TEST(ContactReducer, OnePointKeepsTheDeepestWithTheWholeRunsNormalAndDepth) {
   expect_vec_near(reduced[0].normal, Vec3(0.46788f, 0.88378f, 0), 1e-3f);
 }
 
+TEST(ContactReducer, ByPartsEachPairOfPartsIsReducedOnItsOwnInOrderOfFirstAppearance) {
+  // Three pairs of parts, interleaved: 7 (contacts 0, 2, 5, 6), 3 (1, 4) and 9 (3).
+  const std::vector<Contact> run = {
+      contact_at(Vec3(0, 0, 0), 0.01f, 0),  contact_at(Vec3(5, 0, 0), -0.04f, 1, Vec3::UnitX()),
+      contact_at(Vec3(1, 0, 0), 0.03f, 2),  contact_at(Vec3(9, 0, 0), -0.02f, 3, Vec3::UnitZ()),
+      contact_at(Vec3(6, 0, 0), -0.01f, 4), contact_at(Vec3(2, 0, 0), 0.02f, 5),
+      contact_at(Vec3(4, 0, 0), 0.0f, 6),
+  };
+  const std::vector<std::uint64_t> parts = {7, 3, 7, 9, 3, 7, 7};
+  ContactReducer reducer;
+  std::vector<Contact> reduced;
+  reducer.reduce_by_parts(run, parts, {}, reduced);
+  static_assert(ContactReducer::kPointsPerPart == 2);
+  // Part pair 7: the deepest (2) and the farthest from it (6), each with its cluster's largest
+  // depth (0 joins 2's cluster; 5, at 2 m, is nearer 2 than 6); part pair 3 has two contacts and
+  // 9 one, each copied as it is.
+  ASSERT_EQ(reduced.size(), 5u);
+  EXPECT_THAT(leaves_of(reduced), ElementsAre(2u, 6u, 1u, 4u, 3u));
+  EXPECT_FLOAT_EQ(reduced[0].depth, 0.03f);
+  EXPECT_EQ(reduced[0].point, Vec3(1, 0, 0));
+  EXPECT_FLOAT_EQ(reduced[1].depth, 0.0f);
+  EXPECT_EQ(reduced[1].point, Vec3(4, 0, 0));
+  expect_identical(std::span(reduced).subspan(2, 2), std::vector<Contact>{run[1], run[4]});
+  expect_identical(std::span(reduced).subspan(4), std::span(run).subspan(3, 1));
+}
+
+TEST(ContactReducer, ByPartsAKeptContactStaysFirstInItsPairOfParts) {
+  const std::vector<Contact> run = {contact_at(Vec3(0, 0, 0), 0.0200f, 0),
+                                    contact_at(Vec3(0.1f, 0, 0), 0.0205f, 1),
+                                    contact_at(Vec3(3, 0, 0), 0.0f, 2)};
+  const std::vector<std::uint64_t> parts = {1, 1, 1};
+  ContactReducer reducer;
+  std::vector<Contact> reduced;
+  reducer.reduce_by_parts(run, parts, std::span(run).first(1), reduced);
+  ASSERT_EQ(reduced.size(), 2u);
+  EXPECT_EQ(reduced[0].leaf_a, 0u);
+  EXPECT_FLOAT_EQ(reduced[0].depth, 0.0205f);
+  EXPECT_EQ(reduced[1].leaf_a, 2u);
+}
+
 double min_pairwise_distance(std::span<const Vec3> points) {
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < points.size(); ++i) {

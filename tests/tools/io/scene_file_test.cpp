@@ -108,6 +108,7 @@ void expect_same_solver(const SolverSettings& a, const SolverSettings& b) {
   EXPECT_EQ(bits(a.max_correction_speed), bits(b.max_correction_speed));
   EXPECT_EQ(a.contacts, b.contacts);
   EXPECT_EQ(a.manifold_points, b.manifold_points);
+  EXPECT_EQ(bits(a.fast_pair_reach), bits(b.fast_pair_reach));
   EXPECT_EQ(bits(a.contact_margin), bits(b.contact_margin));
   EXPECT_EQ(a.speculative_contacts, b.speculative_contacts);
 }
@@ -176,7 +177,8 @@ constexpr std::string_view kFullScene = R"({
   "substep_travel": 0.25,
   "solver": {"soft_substeps": 7, "contact_hertz": 45, "contact_damping_ratio": 2.5,
              "warm_starting": false, "restitution_threshold": 0.5, "linear_slop": 0.01,
-             "max_correction_speed": 2, "manifold_points": 6, "contact_margin": 0.05,
+             "max_correction_speed": 2, "manifold_points": 6, "fast_pair_reach": 0.25,
+             "contact_margin": 0.05,
              "rolling_resistance": 0.02, "reuse_distance": 0.001,
              "speculative_contacts": false},
   "sleep": {"enabled": false, "speed": 0.1, "time": 2},
@@ -233,6 +235,7 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   solver.reuse_distance = 0.001f;
   solver.contacts = ContactSet::kAll;
   solver.manifold_points = 6;
+  solver.fast_pair_reach = 0.25f;
   solver.contact_margin = 0.05f;
   solver.speculative_contacts = false;
   expect_same_solver(scene.solver, solver);
@@ -486,6 +489,7 @@ class RandomScene {
     solver.max_correction_speed = std::abs(any_float());
     solver.contacts = pick(std::array{ContactSet::kAll, ContactSet::kReduced});
     solver.manifold_points = std::uniform_int_distribution<std::uint32_t>(1, 8)(rng_);
+    solver.fast_pair_reach = std::abs(any_float());
     solver.contact_margin = std::abs(any_float());
     solver.speculative_contacts = coin();
     return solver;
