@@ -8,7 +8,6 @@
 #include <span>
 #include <vector>
 
-#include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/setting_limits.h"
 

@@ -362,28 +362,6 @@ const auto kTable = std::to_array<Setting>({
     }),
 });
 
-// The settings of the sequential-impulse solver, which the soft step replaced as the plausible
-// mode's only solver.
-constexpr auto kRemoved = std::to_array<RemovedSetting>({
-    {"solver.method", "the soft step is the only solver; delete the setting"},
-    {"solver.velocity_iterations",
-     "the soft step solves and relaxes each contact once per substep; set solver.soft_substeps"},
-    {"solver.substep_velocity_iterations",
-     "the soft step solves and relaxes each contact once per substep; set solver.soft_substeps"},
-    {"solver.position_iterations",
-     "the soft step's contact springs push bodies apart; set solver.contact_hertz and "
-     "solver.contact_damping_ratio"},
-    {"solver.position_correction",
-     "the soft step's contact springs push bodies apart; set solver.contact_hertz and "
-     "solver.contact_damping_ratio"},
-    {"solver.shock_propagation",
-     "the soft step's relax passes and stiffer springs against immovable bodies carry a pile's "
-     "weight; delete the setting"},
-    {"solver.shock_speed",
-     "the soft step's relax passes and stiffer springs against immovable bodies carry a pile's "
-     "weight; delete the setting"},
-});
-
 // What a value must be, for messages: "between 1 and 64", "finite and not negative".
 std::string requirement(const Setting& setting) {
   const SettingRange& range = setting.range;
@@ -475,17 +453,6 @@ bool SettingRange::contains(double value) const {
 }
 
 std::span<const Setting> settings_table() { return kTable; }
-
-const RemovedSetting* removed_setting(std::string_view field) {
-  const auto found =
-      std::find_if(kRemoved.begin(), kRemoved.end(),
-                   [&](const RemovedSetting& removed) { return removed.field == field; });
-  return found == kRemoved.end() ? nullptr : &*found;
-}
-
-std::string removed_setting_message(const RemovedSetting& removed) {
-  return std::string(removed.field) + " was removed: " + std::string(removed.replacement);
-}
 
 const Setting& setting_of(std::string_view field) {
   const auto found = std::find_if(kTable.begin(), kTable.end(),
