@@ -12,6 +12,7 @@
 #include <string>
 
 #include "query/body_filter.h"
+#include "query/bvh_walk.h"
 #include "query/group_tests.h"
 #include "query/snapshot.h"
 #include "sphys/error.h"
@@ -19,7 +20,6 @@
 namespace sphys {
 namespace {
 
-using query_detail::BvhNode;
 using query_detail::LeafGroup;
 using query_detail::Snapshot;
 
@@ -93,25 +93,14 @@ namespace {
 template <class Visit>
 void walk_near(const Snapshot& snapshot, float x, float y, float z, float radius,
                const Visit& visit) {
-  if (snapshot.bvh.empty()) return;
   const float radius_squared = radius * radius;
-  std::array<std::uint32_t, query_detail::kMaxBvhDepth> stack;
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const BvhNode& node = snapshot.bvh[stack[--top]];
-    if (squared_distance(node.bounds, x, y, z) > radius_squared) continue;
-    if (node.count == 0) {
-      stack[top++] = node.first + 1;
-      stack[top++] = node.first;
-      continue;
-    }
-    for (std::uint32_t g = node.first; g < node.first + node.count; ++g) {
-      if (squared_distance(snapshot.groups[g].bounds, x, y, z) <= radius_squared && !visit(g)) {
-        return;
-      }
-    }
-  }
+  const auto reached = [&](const Aabb& box) {
+    return squared_distance(box, x, y, z) <= radius_squared;
+  };
+  query_detail::walk_boxes(snapshot, reached, [&](const LeafGroup& group) {
+    return !reached(group.bounds) ||
+           visit(static_cast<std::uint32_t>(&group - snapshot.groups.data()));
+  });
 }
 
 }  // namespace
