@@ -56,12 +56,12 @@ struct CollisionSettings {
   // docs/dynamics.md), persistent from one narrow phase to the next through the pair's record.
   std::uint32_t manifold_points = 0;
   // With reduced contacts, a body pair whose speculative reach (how far its bodies can close in
-  // the coming step, from set_motion(); the pair's gap less the contact margin) exceeds this is
-  // reduced by parts instead (ContactReducer::reduce_by_parts): a small manifold per pair of parts
-  // that meet, each part a first-level node of its tree with the leaves below it. Two non-convex
-  // bodies closing fast meet at several places at angles one manifold does not follow
-  // (docs/dynamics.md). A body and the ground plane keep their manifold: the plane's contacts
-  // share its one normal. unit: m
+  // the coming step, from set_motion(); the pair's gap less the contact margin) exceeds this, and
+  // is no more than the smaller body's extent (narrow_phase.cpp says why), is reduced by parts
+  // instead (ContactReducer::reduce_by_parts): a small manifold per pair of parts that meet, each
+  // part a first-level node of its tree with the leaves below it. Two non-convex bodies closing
+  // fast meet at several places at angles one manifold does not follow (docs/dynamics.md). A body
+  // and the ground plane keep their manifold: the plane's contacts share its one normal. unit: m
   float fast_pair_reach = std::numeric_limits<float>::infinity();
   // A pair whose bodies moved relative to each other by at most this since its last descent keeps
   // its contacts, recomputed from the same leaf pairs at the new poses, instead of descending and

@@ -55,10 +55,10 @@ struct SolverSettings {
   float rolling_resistance = 0.01f;
   ContactSet contacts = ContactSet::kReduced;
   std::uint32_t manifold_points = 4;  // per body pair when reduced, 1..8
-  // Two bodies that can close by more than this in a collision pass (their speculative reach)
-  // keep two contacts per pair of parts instead of one manifold (CollisionSettings::
-  // fast_pair_reach): a few points spread over one mean normal stop a resting pair, not a fast
-  // approach of two non-convex bodies. unit: m, >= 0
+  // Two bodies that can close by more than this in a collision pass (their speculative reach), and
+  // by no more than the smaller one's extent, keep two contacts per pair of parts instead of one
+  // manifold (CollisionSettings:: fast_pair_reach): a few points spread over one mean normal stop a
+  // resting pair, not a fast approach of two non-convex bodies. unit: m, >= 0
   float fast_pair_reach = 0.03f;
   // Contacts are made this far before spheres touch, plus how far each pair can close in a step
   // (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m

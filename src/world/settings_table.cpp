@@ -253,8 +253,8 @@ const auto kTable = std::to_array<Setting>({
         .unit = "m",
         .range = at_least(0),
         .doc = "Reduced contacts: two bodies that can close by more than this in a collision "
-               "pass keep two contacts per pair of parts that meet (the trees' first-level "
-               "spheres) instead of one manifold.",
+               "pass (and by no more than the smaller one's bounding radius) keep two contacts per "
+               "pair of parts that meet (the trees' first-level spheres) instead of one manifold.",
     }),
     scalar<Nested<&W::solver, &S::reuse_distance>>({
         .object = "solver",
