@@ -1,3 +1,4 @@
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -42,19 +43,23 @@ struct ExperimentCommandOptions {
   bool no_cache = false;
   bool no_pictures = false;
   bool render = false;
+  bool render_all = false;
 };
 
-// Figure 2's pictures of one row (its first and last frame) and, with --render, every frame
-// drawn: a frame callback for run_experiment_row. Without an OpenGL window (no display) the
-// row says why it has no pictures (--render is refused before any row runs).
+// Figure 2's pictures of one row (its first and last frame) and, with --render, every
+// `drawn_every`-th frame drawn: a frame callback for run_experiment_row. Without an OpenGL window
+// (no display) the row says why it has no pictures (--render is refused before any row runs).
 class RowPictures {
  public:
-  RowPictures(const fs::path& out, const tools::ExperimentRow& row, bool every_frame)
-      : out_(out), id_(row.id()), every_frame_(every_frame) {}
+  // drawn_every: 0 draws the pictures' frames only.
+  RowPictures(const fs::path& out, const tools::ExperimentRow& row, std::uint32_t drawn_every)
+      : out_(out), id_(row.id()), drawn_every_(drawn_every) {}
 
   // Whether it drew the frame.
   bool operator()(const tools::ExperimentFrame& frame) {
-    if (!every_frame_ && frame.frame != 0 && !frame.last) return false;
+    const bool sampled =
+        drawn_every_ > 0 && static_cast<std::uint32_t>(frame.frame) % drawn_every_ == 0;
+    if (!sampled && frame.frame != 0 && !frame.last) return false;
     if (!drawer_ && missing_.empty()) {
       try {
         drawer_ = std::make_unique<viewer::FrameDrawer>(
@@ -68,15 +73,19 @@ class RowPictures {
     if (!drawer_) return false;
     drawer_->draw(frame.frame == 0);
     if (frame.frame == 0) save(first_, "-first.png");
-    if (frame.last) save(last_, "-last.png");
+    // The last picture is saved once the row is over (report()), so that writing it is not timed
+    // as drawing.
     return true;
   }
 
-  // Into the row's result: the pictures' file names, or why there are none.
-  void report(tools::RowResult& result) const {
+  // Into the row's result: the pictures' file names, or why there are none. Saves the last frame
+  // drawn as the last picture.
+  void report(tools::RowResult& result) {
+    if (drawer_) save(last_, "-last.png");
     result.first_picture = first_;
     result.last_picture = last_;
     result.pictures_missing = missing_;
+    result.drawn_every = drawer_ ? drawn_every_ : 0;
   }
 
  private:
@@ -87,7 +96,7 @@ class RowPictures {
 
   fs::path out_;
   std::string id_;
-  bool every_frame_;
+  std::uint32_t drawn_every_;
   std::unique_ptr<viewer::FrameDrawer> drawer_;
   std::string first_;
   std::string last_;
@@ -100,11 +109,14 @@ std::string machine() { return tools::machine_description() + ", one used"; }
 void run(const ExperimentCommandOptions& options) {
   tools::catch_interruptions();
   if (options.frames < 1) throw Error("--frames must be at least 1");
-  if (options.render) {
+  const std::uint32_t drawn_every =
+      options.render_all ? 1 : (options.render ? tools::kRenderSampleStride : 0);
+  if (drawn_every > 0) {
     try {
       const viewer::Window probe(16, 16, 0, false);
     } catch (const std::runtime_error& error) {
-      throw Error(std::string("--render: cannot draw frames: ") + error.what() +
+      throw Error(std::string(options.render_all ? "--render-all" : "--render") +
+                  ": cannot draw frames: " + error.what() +
                   " (run under xvfb-run where there is no display)");
     }
   }
@@ -132,8 +144,8 @@ void run(const ExperimentCommandOptions& options) {
     ProgressBar bar("row " + std::to_string(i + 1) + "/" + std::to_string(rows.size()) + " " +
                     rows[i].id());
     experiment.progress = [&bar](double fraction) { bar.update(fraction); };
-    auto pictures = std::make_shared<RowPictures>(out, rows[i], options.render);
-    if (!options.no_pictures || options.render) {
+    auto pictures = std::make_shared<RowPictures>(out, rows[i], drawn_every);
+    if (!options.no_pictures || drawn_every > 0) {
       experiment.on_frame = [pictures](const tools::ExperimentFrame& frame) {
         return (*pictures)(frame);
       };
@@ -200,6 +212,10 @@ void add_experiment_command(CLI::App& app) {
   cmd->add_flag("--no-pictures", options->no_pictures,
                 "Skip Figure 2's pictures (each row's first and last frame, drawn offscreen)");
   cmd->add_flag("--render", options->render,
+                "Draw every " + std::to_string(tools::kRenderSampleStride) +
+                    "th frame offscreen too, so that FPS counts drawing as the paper's did (each "
+                    "frame not drawn counted at the drawn ones' mean)");
+  cmd->add_flag("--render-all", options->render_all,
                 "Draw every frame offscreen too, so that FPS counts drawing as the paper's did");
   cmd->callback([options] { run(*options); });
 }

@@ -1,6 +1,9 @@
 // `sphys experiment` draws the paper's Figure 2 (each row's first and last frame) offscreen under
-// Xvfb, and with --render every frame, timed as the paper's frames were.
+// Xvfb, and with --render every tenth frame (--render-all every one), timed as the paper's frames
+// were.
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli.h"
+#include "sphys/tools/experiment.h"
 #include "support/screenshot.h"
 #include "support/temp_file.h"
 
@@ -96,17 +100,21 @@ TEST(ExperimentPictures, WithoutADisplayTheReportSaysWhyThereAreNoPictures) {
   EXPECT_THAT(render.err, HasSubstr("--render: cannot draw frames"));
 }
 
-TEST(ExperimentPictures, RenderingEveryFrameCountsTheDrawingInTheFrameRate) {
+// Runs d2-8x10 for 20 frames with `flag` and checks the drawing's figures; returns the CSV's
+// drawing times, frame by frame.
+std::vector<double> drawn_run(const std::string& flag, std::uint32_t frames_drawn) {
   test::use_shared_tree_cache();
   const test::TempDir dir;
   const fs::path out = dir.path() / "experiment";
   const test::CommandResult r =
-      test::sphys_under_xvfb({"experiment", "--only", "d2-8x10", "--frames", "20", "--render",
+      test::sphys_under_xvfb({"experiment", "--only", "d2-8x10", "--frames", "20", flag,
                               "--no-plots", "--out", out.string(), "--json"});
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  if (r.exit_code != 0) return {};
   const auto json = nlohmann::json::parse(r.out);
   const auto& row = json["rows"][0];
-  ASSERT_TRUE(row["fps_with_drawing"].is_number()) << row;
+  EXPECT_TRUE(row["fps_with_drawing"].is_number()) << row;
+  EXPECT_EQ(row["frames_drawn"], frames_drawn);
   const double fps = row["fps"];
   const double drawn = row["fps_with_drawing"];
   const double share = row["drawing_share_percent"];
@@ -116,19 +124,33 @@ TEST(ExperimentPictures, RenderingEveryFrameCountsTheDrawingInTheFrameRate) {
   EXPECT_GT(share, 0.0);
   EXPECT_LT(share, 100.0);
   EXPECT_NEAR(drawn, fps * (1.0 - share / 100.0), 1e-6 * fps);
-  // Every frame's drawing time is in the CSV.
+  EXPECT_TRUE(fs::is_regular_file(out / "d2-8x10-last.png"));
+  const std::string report = read_text(out / "report.md");
+  EXPECT_THAT(report, HasSubstr("## Frames drawn"));
+  EXPECT_THAT(report, HasSubstr("| d2-8x10 | " + std::to_string(frames_drawn) + " of 20 |"));
   std::ifstream csv(out / "d2-8x10.csv");
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line, "frame,step_ms,detection_ms,response_ms,contacts,render_ms");
-  int frames = 0;
-  while (std::getline(csv, line)) {
-    ++frames;
-    EXPECT_GT(std::stod(line.substr(line.rfind(',') + 1)), 0.0) << line;
+  std::vector<double> render_ms;
+  while (std::getline(csv, line)) render_ms.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  EXPECT_EQ(render_ms.size(), 20u);
+  return render_ms;
+}
+
+TEST(ExperimentPictures, RenderingEveryFrameCountsTheDrawingInTheFrameRate) {
+  // Every frame's drawing time is in the CSV.
+  for (const double ms : drawn_run("--render-all", 20)) EXPECT_GT(ms, 0.0);
+}
+
+TEST(ExperimentPictures, RenderingASampleDrawsEveryTenthFrameAndTheLast) {
+  const std::vector<double> render_ms = drawn_run("--render", 20 / tools::kRenderSampleStride);
+  ASSERT_EQ(render_ms.size(), 20u);
+  for (std::size_t i = 0; i < render_ms.size(); ++i) {
+    // Frames 10 and 20 (1-based) are the sample; frame 20 is the last picture's too.
+    const bool sampled = (i + 1) % tools::kRenderSampleStride == 0;
+    EXPECT_EQ(render_ms[i] > 0.0, sampled) << "frame " << i + 1 << ": " << render_ms[i];
   }
-  EXPECT_EQ(frames, 20);
-  const std::string report = read_text(out / "report.md");
-  EXPECT_THAT(report, HasSubstr("## Frames drawn"));
 }
 
 }  // namespace

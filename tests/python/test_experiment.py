@@ -62,7 +62,7 @@ ROW_LINE = re.compile(r"^\s*\d+\s+\d+ × \d+\s")
 # RowResult.summary(), as `sphys experiment --json` prints a row, in order.
 SUMMARY_KEYS = ["id", "depth", "stacks", "per_stack", "frames", "contacts_per_frame",
                 "mean_frame_ms", "fps", "frame_time_sd_ms", "detection_share_percent",
-                "response_share_percent", "fps_with_drawing", "drawing_share_percent",
+                "response_share_percent", "frames_drawn", "fps_with_drawing", "drawing_share_percent",
                 "detection_share_of_drawn_frame_percent", "response_share_of_drawn_frame_percent",
                 "bodies", "bodies_below_plane", "lowest_center_y_end_m",
                 "deepest_penetration_m", "deepest_penetration_frame", "mean_penetration_m",

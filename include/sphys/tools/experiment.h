@@ -20,6 +20,11 @@ namespace sphys::tools {
 // say its window's size; we presume 640 × 480. unit: pixels
 inline constexpr int kDrawnFrameWidth = 640;
 inline constexpr int kDrawnFrameHeight = 480;
+// `sphys experiment --render` draws and times every this many-th frame after its step (88 of the
+// paper's 880): drawing all 7,040 frames in software takes about ten minutes on two cores, the
+// physics seconds; the sample's mean drawing time stands for the frames not drawn. `--render-all`
+// draws every frame. unit: frames
+inline constexpr std::uint32_t kRenderSampleStride = 10;
 
 // One experiment: S stacks of N bunnies with sphere-trees of the given depth.
 struct ExperimentRow {
@@ -65,6 +70,7 @@ struct FrameSample {
   double response_ms = 0.0;
   std::uint32_t contacts = 0;
   // Drawing the frame after the step (`sphys experiment --render`); 0 when it was not drawn.
+  // unit: ms
   double render_ms = 0.0;
 };
 
@@ -129,6 +135,9 @@ struct RowResult {
   std::string first_picture;
   std::string last_picture;
   std::string pictures_missing;
+  // Frames timed with their drawing: every this many-th one (the frames at 1-based indices
+  // n, 2n, ...; 1 is every frame), 0 when none were. unit: frames
+  std::uint32_t drawn_every = 0;
 };
 
 struct RowSummary {
@@ -139,8 +148,10 @@ struct RowSummary {
   double frame_time_sd_ms = 0.0;    // sample standard deviation over frames. unit: ms
   double detection_share = 0.0;     // total detection time / total frame time. unit: %
   double response_share = 0.0;      // unit: %
-  // With every frame drawn (--render): frames per second counting the drawing as the paper's
-  // frames did, and the drawing's share of that frame time (unit: %). NaN when not drawn.
+  // With frames drawn (--render, --render-all): frames per second counting the drawing as the
+  // paper's frames did, and the drawing's share of that frame time (unit: %), the frames not drawn
+  // counted at the drawn ones' mean. NaN when none was drawn.
+  std::uint32_t frames_drawn = 0;  // the frames timed with their drawing
   double fps_with_drawing = 0.0;
   double drawing_share = 0.0;
   // Detection's and response's shares of the drawn frame's time, the paper's basis. unit: %

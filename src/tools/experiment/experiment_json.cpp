@@ -21,7 +21,8 @@ std::string row_result_json(const RowResult& result) {
   row["frame_time_sd_ms"] = summary.frame_time_sd_ms;
   row["detection_share_percent"] = summary.detection_share;
   row["response_share_percent"] = summary.response_share;
-  // With every frame drawn (--render); null otherwise.
+  // With frames drawn (--render, --render-all); null otherwise.
+  row["frames_drawn"] = summary.frames_drawn;
   row["fps_with_drawing"] = number_or_null(summary.fps_with_drawing);
   row["drawing_share_percent"] = number_or_null(summary.drawing_share);
   row["detection_share_of_drawn_frame_percent"] = number_or_null(summary.detection_share_drawn);

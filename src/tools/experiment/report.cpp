@@ -318,12 +318,13 @@ double paper_table_contacts_fps_correlation() {
   return pearson(contacts, fps);
 }
 
-// With every frame drawn (--render): the frame as the paper timed it, physics and drawing, and
-// the §5 shares on that basis. Empty when no row was drawn.
+// With frames drawn (--render, --render-all): the frame as the paper timed it, physics and
+// drawing, and the §5 shares on that basis. Empty when no row was drawn.
 Table drawing_table(std::span<const RowResult> results) {
   Table table;
   table.columns = {
       {"", "row", "row", false},
+      {"frames", "drawn", "frames drawn", true},
       {"FPS", "physics", "FPS, physics only", true},
       {"FPS", "drawn", "FPS with drawing", true},
       {"share of the drawn frame (%)", "drawing", "drawing (% of the drawn frame)", true},
@@ -333,9 +334,11 @@ Table drawing_table(std::span<const RowResult> results) {
   for (const RowResult* result : in_paper_order(results)) {
     const RowSummary ours = summarize(*result);
     if (std::isnan(ours.fps_with_drawing)) continue;
-    table.rows.push_back({result->row.id(), fixed(ours.fps, 2), fixed(ours.fps_with_drawing, 2),
-                          fixed(ours.drawing_share, 1), fixed(ours.detection_share_drawn, 1),
-                          fixed(ours.response_share_drawn, 1)});
+    table.rows.push_back(
+        {result->row.id(),
+         std::to_string(ours.frames_drawn) + " of " + std::to_string(result->frames.size()),
+         fixed(ours.fps, 2), fixed(ours.fps_with_drawing, 2), fixed(ours.drawing_share, 1),
+         fixed(ours.detection_share_drawn, 1), fixed(ours.response_share_drawn, 1)});
   }
   return table;
 }
@@ -416,15 +419,18 @@ std::string markdown_report(std::span<const RowResult> results, const std::strin
   out += mode_lines(mode) + "\n";
   out +=
       "FPS (ours) counts the physics step alone; the paper's frames included rendering, so its "
-      "FPS and frame time figures cover more work. FPS with drawing (ours) counts every frame "
+      "FPS and frame time figures cover more work. FPS with drawing (ours) counts the frames "
       "drawn offscreen as well (`sphys experiment --render`, " +
       std::to_string(kDrawnFrameWidth) + " × " + std::to_string(kDrawnFrameHeight) +
       " pixels); n/a when the frames were not drawn.\n";
   out += "\n## Table 1\n\n" + markdown_table(table1(results));
   if (const Table drawn = drawing_table(results); !drawn.rows.empty()) {
     out +=
-        "\n## Frames drawn\n\nEvery frame drawn after its step, timed with the step: the "
-        "frame time the paper measured.\n\n" +
+        "\n## Frames drawn\n\nFrames drawn after their step, timed with it: the frame time the "
+        "paper measured. `--render` draws every " +
+        std::to_string(kRenderSampleStride) +
+        "th frame and counts each frame not drawn at the drawn ones' mean; `--render-all` draws "
+        "every frame.\n\n" +
         markdown_table(drawn);
   }
   out += "\n## Statistics (§5)\n\n" + markdown_table(statistics_table(results));

@@ -71,16 +71,21 @@ RowSummary summarize(const RowResult& result) {
   std::vector<double> detection_ms;
   std::vector<double> response_ms;
   std::vector<double> contacts;
-  double render_ms = 0.0;
-  bool every_frame_drawn = !result.frames.empty();
-  for (const FrameSample& frame : result.frames) {
-    render_ms += frame.render_ms;
-    every_frame_drawn = every_frame_drawn && frame.render_ms > 0.0;
+  // The drawing of the frames sampled (every drawn_every-th), which must all have been drawn.
+  std::vector<double> render_ms;
+  bool sample_drawn = result.drawn_every > 0;
+  for (std::size_t i = 0; i < result.frames.size(); ++i) {
+    const FrameSample& frame = result.frames[i];
+    if (result.drawn_every > 0 && (i + 1) % result.drawn_every == 0) {
+      render_ms.push_back(frame.render_ms);
+      sample_drawn = sample_drawn && frame.render_ms > 0.0;
+    }
     step_ms.push_back(frame.step_ms);
     detection_ms.push_back(frame.detection_ms);
     response_ms.push_back(frame.response_ms);
     contacts.push_back(static_cast<double>(frame.contacts));
   }
+  sample_drawn = sample_drawn && !render_ms.empty();
   RowSummary summary;
   summary.row = result.row;
   summary.contacts_per_frame = mean(contacts);
@@ -90,13 +95,17 @@ RowSummary summarize(const RowResult& result) {
   const double total_ms = sum(step_ms);
   summary.detection_share = share(sum(detection_ms), total_ms);
   summary.response_share = share(sum(response_ms), total_ms);
-  const double drawn_ms = total_ms + render_ms;
-  summary.fps_with_drawing = every_frame_drawn && drawn_ms > 0.0
+  summary.frames_drawn = sample_drawn ? static_cast<std::uint32_t>(render_ms.size()) : 0;
+  // Every frame drawn: the sum itself; a sample: its mean for every frame.
+  const double all_render_ms =
+      sample_drawn ? mean(render_ms) * static_cast<double>(result.frames.size()) : 0.0;
+  const double drawn_ms = total_ms + all_render_ms;
+  summary.fps_with_drawing = sample_drawn && drawn_ms > 0.0
                                  ? 1000.0 * static_cast<double>(result.frames.size()) / drawn_ms
                                  : kNaN;
-  summary.drawing_share = every_frame_drawn ? share(render_ms, drawn_ms) : kNaN;
-  summary.detection_share_drawn = every_frame_drawn ? share(sum(detection_ms), drawn_ms) : kNaN;
-  summary.response_share_drawn = every_frame_drawn ? share(sum(response_ms), drawn_ms) : kNaN;
+  summary.drawing_share = sample_drawn ? share(all_render_ms, drawn_ms) : kNaN;
+  summary.detection_share_drawn = sample_drawn ? share(sum(detection_ms), drawn_ms) : kNaN;
+  summary.response_share_drawn = sample_drawn ? share(sum(response_ms), drawn_ms) : kNaN;
   return summary;
 }
 

@@ -306,6 +306,7 @@ TEST(ExperimentMarkdown, LinksThePlotsWritePlotsDraws) {
 TEST(ExperimentMarkdown, FramesDrawnEveryStepAndFigureTwo) {
   // Two frames, each drawn: physics 2 + 4 ms, drawing 2 + 4 ms.
   RowResult drawn = result_for({2, 8, 10}, {{2.0, 0.5, 1.0, 10, 2.0}, {4.0, 1.0, 2.0, 20, 4.0}});
+  drawn.drawn_every = 1;
   drawn.first_picture = "d2-8x10-first.png";
   drawn.last_picture = "d2-8x10-last.png";
   RowResult missing = result_for({3, 8, 10}, {{1.0, 0.5, 0.25, 5}});
@@ -320,12 +321,39 @@ TEST(ExperimentMarkdown, FramesDrawnEveryStepAndFigureTwo) {
   EXPECT_TRUE(std::isnan(summarize(missing).drawing_share));
   const std::string md = markdown_report(std::vector{drawn, missing}, "m", {});
   EXPECT_THAT(md, HasSubstr("\n## Frames drawn\n"));
-  EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | 333.33 | 166.67 | 50.0 | 12.5 | 25.0 |\n"));
+  EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | 2 of 2 | 333.33 | 166.67 | 50.0 | 12.5 | 25.0 |\n"));
   EXPECT_THAT(md, Not(HasSubstr("\n| d3-8x10 | 1000.00 |")));
   EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | ![d2-8x10, first frame](d2-8x10-first.png) | "
                             "![d2-8x10, last frame](d2-8x10-last.png) |\n"));
   EXPECT_THAT(md, HasSubstr("\n| d3-8x10 | no pictures: cannot start GLFW (is there a display?) "
                             "| |\n"));
+}
+
+TEST(ExperimentMarkdown, AFixedSampleOfFramesDrawnStandsForTheFramesNotDrawn) {
+  // Four frames of 1 ms physics each (0.25 ms detection, 0.5 ms response); every 2nd one drawn, in
+  // 3 and 5 ms, so the four frames count 4 ms of drawing each: 16 ms of drawing beside 4 of
+  // physics. The first and third frames' drawing (the last picture's, say) is not in the sample.
+  RowResult sampled = result_for({2, 8, 10}, {{1.0, 0.25, 0.5, 10, 9.0},
+                                              {1.0, 0.25, 0.5, 10, 3.0},
+                                              {1.0, 0.25, 0.5, 10, 0.0},
+                                              {1.0, 0.25, 0.5, 10, 5.0}});
+  sampled.drawn_every = 2;
+  const RowSummary summary = summarize(sampled);
+  EXPECT_EQ(summary.frames_drawn, 2u);
+  EXPECT_DOUBLE_EQ(summary.fps_with_drawing, 1000.0 * 4.0 / 20.0);
+  EXPECT_DOUBLE_EQ(summary.drawing_share, 80.0);
+  EXPECT_DOUBLE_EQ(summary.detection_share_drawn, 5.0);
+  EXPECT_DOUBLE_EQ(summary.response_share_drawn, 10.0);
+  const std::string md = markdown_report(std::vector{sampled}, "m", {});
+  EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | 2 of 4 | 1000.00 | 200.00 | 80.0 | 5.0 | 10.0 |\n"));
+  // A frame of the sample left undrawn (a broken run): no figure rather than a wrong one.
+  sampled.frames[3].render_ms = 0.0;
+  EXPECT_TRUE(std::isnan(summarize(sampled).fps_with_drawing));
+  EXPECT_EQ(summarize(sampled).frames_drawn, 0u);
+  // Drawn but not asked to be timed (Figure 2's pictures alone): no figure.
+  sampled.frames[3].render_ms = 5.0;
+  sampled.drawn_every = 0;
+  EXPECT_TRUE(std::isnan(summarize(sampled).fps_with_drawing));
 }
 
 TEST(ExperimentCsv, WritesOneLinePerFrameNumberedFromOne) {
