@@ -7,13 +7,13 @@
 namespace sphys::viewer {
 namespace {
 
-constexpr const char* kVertexShader = R"(#version 330 core
+constexpr const char* kLineVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 position;
 uniform mat4 view_projection;
 void main() { gl_Position = view_projection * vec4(position, 1.0); }
 )";
 
-constexpr const char* kFragmentShader = R"(#version 330 core
+constexpr const char* kLineFragmentShader = R"(#version 330 core
 uniform vec3 color;
 out vec4 fragment;
 void main() { fragment = vec4(color, 1.0); }
@@ -22,7 +22,7 @@ void main() { fragment = vec4(color, 1.0); }
 }  // namespace
 
 LineRenderer::LineRenderer() {
-  program_ = link_program(kVertexShader, kFragmentShader);
+  program_ = link_program(kLineVertexShader, kLineFragmentShader);
   view_projection_location_ = glGetUniformLocation(program_, "view_projection");
   color_location_ = glGetUniformLocation(program_, "color");
   glGenVertexArrays(1, &vertex_array_);

@@ -9,7 +9,7 @@
 namespace sphys::viewer {
 namespace {
 
-constexpr const char* kVertexShader = R"(#version 330 core
+constexpr const char* kMeshVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 uniform mat4 model;
@@ -27,7 +27,7 @@ void main() {
 // Lambert from a sun high to one side, shadowed by a shadow map, plus an
 // ambient term that is brighter for faces turned to the sky, so that the undersides of bodies
 // read as such; far things fade into the haze.
-constexpr const char* kFragmentShader = R"(#version 330 core
+constexpr const char* kMeshFragmentShader = R"(#version 330 core
 in vec3 world_position;
 in vec3 world_normal;
 uniform vec3 color;
@@ -96,7 +96,7 @@ Eigen::Matrix4f sun_view_projection(const Eigen::Vector3f& to_sun, const Eigen::
 }  // namespace
 
 Renderer::Renderer() {
-  program_ = link_program(kVertexShader, kFragmentShader);
+  program_ = link_program(kMeshVertexShader, kMeshFragmentShader);
   model_location_ = glGetUniformLocation(program_, "model");
   view_projection_location_ = glGetUniformLocation(program_, "view_projection");
   color_location_ = glGetUniformLocation(program_, "color");

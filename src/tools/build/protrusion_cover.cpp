@@ -44,7 +44,7 @@ constexpr int kMedialSearchSteps = 12;
 constexpr double kFinestCell = 1.0 / 64.0;
 
 // A candidate's centre and its distance to the surface (0 on the surface). unit: m
-struct Candidate {
+struct CoverCandidate {
   Vec3d centre;
   double depth = 0.0;
 };
@@ -136,7 +136,7 @@ struct ProtrusionCover::Impl {
       add_ladder(p, *n);
     }
     std::vector<double> depths;
-    for (const Candidate& c : candidates) depths.push_back(c.depth);
+    for (const CoverCandidate& c : candidates) depths.push_back(c.depth);
     std::nth_element(depths.begin(),
                      depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2), depths.end());
     median_depth = depths[depths.size() / 2];
@@ -214,7 +214,7 @@ struct ProtrusionCover::Impl {
     const SampleGrid grid(samples.points, bounds,
                           std::max(bound + median_depth, kFinestCell * diagonal));
     std::vector<char> covered(samples.points.size(), 0);
-    const auto uncovered_in = [&](const Candidate& c) {
+    const auto uncovered_in = [&](const CoverCandidate& c) {
       std::size_t n = 0;
       grid.for_each_in_ball(c.centre, counting_radius(c.depth),
                             [&](std::uint32_t i) { n += covered[i] == 0; });
@@ -238,7 +238,7 @@ struct ProtrusionCover::Impl {
       if (gain[c] > 0) queue.push({gain[c], c});
     }
     std::vector<Ball> chosen;
-    const auto take = [&](const Candidate& c) {
+    const auto take = [&](const CoverCandidate& c) {
       chosen.push_back({c.centre, c.depth + bound});
       grid.for_each_in_ball(c.centre, counting_radius(c.depth),
                             [&](std::uint32_t i) { covered[i] = 1; });
@@ -267,7 +267,7 @@ struct ProtrusionCover::Impl {
   build::SurfaceSamples samples;
   Box3d bounds;
   double diagonal = 0.0;
-  std::vector<Candidate> candidates;
+  std::vector<CoverCandidate> candidates;
   double median_depth = 0.0;
 };
 

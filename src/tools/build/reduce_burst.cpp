@@ -15,14 +15,14 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Spheres that overlap nothing get this many of their nearest as neighbours.
-constexpr std::size_t kNearestNeighbours = 8;
+constexpr std::size_t kBurstNeighbours = 8;
 
-struct Candidate {
+struct BurstCandidate {
   double cost;
   std::uint32_t cluster;
   std::uint32_t stamp;
 
-  bool operator<(const Candidate& other) const {
+  bool operator<(const BurstCandidate& other) const {
     if (cost != other.cost) return cost > other.cost;
     return cluster > other.cluster;
   }
@@ -62,7 +62,7 @@ class Burster {
       // Void entries go first, so that only a live sphere with no neighbours connects them.
       while (!queue_.empty() && !valid(queue_.top())) queue_.pop();
       if (queue_.empty() || queue_.top().cost == kInfinity) connect_all();
-      const Candidate top = queue_.top();
+      const BurstCandidate top = queue_.top();
       queue_.pop();
       if (!valid(top)) continue;
       // Lazy greedy: a sphere whose neighbours changed is costed again only when it comes up.
@@ -89,7 +89,7 @@ class Burster {
     return (clusters_[a].ball.center - clusters_[b].ball.center).squaredNorm() <= reach * reach;
   }
 
-  bool valid(const Candidate& candidate) const {
+  bool valid(const BurstCandidate& candidate) const {
     return alive_[candidate.cluster] && stamp_[candidate.cluster] == candidate.stamp;
   }
 
@@ -160,7 +160,7 @@ class Burster {
   // nearest ones now too. Making every pair neighbours would cost the cube of the sphere count.
   void connect_all() {
     const std::vector<std::vector<std::uint32_t>> nearest =
-        nearest_clusters(clusters_, alive_, kNearestNeighbours);
+        nearest_clusters(clusters_, alive_, kBurstNeighbours);
     for (std::uint32_t a = 0; a < clusters_.size(); ++a) {
       std::vector<std::uint32_t>& list = neighbours_[a];
       list.insert(list.end(), nearest[a].begin(), nearest[a].end());
@@ -181,7 +181,7 @@ class Burster {
   std::vector<std::uint32_t> stamp_;  // entries of a sphere pushed before the last reset are void
   std::vector<bool> dirty_;
   std::vector<std::vector<std::uint32_t>> neighbours_;
-  std::priority_queue<Candidate> queue_;
+  std::priority_queue<BurstCandidate> queue_;
 };
 
 }  // namespace

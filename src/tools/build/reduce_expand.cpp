@@ -14,7 +14,7 @@ namespace sphys::tools::build {
 namespace {
 
 // Bisection steps on the tolerance: 2^-24 of the starting interval is far below the sampling.
-constexpr int kSearchSteps = 24;
+constexpr int kExpandSearchSteps = 24;
 
 class Expander {
  public:
@@ -61,7 +61,7 @@ class Expander {
       low = std::min(low, spheres_[m].error());
     }
     std::vector<std::uint32_t> best = select(high, max_balls);
-    for (int step = 0; step < kSearchSteps; ++step) {
+    for (int step = 0; step < kExpandSearchSteps; ++step) {
       const double middle = 0.5 * (low + high);
       std::vector<std::uint32_t> chosen = select(middle, max_balls);
       if (chosen.empty()) {

@@ -14,9 +14,9 @@ namespace sphys::tools::build {
 namespace {
 
 // Spheres that overlap nothing may merge with this many of their nearest.
-constexpr std::size_t kNearestNeighbours = 8;
+constexpr std::size_t kMergeNeighbours = 8;
 
-struct Candidate {
+struct MergeCandidate {
   double cost;
   std::uint32_t a;
   std::uint32_t b;
@@ -24,7 +24,7 @@ struct Candidate {
   std::uint32_t version_b;
 
   // std::priority_queue keeps the largest on top: the cheapest merge wins, ties by index.
-  bool operator<(const Candidate& other) const {
+  bool operator<(const MergeCandidate& other) const {
     if (cost != other.cost) return cost > other.cost;
     return std::pair(a, b) > std::pair(other.a, other.b);
   }
@@ -98,7 +98,7 @@ std::vector<Cluster> merge_clusters(std::vector<Cluster> clusters, const Region&
       }
     }
   }
-  std::priority_queue<Candidate> queue;
+  std::priority_queue<MergeCandidate> queue;
   const auto consider = [&](std::uint32_t a, std::uint32_t b) {
     if (a > b) std::swap(a, b);
     queue.push({merge_cost(clusters[a], clusters[b], region), a, b, version[a], version[b]});
@@ -114,7 +114,7 @@ std::vector<Cluster> merge_clusters(std::vector<Cluster> clusters, const Region&
       // Spheres that overlap nothing (a disconnected mesh, a thin part): each may now merge
       // with its nearest ones. Every pair would cost the square of the sphere count.
       const std::vector<std::vector<std::uint32_t>> nearest =
-          nearest_clusters(clusters, alive, kNearestNeighbours);
+          nearest_clusters(clusters, alive, kMergeNeighbours);
       for (std::uint32_t a = 0; a < count; ++a) {
         for (const std::uint32_t b : nearest[a]) {
           if (std::find(neighbours[a].begin(), neighbours[a].end(), b) == neighbours[a].end()) {
@@ -124,7 +124,7 @@ std::vector<Cluster> merge_clusters(std::vector<Cluster> clusters, const Region&
         }
       }
     }
-    const Candidate top = queue.top();
+    const MergeCandidate top = queue.top();
     queue.pop();
     if (!alive[top.a] || !alive[top.b] || version[top.a] != top.version_a ||
         version[top.b] != top.version_b) {

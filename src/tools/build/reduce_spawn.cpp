@@ -20,7 +20,7 @@ namespace {
 constexpr int kDepthSteps = 32;
 constexpr double kStepFraction = 1.0 / 16.0;
 // Bisection steps on the error bound.
-constexpr int kSearchSteps = 20;
+constexpr int kSpawnSearchSteps = 20;
 
 class Spawner {
  public:
@@ -47,7 +47,7 @@ class Spawner {
     double low = 0.0;
     double high = 2.0 * region_.radius;
     std::vector<Cluster> best = *attempt(high, max_balls);
-    for (int step = 0; step < kSearchSteps; ++step) {
+    for (int step = 0; step < kSpawnSearchSteps; ++step) {
       const double middle = 0.5 * (low + high);
       if (std::optional<std::vector<Cluster>> clusters = attempt(middle, max_balls)) {
         high = middle;

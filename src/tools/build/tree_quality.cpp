@@ -53,10 +53,7 @@ class RandomStream {
   std::uint64_t base_;
 };
 
-struct Ball {
-  Vec3d center;
-  double radius = 0.0;
-};
+using build::Ball;
 
 // Runs body(chunk, begin, end) for every kChunk-sized piece of [0, count) in parallel and
 // returns the chunks' results in chunk order.
