@@ -9,9 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "sphys/cell_sweep_and_prune.h"
+#include "collision/cell_sweep_and_prune.h"
+#include "collision/sweep_and_prune.h"
 #include "sphys/math.h"
-#include "sphys/sweep_and_prune.h"
 
 namespace {
 

@@ -5,9 +5,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "collision/tree_descent.h"
 #include "sphys/tools/build_tree.h"
 #include "sphys/tools/model.h"
-#include "sphys/tree_descent.h"
 
 namespace {
 

@@ -50,55 +50,21 @@ struct SimulateOptions {
   bool no_cache = false;
 };
 
-// Per-frame figures, one CSV column each.
-const std::vector<std::string> kFrameColumns = {"frame",
-                                                "time_s",
-                                                "step_ms",
-                                                "broad_phase_ms",
-                                                "narrow_phase_ms",
-                                                "contacts_ms",
-                                                "response_ms",
-                                                "integration_ms",
-                                                "sleep_ms",
-                                                "candidate_pairs",
-                                                "sphere_tests",
-                                                "leaf_pairs",
-                                                "contacts",
-                                                "impulses",
-                                                "kinetic_energy_J",
-                                                "deepest_penetration_m",
-                                                "mean_penetration_m",
-                                                "bodies_at_rest",
-                                                "bodies_asleep",
-                                                "jitter_m_per_s",
-                                                "warm_started",
-                                                "islands",
-                                                "substeps"};
+// frames.csv's columns: the frame, its time, and StepStats' figures that are in it.
+std::vector<std::string> frame_columns() {
+  std::vector<std::string> columns = {"frame", "time_s"};
+  for (const StepFigure& figure : step_figures()) {
+    if (figure.in_frames_csv) columns.push_back(frames_csv_column(figure));
+  }
+  return columns;
+}
 
-std::vector<double> frame_row(int frame, double time, const StepStats& s) {
-  return {static_cast<double>(frame),
-          time,
-          s.step_ms,
-          s.broad_phase_ms,
-          s.narrow_phase_ms,
-          s.contacts_ms,
-          s.response_ms,
-          s.integration_ms,
-          s.sleep_ms,
-          static_cast<double>(s.candidate_pairs),
-          static_cast<double>(s.sphere_tests),
-          static_cast<double>(s.leaf_pairs),
-          static_cast<double>(s.contacts),
-          static_cast<double>(s.impulses),
-          s.kinetic_energy,
-          static_cast<double>(s.deepest_penetration),
-          s.mean_penetration,
-          static_cast<double>(s.bodies_at_rest),
-          static_cast<double>(s.bodies_asleep),
-          s.jitter,
-          static_cast<double>(s.warm_started),
-          static_cast<double>(s.islands),
-          static_cast<double>(s.substeps)};
+std::vector<double> frame_row(int frame, double time, const StepStats& stats) {
+  std::vector<double> row = {static_cast<double>(frame), time};
+  for (const StepFigure& figure : step_figures()) {
+    if (figure.in_frames_csv) row.push_back(figure.read(stats));
+  }
+  return row;
 }
 
 // A folder name from a scene name: "stacks:4x50" -> "stacks-4x50", "drop.json" -> "drop".
@@ -335,7 +301,7 @@ void run(const SimulateOptions& options) {
     }
   }
   totals.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  tools::write_csv(csv_path, kFrameColumns, rows);
+  tools::write_csv(csv_path, frame_columns(), rows);
   recording.finish();
   if (failure) throw Error(*failure + " (the frames before it are in " + out.string() + ")");
 

@@ -64,8 +64,8 @@ void LiveSimulation::bodies(std::vector<BodyView>& out) const {
 
 void LiveSimulation::bounds(std::vector<Aabb>& out) const {
   out.clear();
-  for (const BodyId body : bodies_) out.push_back(setup_.world->detector().bounds(body.index));
-  if (setup_.ground) out.push_back(setup_.world->detector().bounds(setup_.ground->index));
+  for (const BodyId body : bodies_) out.push_back(setup_.world->bounds(body));
+  if (setup_.ground) out.push_back(setup_.world->bounds(*setup_.ground));
 }
 
 void LiveSimulation::drop_body(std::mt19937& random) {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bench_scene.h"
-#include "sphys/collision_detector.h"
+#include "sphys/collision_settings.h"
 
 namespace sphys::compare {
 

@@ -57,8 +57,8 @@ struct SolverSettings {
   std::uint32_t manifold_points = 4;  // per body pair when reduced, 1..8
   // Two bodies that can close by more than this in a collision pass (their speculative reach), and
   // by no more than the smaller one's extent, keep two contacts per pair of parts instead of one
-  // manifold (CollisionSettings:: fast_pair_reach): a few points spread over one mean normal stop a
-  // resting pair, not a fast approach of two non-convex bodies. unit: m, >= 0
+  // manifold (the detector's, src/collision/collision_detector.h): a few points spread over one
+  // mean normal stop a resting pair, not a fast approach of two non-convex bodies. unit: m, >= 0
   float fast_pair_reach = 0.03f;
   // Contacts are made this far before spheres touch, plus how far each pair can close in a step
   // (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m
@@ -66,7 +66,7 @@ struct SolverSettings {
   bool speculative_contacts = true;
   // A body pair that moved relative to itself by at most this since its trees last descended
   // keeps its manifold, recomputed at the new poses from the same leaf pairs, instead of
-  // descending and reducing again (CollisionSettings::reuse_distance). 0 descends every pair every
+  // descending and reducing again (the detector's). 0 descends every pair every
   // substep. Off by default: on a settling pile 2 mm saved 16% of the narrow phase but the wider
   // descent's extra gap contacts cost the solver more (docs/performance.md). unit: m, >= 0
   float reuse_distance = 0.0f;

@@ -7,10 +7,43 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <string>
+#include <string_view>
 
 namespace sphys {
 
-struct StepStats {
+// What detection counts, kept once: by each narrow-phase chunk, summed into a detection's figures
+// (the detector's CollisionStats) and those into a step's (StepStats).
+struct DetectionCounters {
+  std::uint32_t candidate_pairs = 0;  // overlapping bounds from the broad phase
+  std::uint64_t sphere_tests = 0;     // in the narrow phase, ground plane included
+  // Overlapping leaf pairs (ground plane: leaves under it).
+  std::uint32_t leaf_pairs = 0;
+  std::uint32_t pairs_cut_short = 0;     // node pairs left when a time-critical budget ran out
+  std::uint32_t coincident_centres = 0;  // contacts whose normal came from the fallback
+  // Pairs (a body and the ground plane included) whose trees descended, and pairs that kept their
+  // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
+  std::uint32_t descended_pairs = 0;
+  std::uint32_t reused_pairs = 0;
+  // Crowds (CollisionSettings::crowd_pairs_per_body): overlapping body pairs the broad phase left
+  // out to keep the step's work bounded.
+  std::uint64_t pairs_deferred = 0;
+
+  DetectionCounters& operator+=(const DetectionCounters& other) {
+    candidate_pairs += other.candidate_pairs;
+    sphere_tests += other.sphere_tests;
+    leaf_pairs += other.leaf_pairs;
+    pairs_cut_short += other.pairs_cut_short;
+    coincident_centres += other.coincident_centres;
+    descended_pairs += other.descended_pairs;
+    reused_pairs += other.reused_pairs;
+    pairs_deferred += other.pairs_deferred;
+    return *this;
+  }
+};
+
+struct StepStats : DetectionCounters {
   // Wall-clock time of each phase of the step and of the whole step. unit: ms
   double broad_phase_ms = 0.0;   // bounds and Sweep & Prune
   double narrow_phase_ms = 0.0;  // sphere-tree descents (leaf pairs)
@@ -26,10 +59,8 @@ struct StepStats {
     return broad_phase_ms + narrow_phase_ms + contacts_ms;
   }
 
+  // The detection counters are summed over the step's detections (DetectionCounters).
   std::uint32_t bodies = 0;
-  std::uint32_t candidate_pairs = 0;  // overlapping bounds from the broad phase
-  std::uint64_t sphere_tests = 0;
-  std::uint32_t leaf_pairs = 0;
   std::uint32_t contacts = 0;  // the response's contacts (after reduction, when reduced)
   // Paper mode: impulses applied, over all passes. Plausible mode: contacts solved.
   std::uint32_t impulses = 0;
@@ -38,19 +69,11 @@ struct StepStats {
   std::uint32_t substeps = 1;      // pipeline runs in this step (WorldSettings::max_substeps)
   std::uint32_t warm_started = 0;  // contacts whose impulses came from the previous step
   std::uint32_t bounces = 0;       // contacts given restitution (plausible mode)
-  std::uint32_t pairs_cut_short = 0;
-  std::uint32_t coincident_centres = 0;
   // Groups of touching dynamic bodies (plausible mode), persistent: a group whose bodies parted
   // counts as one until the next step splits it.
   std::uint32_t islands = 0;
-  // Pairs (a body and the ground plane included) whose trees descended, and pairs that kept their
-  // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
-  std::uint32_t descended_pairs = 0;
-  std::uint32_t reused_pairs = 0;
-  // Crowds (CollisionSettings::crowd_pairs_per_body): overlapping body pairs the broad phase left
-  // out to keep the step's work bounded, and the moving bodies in a crowd (their largest count
-  // over the substeps).
-  std::uint64_t pairs_deferred = 0;
+  // Crowds (CollisionSettings::crowd_pairs_per_body): the moving bodies in a crowd (their largest
+  // count over the substeps).
   std::uint32_t crowded_bodies = 0;
   std::uint32_t movable_bodies = 0;  // bodies that are not static
   std::uint32_t bodies_asleep = 0;
@@ -71,5 +94,23 @@ struct StepStats {
   // being a rotation) in this step; the world stops stepping from then on. Unset while all is well.
   std::optional<std::uint32_t> non_finite_body;
 };
+
+// One figure of StepStats, for whatever lists them all (the frames CSV of `sphys simulate`,
+// Python's StepStats): adding a figure to StepStats means adding it to step_figures() alone.
+struct StepFigure {
+  std::string_view name;  // the member's name, and Python's
+  std::string_view unit;  // "ms", "m", "m/s", "J"; empty for counts
+  bool count = false;     // a whole number (Python gives an int)
+  // Every frame's value is a column of frames.csv (its name: frames_csv_column()).
+  bool in_frames_csv = false;
+  double (*read)(const StepStats&) = nullptr;
+};
+
+// Every figure of StepStats, the frames CSV's in its column order first; a non-finite body
+// (StepStats::non_finite_body) is not a figure.
+[[nodiscard]] std::span<const StepFigure> step_figures();
+// The figure's frames.csv column: its name, with its unit appended where the name does not end in
+// it ("kinetic_energy_J", "jitter_m_per_s", "step_ms", "contacts").
+[[nodiscard]] std::string frames_csv_column(const StepFigure& figure);
 
 }  // namespace sphys

@@ -11,7 +11,7 @@
 
 #include "sphys/body_id.h"
 #include "sphys/body_store.h"
-#include "sphys/collision_detector.h"
+#include "sphys/collision_settings.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/parallel.h"
@@ -61,12 +61,13 @@ struct WorldSettings {
   // `substeps` turns it off.
   std::uint32_t max_substeps = 8;
   float substep_travel = 0.3f;  // unit: bounding radii per substep, > 0
-  // In plausible mode the world sets collision.contact_margin and collision.speculative from
-  // `solver`; in paper mode it turns them off, as the paper makes contacts from overlaps only.
+  // What detection uses of the trees, its budgets and the ground plane. Which contacts it makes
+  // is the solver's (`solver`: margin, speculative contacts, manifolds); paper mode makes them
+  // from overlaps only, as the paper does.
   CollisionSettings collision;
-  // The broad phase, in place of collision.broad_phase; unset: the paper's one Sweep & Prune in
-  // paper mode, Sweep & Prune per cell in plausible mode. Both give the same pairs in the same
-  // order, so the choice changes the speed of a step, never its result.
+  // Unset: the paper's one Sweep & Prune in paper mode, Sweep & Prune per cell in plausible mode.
+  // Both give the same pairs in the same order, so the choice changes the speed of a step, never
+  // its result.
   std::optional<BroadPhaseKind> broad_phase = std::nullopt;
   // Material of the exact ground plane (CollisionSettings::ground_plane_height), if there is one.
   float ground_restitution = 0.3f;
@@ -95,6 +96,8 @@ struct BodyDesc {
   bool is_static = false;
 };
 
+class CollisionDetector;
+struct CollisionStats;
 class SoftStepSolver;
 class SleepTracker;
 class WorldAccess;
@@ -175,7 +178,9 @@ class World {
   [[nodiscard]] const WorldSettings& settings() const;
   // The lanes settings().solver.lanes resolved to on this processor (never kAuto).
   [[nodiscard]] SolverLanes solver_lanes() const;
-  [[nodiscard]] const CollisionDetector& detector() const;
+  // The box the broad phase keeps for the body (CollisionSettings::bounds_level), as of the last
+  // detection.
+  [[nodiscard]] Aabb bounds(BodyId body) const;
   // Every body's state by slot (id_of(slot) names it), e.g. all poses as one array.
   [[nodiscard]] const BodyStore& bodies() const;
   // The body's sphere-tree, shared: it outlives the body's removal while a holder keeps it.

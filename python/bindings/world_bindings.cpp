@@ -108,41 +108,16 @@ StepStats step_world(SharedWorld& shared, float dt, int steps) {
   return stats;
 }
 
+// A figure of StepStats as Python has it: an int for a count, else a float.
+py::object figure_value(const StepFigure& figure, const StepStats& stats) {
+  const double value = figure.read(stats);
+  if (figure.count) return py::int_(static_cast<std::uint64_t>(value));
+  return py::float_(value);
+}
+
 py::dict stats_dict(const StepStats& s) {
   py::dict d;
-  d["broad_phase_ms"] = s.broad_phase_ms;
-  d["narrow_phase_ms"] = s.narrow_phase_ms;
-  d["contacts_ms"] = s.contacts_ms;
-  d["response_ms"] = s.response_ms;
-  d["integration_ms"] = s.integration_ms;
-  d["sleep_ms"] = s.sleep_ms;
-  d["step_ms"] = s.step_ms;
-  d["detection_ms"] = s.detection_ms();
-  d["bodies"] = s.bodies;
-  d["candidate_pairs"] = s.candidate_pairs;
-  d["sphere_tests"] = s.sphere_tests;
-  d["leaf_pairs"] = s.leaf_pairs;
-  d["contacts"] = s.contacts;
-  d["impulses"] = s.impulses;
-  d["response_passes"] = s.response_passes;
-  d["substeps"] = s.substeps;
-  d["warm_started"] = s.warm_started;
-  d["bounces"] = s.bounces;
-  d["pairs_cut_short"] = s.pairs_cut_short;
-  d["coincident_centres"] = s.coincident_centres;
-  d["islands"] = s.islands;
-  d["descended_pairs"] = s.descended_pairs;
-  d["reused_pairs"] = s.reused_pairs;
-  d["pairs_deferred"] = s.pairs_deferred;
-  d["crowded_bodies"] = s.crowded_bodies;
-  d["movable_bodies"] = s.movable_bodies;
-  d["bodies_asleep"] = s.bodies_asleep;
-  d["deepest_penetration"] = s.deepest_penetration;
-  d["mean_penetration"] = s.mean_penetration;
-  d["penetrating_contacts"] = s.penetrating_contacts;
-  d["kinetic_energy"] = s.kinetic_energy;
-  d["bodies_at_rest"] = s.bodies_at_rest;
-  d["jitter"] = s.jitter;
+  for (const StepFigure& figure : step_figures()) d[py::str(figure.name)] = figure_value(figure, s);
   d["non_finite_body"] =
       s.non_finite_body ? py::object(py::int_(*s.non_finite_body)) : py::object(py::none());
   return d;
@@ -247,43 +222,17 @@ void bind_world(py::module_& m) {
                ", generation=" + std::to_string(id.generation) + ")";
       });
 
-  py::class_<StepStats>(m, "StepStats",
-                        "Figures of one step; times in ms, penetrations in m, energy in J. The "
-                        "plausibility figures need the world's plausibility_figures setting.")
-      .def_readonly("broad_phase_ms", &StepStats::broad_phase_ms)
-      .def_readonly("narrow_phase_ms", &StepStats::narrow_phase_ms)
-      .def_readonly("contacts_ms", &StepStats::contacts_ms)
-      .def_readonly("response_ms", &StepStats::response_ms)
-      .def_readonly("integration_ms", &StepStats::integration_ms)
-      .def_readonly("sleep_ms", &StepStats::sleep_ms)
-      .def_readonly("step_ms", &StepStats::step_ms)
-      .def_readonly("bodies", &StepStats::bodies)
-      .def_readonly("candidate_pairs", &StepStats::candidate_pairs)
-      .def_readonly("sphere_tests", &StepStats::sphere_tests)
-      .def_readonly("leaf_pairs", &StepStats::leaf_pairs)
-      .def_readonly("contacts", &StepStats::contacts)
-      .def_readonly("impulses", &StepStats::impulses)
-      .def_readonly("response_passes", &StepStats::response_passes)
-      .def_readonly("substeps", &StepStats::substeps)
-      .def_readonly("warm_started", &StepStats::warm_started)
-      .def_readonly("bounces", &StepStats::bounces)
-      .def_readonly("pairs_cut_short", &StepStats::pairs_cut_short)
-      .def_readonly("coincident_centres", &StepStats::coincident_centres)
-      .def_readonly("islands", &StepStats::islands)
-      .def_readonly("descended_pairs", &StepStats::descended_pairs)
-      .def_readonly("reused_pairs", &StepStats::reused_pairs)
-      .def_readonly("pairs_deferred", &StepStats::pairs_deferred)
-      .def_readonly("crowded_bodies", &StepStats::crowded_bodies)
-      .def_readonly("movable_bodies", &StepStats::movable_bodies)
-      .def_readonly("bodies_asleep", &StepStats::bodies_asleep)
-      .def_readonly("deepest_penetration", &StepStats::deepest_penetration)
-      .def_readonly("mean_penetration", &StepStats::mean_penetration)
-      .def_readonly("penetrating_contacts", &StepStats::penetrating_contacts)
-      .def_readonly("kinetic_energy", &StepStats::kinetic_energy)
-      .def_readonly("bodies_at_rest", &StepStats::bodies_at_rest)
-      .def_readonly("jitter", &StepStats::jitter)
-      .def_readonly("non_finite_body", &StepStats::non_finite_body)
-      .def_property_readonly("detection_ms", &StepStats::detection_ms)
+  py::class_<StepStats> step_stats(
+      m, "StepStats",
+      "Figures of one step; times in ms, penetrations in m, energy in J. The plausibility figures "
+      "need the world's plausibility_figures setting.");
+  for (const StepFigure& figure : step_figures()) {
+    const std::string doc = figure.unit.empty() ? "a count" : "unit: " + std::string(figure.unit);
+    step_stats.def_property_readonly(
+        std::string(figure.name).c_str(),
+        [figure](const StepStats& s) { return figure_value(figure, s); }, doc.c_str());
+  }
+  step_stats.def_readonly("non_finite_body", &StepStats::non_finite_body)
       .def("to_dict", &stats_dict, "Every figure by name (the names of sphys/step_stats.h).")
       .def("__repr__", [](const StepStats& s) {
         return "<sphys.StepStats " + std::to_string(s.step_ms) + " ms, " +

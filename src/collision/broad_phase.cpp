@@ -1,4 +1,4 @@
-#include "sphys/broad_phase.h"
+#include "collision/broad_phase.h"
 
 #include <algorithm>
 #include <bit>

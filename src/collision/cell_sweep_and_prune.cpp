@@ -1,4 +1,4 @@
-#include "sphys/cell_sweep_and_prune.h"
+#include "collision/cell_sweep_and_prune.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "sphys/collision_detector.h"
+#include "collision/collision_detector.h"
 
 #include <algorithm>
 #include <chrono>
@@ -43,12 +43,12 @@ constexpr std::size_t kBodiesPerChunk = 256;
 
 }  // namespace
 
-CollisionDetector::CollisionDetector(const CollisionSettings& settings) : settings_(settings) {
+CollisionDetector::CollisionDetector(const DetectorSettings& settings) : settings_(settings) {
   if (settings.broad_phase == BroadPhaseKind::kCells) broad_phase_.emplace<CellSweepAndPrune>();
   set_settings(settings);
 }
 
-void CollisionDetector::set_settings(const CollisionSettings& settings) {
+void CollisionDetector::set_settings(const DetectorSettings& settings) {
   const BroadPhaseKind kept = settings_.broad_phase;
   settings_ = settings;
   settings_.broad_phase = kept;
@@ -240,12 +240,7 @@ void CollisionDetector::plan_chunks() {
     chunk.contacts.clear();
     chunk.shapes.clear();
     chunk.parted_pairs = 0;
-    chunk.sphere_tests = 0;
-    chunk.leaf_pairs = 0;
-    chunk.cut_short_pairs = 0;
-    chunk.coincident_centres = 0;
-    chunk.descended_pairs = 0;
-    chunk.reused_pairs = 0;
+    chunk.counters = {};
     chunk.deepest_penetration = 0.0f;
     chunk.penetration_sum = 0.0;
     chunk.penetrating_contacts = 0;
@@ -280,12 +275,7 @@ void CollisionDetector::run_jobs(std::size_t base) {
   for_each_chunk([&](NarrowChunk& chunk) { place_contacts(chunk); });
   for (const NarrowChunk* chunk : chunks_) {
     stats_.parted_pairs += chunk->parted_pairs;
-    stats_.sphere_tests += chunk->sphere_tests;
-    stats_.leaf_pairs += chunk->leaf_pairs;
-    stats_.pairs_cut_short += chunk->cut_short_pairs;
-    stats_.coincident_centres += chunk->coincident_centres;
-    stats_.descended_pairs += chunk->descended_pairs;
-    stats_.reused_pairs += chunk->reused_pairs;
+    stats_ += chunk->counters;
     stats_.deepest_penetration = std::max(stats_.deepest_penetration, chunk->deepest_penetration);
     stats_.penetration_sum += chunk->penetration_sum;
     stats_.penetrating_contacts += chunk->penetrating_contacts;

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "collision/collision_detector.h"
 #include "collision/contact_reduction.h"
-#include "sphys/collision_detector.h"
-#include "sphys/tree_descent.h"
+#include "collision/tree_descent.h"
 
 namespace sphys {
 
@@ -30,12 +30,7 @@ struct CollisionDetector::NarrowChunk {
   std::vector<ContactShape> shapes;
   std::size_t base = 0;  // where its contacts start in the cache's
   std::uint32_t parted_pairs = 0;
-  std::uint64_t sphere_tests = 0;
-  std::uint32_t leaf_pairs = 0;
-  std::uint32_t cut_short_pairs = 0;
-  std::uint32_t coincident_centres = 0;
-  std::uint32_t descended_pairs = 0;
-  std::uint32_t reused_pairs = 0;
+  DetectionCounters counters;
   float deepest_penetration = 0.0f;
   double penetration_sum = 0.0;
   std::uint32_t penetrating_contacts = 0;

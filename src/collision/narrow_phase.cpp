@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "collision/collision_detector.h"
 #include "collision/narrow_chunk.h"
 #include "core/stopwatch.h"
-#include "sphys/collision_detector.h"
 
 namespace sphys {
 namespace {
@@ -100,7 +100,7 @@ bool CollisionDetector::reuse(PairRecord& record, const Transform& relative, flo
     }
     chunk.leaves.push_back(leaves);
   }
-  ++chunk.reused_pairs;
+  ++chunk.counters.reused_pairs;
   return true;
 }
 
@@ -124,7 +124,7 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
       ground_plane_leaves(job.index, *settings_.ground_plane_height + looked, chunk);
       record.relative = pose;
       record.descent_margin = looked;
-      ++chunk.descended_pairs;
+      ++chunk.counters.descended_pairs;
     }
   } else {
     PairRecord& record = cache_.records()[job.index];
@@ -154,16 +154,16 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
       // The clock is read only for a time budget: a read per pair cost 1.7% of a step at 1,000
       // bunnies.
       const double spent = settings_.max_microseconds > 0.0 ? 1e3 * elapsed_ms(start) : 0.0;
-      DescentSettings settings = descent_budget(spent, chunk.sphere_tests, looked);
+      DescentSettings settings = descent_budget(spent, chunk.counters.sphere_tests, looked);
       if (crowd) {
         settings.depth_a = 1;
         settings.depth_b = 1;
       }
       const DescentStats descent =
           chunk.descent.descend(*a.tree, pose_a, *b.tree, pose_b, settings, chunk.node_pairs);
-      chunk.sphere_tests += descent.sphere_tests;
-      chunk.leaf_pairs += descent.leaf_pairs;
-      chunk.cut_short_pairs += descent.cut_short_pairs;
+      chunk.counters.sphere_tests += descent.sphere_tests;
+      chunk.counters.leaf_pairs += descent.leaf_pairs;
+      chunk.counters.pairs_cut_short += descent.cut_short_pairs;
       for (const NodePair& nodes : chunk.node_pairs) {
         chunk.leaves.push_back({ia, ib, nodes.node_a, nodes.node_b,
                                 chunk.descent.world_sphere_a(*a.tree, nodes.node_a),
@@ -171,7 +171,7 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
       }
       record.relative = relative;
       record.descent_margin = crowd ? -1.0f : looked;  // roots' contacts are not to be reused
-      ++chunk.descended_pairs;
+      ++chunk.counters.descended_pairs;
     }
     record.done = true;
   }
@@ -194,7 +194,7 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_dow
     stack.pop_back();
     const Sphere& sphere = tree.sphere(node);
     const Vec3 center = pose.apply(sphere.center);
-    ++chunk.sphere_tests;
+    ++chunk.counters.sphere_tests;
     const bool leaf = tree.is_leaf(node) || node >= leaves_begin;
     if (center.y() - (leaf ? sphere.radius : tree.subtree_radius(node)) > reach_down) continue;
     if (!leaf) {
@@ -205,7 +205,7 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_dow
       continue;
     }
     chunk.leaves.push_back({kGroundPlaneBody, index, 0, node, Sphere{}, {center, sphere.radius}});
-    ++chunk.leaf_pairs;
+    ++chunk.counters.leaf_pairs;
   }
 }
 
@@ -235,7 +235,7 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
       if (plane) {
         sphere_plane_contact(*settings_.ground_plane_height, leaves.sphere_b, contact);
       } else if (sphere_sphere_contact(leaves.sphere_a, leaves.sphere_b, fallback, contact)) {
-        ++chunk.coincident_centres;
+        ++chunk.counters.coincident_centres;
       }
       if (measure && contact.depth > 0.0f) {
         chunk.deepest_penetration = std::max(chunk.deepest_penetration, contact.depth);

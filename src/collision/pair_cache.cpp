@@ -1,4 +1,4 @@
-#include "sphys/pair_cache.h"
+#include "collision/pair_cache.h"
 
 #include <algorithm>
 

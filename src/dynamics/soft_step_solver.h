@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "collision/collision_detector.h"
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/contact_levels.h"
@@ -24,7 +25,6 @@
 #include "dynamics/solver_bodies.h"
 #include "dynamics/solver_stats.h"
 #include "sphys/body_store.h"
-#include "sphys/collision_detector.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
 #include "sphys/math.h"

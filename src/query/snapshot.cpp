@@ -68,7 +68,7 @@ void Snapshot::read(const World& world) {
   for (std::uint32_t slot = 0; slot < slots; ++slot) {
     if (!store.alive(slot)) continue;
     ids[slot] = store.id_of(slot);
-    trees[slot] = world.detector().shared_tree(slot);
+    trees[slot] = world.shared_tree(ids[slot]);
     const SphereTree& tree = *trees[slot];
     asleep[slot] = store.asleep(slot) ? 1 : 0;
     const Transform& pose = poses[slot];

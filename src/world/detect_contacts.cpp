@@ -12,14 +12,7 @@ void World::add_detection(const CollisionStats& detection, StepStats& stats) con
   stats.broad_phase_ms += detection.broad_phase_ms;
   stats.narrow_phase_ms += detection.narrow_phase_ms;
   stats.contacts_ms += detection.contacts_ms;
-  stats.candidate_pairs += detection.candidate_pairs;
-  stats.sphere_tests += detection.sphere_tests;
-  stats.leaf_pairs += detection.leaf_pairs;
-  stats.pairs_cut_short += detection.pairs_cut_short;
-  stats.coincident_centres += detection.coincident_centres;
-  stats.descended_pairs += detection.descended_pairs;
-  stats.reused_pairs += detection.reused_pairs;
-  stats.pairs_deferred += detection.pairs_deferred;
+  stats += static_cast<const DetectionCounters&>(detection);
   stats.crowded_bodies = std::max(stats.crowded_bodies, detection.crowded_bodies);
   if (!settings_.plausibility_figures) return;
   const double depth_sum = stats.mean_penetration * stats.penetrating_contacts;

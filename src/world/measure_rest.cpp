@@ -1,6 +1,7 @@
 // The plausibility figures of the bodies at the end of a step (WorldSettings::
 // plausibility_figures): kinetic energy, bodies at rest, and how fast the resting ones still move.
 
+#include "collision/collision_detector.h"
 #include "sphys/world.h"
 
 namespace sphys {

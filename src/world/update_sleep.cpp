@@ -1,6 +1,7 @@
 // Stage 6 of a substep (plausible mode): how long each moving body has been still, and the
 // bodies still long enough that touch no restless body fall asleep.
 
+#include "collision/collision_detector.h"
 #include "core/stopwatch.h"
 #include "sphys/world.h"
 #include "world/sleep_tracker.h"

@@ -27,9 +27,11 @@ void check_material(float restitution, float friction) {
   }
 }
 
-// The detector's settings for a response mode: the paper makes contacts from overlaps only.
-CollisionSettings collision_settings(const WorldSettings& settings) {
-  CollisionSettings collision = settings.collision;
+// The detector's settings: the world's own, with the contacts the solver asks for in plausible
+// mode and the paper's (every overlapping leaf pair, made afresh) in paper mode.
+DetectorSettings detector_settings(const WorldSettings& settings) {
+  DetectorSettings collision;
+  static_cast<CollisionSettings&>(collision) = settings.collision;
   const bool plausible = settings.response == ResponseMode::kPlausible;
   collision.contact_margin = plausible ? settings.solver.contact_margin : 0.0f;
   collision.speculative = plausible && settings.solver.speculative_contacts;
@@ -84,7 +86,7 @@ void check_body(const BodyDesc& desc) {
 World::World(const WorldSettings& settings)
     : settings_(settings),
       store_(std::make_unique<BodyStore>()),
-      detector_(std::make_unique<CollisionDetector>(collision_settings(settings))),
+      detector_(std::make_unique<CollisionDetector>(detector_settings(settings))),
       solver_(std::make_unique<SoftStepSolver>()),
       sleep_(std::make_unique<SleepTracker>(*store_)),
       access_(std::make_unique<WorldAccess>()) {
@@ -172,9 +174,9 @@ const WorldSettings& World::settings() const {
   return settings_;
 }
 
-const CollisionDetector& World::detector() const {
-  const WorldAccess::Shared turn(*access_, "detector");
-  return *detector_;
+Aabb World::bounds(BodyId body) const {
+  const WorldAccess::Shared turn(*access_, "bounds");
+  return detector_->bounds(checked_slot(body));
 }
 
 const BodyStore& World::bodies() const {
@@ -250,7 +252,7 @@ void World::set_detection_budget(std::uint64_t max_sphere_tests, double max_micr
   settings.collision.max_microseconds = max_microseconds;
   check_world_settings(settings);
   settings_ = settings;
-  detector_->set_settings(collision_settings(settings_));
+  detector_->set_settings(detector_settings(settings_));
 }
 
 void World::set_velocity(BodyId id, const Vec3& linear, const Vec3& angular) {

@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "collision/sweep_and_prune.h"
 #include "sphys/math.h"
-#include "sphys/sweep_and_prune.h"
 
 namespace sphys::test {
 

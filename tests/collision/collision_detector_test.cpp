@@ -1,4 +1,4 @@
-#include "sphys/collision_detector.h"
+#include "collision/collision_detector.h"
 
 #include <algorithm>
 #include <map>
@@ -88,7 +88,7 @@ struct Detection {
   BodyStore store;
   CollisionDetector detector;
 
-  explicit Detection(const CollisionSettings& settings = {}) : detector(settings) {
+  explicit Detection(const DetectorSettings& settings = {}) : detector(settings) {
     detector.set_bodies(store);
   }
   Detection(const Detection&) = delete;
@@ -131,7 +131,7 @@ TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
   std::mt19937_64 rng(2008);
   for (int depth : {0, 2}) {
     Scene scene;
-    CollisionSettings settings;
+    DetectorSettings settings;
     settings.tree_depth = depth;
     settings.ground_plane_height = 0.1f;
     Detection detection(settings);
@@ -177,7 +177,7 @@ TEST(CollisionDetector, ReusedPairsMissNoLeafPairWithinTheGap) {
   const auto box = octree_of(tools::make_box({0.6, 0.3, 0.4}), 3);
   std::mt19937_64 rng(16);
   Scene scene;
-  CollisionSettings settings;
+  DetectorSettings settings;
   settings.ground_plane_height = 0.1f;
   settings.contact_margin = 0.02f;
   settings.reuse_distance = 0.004f;
@@ -259,7 +259,7 @@ TEST(CollisionDetector, ContactsFollowThePaperEquations) {
 
 TEST(CollisionDetector, TimeCriticalBudgetCutsPairsShortAndStaysValid) {
   const auto torus = octree_of(tools::make_torus(0.5, 0.15, 24, 12), 4);
-  CollisionSettings settings;
+  DetectorSettings settings;
   settings.max_sphere_tests = 50;
   Detection detection(settings);
   CollisionDetector& detector = detection.detector;
@@ -288,7 +288,7 @@ std::uint32_t part_of(const SphereTree& tree, std::uint32_t node) {
 
 TEST(CollisionDetector, AFastPairIsReducedByPartsAndASlowOneToAManifold) {
   const auto box = octree_of(tools::make_box({0.6, 0.3, 0.4}), 3);
-  CollisionSettings settings;
+  DetectorSettings settings;
   settings.ground_plane_height = 0.0f;
   settings.contact_margin = 0.02f;
   settings.speculative = true;

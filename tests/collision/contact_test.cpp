@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sphys/broad_phase.h"
+#include "collision/broad_phase.h"
 
 namespace sphys {
 namespace {

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "collision/broad_phase_scene.h"
-#include "sphys/cell_sweep_and_prune.h"
-#include "sphys/sweep_and_prune.h"
+#include "collision/cell_sweep_and_prune.h"
+#include "collision/sweep_and_prune.h"
 
 namespace sphys::test {
 namespace {

@@ -1,4 +1,4 @@
-#include "sphys/sweep_and_prune.h"
+#include "collision/sweep_and_prune.h"
 
 #include <algorithm>
 #include <atomic>

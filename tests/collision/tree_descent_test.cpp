@@ -1,4 +1,4 @@
-#include "sphys/tree_descent.h"
+#include "collision/tree_descent.h"
 
 #include <algorithm>
 #include <random>

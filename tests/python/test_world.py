@@ -415,6 +415,9 @@ def test_step_steps_and_stats(sphere_tree):
     assert set(d) == names
     for name in names:
         assert d[name] == getattr(stats, name), name
+    # Counts are ints, measures floats (sphys/step_stats.h's table of figures says which).
+    assert isinstance(d["sphere_tests"], int) and isinstance(d["islands"], int)
+    assert isinstance(d["step_ms"], float) and isinstance(d["jitter"], float)
     assert d["detection_ms"] == pytest.approx(
         stats.broad_phase_ms + stats.narrow_phase_ms + stats.contacts_ms)
     assert 0 <= stats.integration_ms <= stats.step_ms

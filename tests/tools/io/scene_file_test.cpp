@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sphys/error.h"
+#include "sphys/setting_limits.h"
 #include "support/temp_file.h"
 
 namespace sphys::tools {

@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "sphys/broad_phase.h"
+#include "collision/broad_phase.h"
 #include "sphys/contact.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"

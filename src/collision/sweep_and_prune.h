@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "sphys/broad_phase.h"
+#include "collision/broad_phase.h"
 #include "sphys/math.h"
 
 namespace sphys {

@@ -13,38 +13,23 @@
 #include <variant>
 #include <vector>
 
+#include "collision/cell_sweep_and_prune.h"
+#include "collision/pair_cache.h"
+#include "collision/sweep_and_prune.h"
+#include "collision/tree_descent.h"
 #include "sphys/body_store.h"
-#include "sphys/cell_sweep_and_prune.h"
+#include "sphys/collision_settings.h"
 #include "sphys/contact.h"
-#include "sphys/pair_cache.h"
 #include "sphys/parallel.h"
 #include "sphys/setting_limits.h"
 #include "sphys/sphere_tree.h"
-#include "sphys/sweep_and_prune.h"
-#include "sphys/tree_descent.h"
+#include "sphys/step_stats.h"
 
 namespace sphys {
 
-// Which broad phase a detector runs. Both list the same pairs in the same order.
-enum class BroadPhaseKind : std::uint8_t {
-  kSweepAndPrune,  // one Sweep & Prune over every body (the paper's, §3.1)
-  kCells,          // Sweep & Prune per cell of a coarse grid (CellSweepAndPrune)
-};
-
-struct CollisionSettings {
-  // Levels of every sphere-tree used, the root included; 0 uses them all (a depth-3 tree used as
-  // depth 2: the nodes of the last used level are the leaves). unit: levels
-  int tree_depth = 0;
-  // Level whose spheres (with their subtree radii) bound a body for the broad phase: 0 is the
-  // root's bound, cheapest to update; deeper levels give tighter boxes. unit: level
-  int bounds_level = 0;
-  // Time-critical narrow phase (paper §3.2): budgets for the narrow phase of a detect() call,
-  // shared by the pairs in order; 0 turns a budget off. With both off, detection is exact.
-  std::uint64_t max_sphere_tests = 0;  // unit: sphere tests per detect()
-  double max_microseconds = 0.0;       // unit: µs of descent per detect()
-  // The exact half-space ground y <= height (sphere against plane), instead of or besides a
-  // static body carrying the paper's octree of a thin box. unit: m
-  std::optional<float> ground_plane_height;
+// The detector's settings: the world's collision settings and what the world derives from its
+// solver settings and response mode (World's detector_settings(), world.cpp, the one place).
+struct DetectorSettings : CollisionSettings {
   // Leaf spheres apart by up to this gap make contacts too, with negative depth, so that a
   // response can stop bodies before they touch. unit: m
   float contact_margin = 0.0f;
@@ -72,36 +57,20 @@ struct CollisionSettings {
   // The deepest and mean penetration of the leaf pairs in CollisionStats: a pass over every leaf
   // pair, so only on request.
   bool measure_penetration = false;
-  // Crowds (docs/collision.md, "Crowds"): where bodies piled on each other overlap more than this
-  // many others each on average, the broad phase pairs a body that overlaps more than this many
-  // (a crowded one) with only its nearest half as many crowded ones, and such a pair makes one
-  // contact from its trees' roots, its depth capped, so that a step's work stays bounded while
-  // they part. 0 turns it off. unit: overlapping bodies per body
-  std::uint32_t crowd_pairs_per_body = 32;
   // Fixed when the detector is made (set_settings() keeps it).
   BroadPhaseKind broad_phase = BroadPhaseKind::kSweepAndPrune;
 };
 
 // Figures of one detect() call.
-struct CollisionStats {
+struct CollisionStats : DetectionCounters {
   std::uint32_t bodies = 0;
-  std::uint32_t candidate_pairs = 0;  // overlapping bounds from the broad phase
-  std::uint64_t sphere_tests = 0;     // in the narrow phase, ground plane included
-  // Overlapping leaf pairs (ground plane: leaves under it), and those within their pair's gap.
-  std::uint32_t leaf_pairs = 0;
-  std::uint32_t contacts = 0;
-  std::uint32_t pairs_cut_short = 0;     // node pairs left when a time-critical budget ran out
-  std::uint32_t coincident_centres = 0;  // contacts whose normal came from the fallback
-  std::uint32_t descended_pairs = 0;     // pairs (ground plane included) whose trees descended
-  std::uint32_t reused_pairs = 0;        // pairs that kept their contacts (reuse_distance)
+  std::uint32_t contacts = 0;  // leaf pairs within their pair's gap, before any reduction
   // Pairs of two dynamic bodies that had contacts in their last narrow phase and have none now
   // (or that the broad phase dropped): the islands they joined may have split.
   std::uint32_t parted_pairs = 0;
-  // Crowds (CollisionSettings::crowd_pairs_per_body): overlapping pairs the broad phase left out,
-  // and the moving bodies in a crowd.
-  std::uint64_t pairs_deferred = 0;
+  // Crowds (CollisionSettings::crowd_pairs_per_body): the moving bodies in a crowd.
   std::uint32_t crowded_bodies = 0;
-  // With CollisionSettings::measure_penetration, over the leaf pairs that overlap.
+  // With DetectorSettings::measure_penetration, over the leaf pairs that overlap.
   float deepest_penetration = 0.0f;  // unit: m
   double penetration_sum = 0.0;      // unit: m
   std::uint32_t penetrating_contacts = 0;
@@ -116,7 +85,7 @@ class ContactReducer;
 
 class CollisionDetector final : public SlotArrays {
  public:
-  explicit CollisionDetector(const CollisionSettings& settings = {});
+  explicit CollisionDetector(const DetectorSettings& settings = {});
   ~CollisionDetector();
 
   // The bodies: their poses, whether they are static, asleep or alive, and their extents are
@@ -137,9 +106,9 @@ class CollisionDetector final : public SlotArrays {
   // How far a body may move in the coming step, for speculative contacts: its centre of mass by
   // `displacement` and any of its points by up to `turn_reach` more from turning. unit: m
   void set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach);
-  [[nodiscard]] const CollisionSettings& settings() const { return settings_; }
+  [[nodiscard]] const DetectorSettings& settings() const { return settings_; }
   // The broad phase stays the one the detector was made with.
-  void set_settings(const CollisionSettings& settings);
+  void set_settings(const DetectorSettings& settings);
   // Whether the broad phase found the body's box in a crowd at the last detect()
   // (CollisionSettings::crowd_pairs_per_body).
   [[nodiscard]] bool crowded(std::uint32_t slot) const;
@@ -248,7 +217,7 @@ class CollisionDetector final : public SlotArrays {
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
                                                float margin) const;
 
-  CollisionSettings settings_;
+  DetectorSettings settings_;
   BodyStore* store_ = nullptr;  // read only, but for attaching the detector's arrays
   std::vector<Body> bodies_;    // per slot of the store
   std::vector<std::uint32_t> body_of_proxy_;

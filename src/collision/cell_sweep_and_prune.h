@@ -10,10 +10,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "sphys/broad_phase.h"
+#include "collision/broad_phase.h"
+#include "collision/sweep_and_prune.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"
-#include "sphys/sweep_and_prune.h"
 
 namespace sphys {
 

@@ -1,0 +1,23 @@
+# The public headers are the interface: every file a header under include/sphys includes with
+# quotes must itself be under include/, so that nothing private (src/) reaches the users who
+# include them. Run as: cmake -DSOURCE_DIR=<repository> -P public_headers.cmake
+file(GLOB_RECURSE headers RELATIVE "${SOURCE_DIR}/include" "${SOURCE_DIR}/include/sphys/*.h")
+list(LENGTH headers count)
+if(count EQUAL 0)
+  message(FATAL_ERROR "no public headers under ${SOURCE_DIR}/include")
+endif()
+set(private)
+foreach(header IN LISTS headers)
+  file(STRINGS "${SOURCE_DIR}/include/${header}" includes REGEX "^#include \"")
+  foreach(line IN LISTS includes)
+    string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" included "${line}")
+    if(NOT EXISTS "${SOURCE_DIR}/include/${included}")
+      list(APPEND private "${header} includes \"${included}\", which is not a public header")
+    endif()
+  endforeach()
+endforeach()
+if(private)
+  list(JOIN private "\n" message)
+  message(FATAL_ERROR "${message}")
+endif()
+message(STATUS "${count} public headers include public headers only")
