@@ -46,10 +46,8 @@ struct RigidBody {
                                     const Vec3& angular_velocity, float inverse_mass,
                                     const Mat3& inertia_body);
 
-// Semi-implicit (symplectic) Euler, first half: v += g dt. Static bodies are left alone.
-void integrate_velocity(RigidBody& body, const Vec3& gravity, float dt);
-
-// Second half, for a moving body: x += v dt; the orientation turns by ω_mid dt (q += ½ dt (0,
+// Semi-implicit (symplectic) Euler, after the world's first half (v += g dt, then the response),
+// for a moving body: x += v dt; the orientation turns by ω_mid dt (q += ½ dt (0,
 // ω_mid) q, then renormalised), with ω_mid the angular velocity at the middle of the turn. The
 // world angular momentum I ω is kept across the turn (ω' = I'⁻¹ I ω), so a torque-free body
 // conserves it instead of keeping ω fixed while its inertia turns. Paper mode's integrator.

@@ -31,11 +31,6 @@ double RigidBody::kinetic_energy() const {
                                inertia_body);
 }
 
-void integrate_velocity(RigidBody& body, const Vec3& gravity, float dt) {
-  if (body.is_static) return;
-  body.linear_velocity += gravity * dt;
-}
-
 namespace {
 
 // ω = R I_body⁻¹ Rᵀ L: the angular velocity of angular momentum L at orientation q.

@@ -64,7 +64,7 @@ struct DetectorSettings : CollisionSettings {
 // Figures of one detect() call.
 struct CollisionStats : DetectionCounters {
   std::uint32_t bodies = 0;
-  std::uint32_t contacts = 0;  // leaf pairs within their pair's gap, before any reduction
+  std::uint32_t contacts = 0;  // in the pair cache after this detection (reduced, when reduced)
   // Pairs of two dynamic bodies that had contacts in their last narrow phase and have none now
   // (or that the broad phase dropped): the islands they joined may have split.
   std::uint32_t parted_pairs = 0;

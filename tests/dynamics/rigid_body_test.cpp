@@ -39,11 +39,9 @@ TEST(RigidBody, OneStepIsSemiImplicit) {
   // the exact ½ g dt²: the position uses the velocity of the end of the step.
   RigidBody body = asymmetric_box();
   body.pose.translation = Vec3(1.0f, 2.0f, 3.0f);
-  const Vec3 gravity(0.0f, -8.0f, 0.0f);
   const float dt = 0.125f;  // powers of two: every value below is exact in float
-  integrate_velocity(body, gravity, dt);
-  EXPECT_EQ(body.linear_velocity, Vec3(0.0f, -1.0f, 0.0f));
-  EXPECT_EQ(body.pose.translation, Vec3(1.0f, 2.0f, 3.0f));
+  // The world's first half, v += g dt with g = 8 m/s² down.
+  body.linear_velocity = Vec3(0.0f, -8.0f, 0.0f) * dt;
   integrate_position(body, dt);
   EXPECT_EQ(body.pose.translation, Vec3(1.0f, 1.875f, 3.0f));
   EXPECT_EQ(body.linear_velocity, Vec3(0.0f, -1.0f, 0.0f));
@@ -58,7 +56,6 @@ TEST(RigidBody, StaticBodiesAreLeftAlone) {
   body.linear_velocity = Vec3(1.0f, 0.0f, 0.0f);
   body.angular_velocity = Vec3(0.0f, 1.0f, 0.0f);
   const RigidBody before = body;
-  integrate_velocity(body, Vec3(0.0f, -9.81f, 0.0f), 0.1f);
   integrate_position(body, 0.1f);
   EXPECT_EQ(body.pose.translation, before.pose.translation);
   EXPECT_EQ(body.pose.rotation.coeffs(), before.pose.rotation.coeffs());
