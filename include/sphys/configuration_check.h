@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -66,6 +67,25 @@ class ConfigurationChecker {
  private:
   // What check_one works in, one per run of configurations (configuration_check.cpp).
   struct Scratch;
+
+ public:
+  // Checks configurations one at a time on one thread, keeping its working memory from one to the
+  // next: for callers that make the spheres themselves, a few at a time (RobotChecker).
+  class Run {
+   public:
+    explicit Run(const ConfigurationChecker& checker);
+    ~Run();
+    Run(const Run&) = delete;
+    Run& operator=(const Run&) = delete;
+    // One configuration's spheres() spheres, (x, y, z, radius) each, as check() reads them.
+    [[nodiscard]] ConfigurationResult check(const float* spheres);
+
+   private:
+    const ConfigurationChecker* checker_;
+    std::unique_ptr<Scratch> scratch_;
+  };
+
+ private:
   // One configuration's S spheres, x y z r each.
   [[nodiscard]] ConfigurationResult check_one(const float* spheres, Scratch& scratch) const;
   // The slot of a body whose leaf spheres the sphere touches, else -1: over every group the

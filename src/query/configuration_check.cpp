@@ -13,6 +13,7 @@
 
 #include "query/body_filter.h"
 #include "query/bvh_walk.h"
+#include "query/configuration_layout.h"
 #include "query/group_tests.h"
 #include "query/snapshot.h"
 #include "sphys/error.h"
@@ -22,12 +23,6 @@ namespace {
 
 using query_detail::LeafGroup;
 using query_detail::Snapshot;
-
-// Configurations per task on the threads: one is too little work to hand out. unit:
-// configurations
-constexpr std::size_t kConfigurationsPerRun = 64;
-
-constexpr std::size_t kFloatsPerSphere = 4;  // x, y, z, radius
 
 // The squared distance from a point to a box. unit: m²
 float squared_distance(const Aabb& box, float x, float y, float z) {
@@ -239,6 +234,15 @@ void ConfigurationChecker::run_configurations(std::size_t count, const Parallel*
                 const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
                 for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) check(c, scratch);
               });
+}
+
+ConfigurationChecker::Run::Run(const ConfigurationChecker& checker)
+    : checker_(&checker), scratch_(std::make_unique<Scratch>(checker.link_count_)) {}
+
+ConfigurationChecker::Run::~Run() = default;
+
+ConfigurationResult ConfigurationChecker::Run::check(const float* spheres) {
+  return checker_->check_one(spheres, *scratch_);
 }
 
 void ConfigurationChecker::check(std::span<const float> spheres,

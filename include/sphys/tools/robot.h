@@ -49,6 +49,10 @@ struct RobotJoint {
   std::string child;
   Pose3d origin = Pose3d::Identity();  // the child's frame in the parent's at joint value 0
   Vec3d axis = Vec3d::UnitX();         // unit vector in the child's frame
+  // The limits of a revolute or prismatic joint (rad, m); infinite for a continuous one.
+  double lower = 0.0;
+  double upper = 0.0;
+  std::string mimics;  // the joint it mimics, or empty
 };
 
 struct Robot {

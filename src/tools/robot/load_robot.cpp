@@ -3,6 +3,7 @@
 #include <cmath>
 #include <console_bridge/console.h>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -249,6 +250,14 @@ Robot load_robot(const fs::path& urdf, std::span<const RobotPackage> packages) {
     j.origin = to_pose(joint->parent_to_joint_origin_transform);
     const Vec3d axis = to_vec(joint->axis);
     if (axis.norm() > 0.0) j.axis = axis.normalized();
+    if (joint->type == urdf::Joint::CONTINUOUS) {
+      j.lower = -std::numeric_limits<double>::infinity();
+      j.upper = std::numeric_limits<double>::infinity();
+    } else if (joint->limits) {
+      j.lower = joint->limits->lower;
+      j.upper = joint->limits->upper;
+    }
+    if (joint->mimic) j.mimics = joint->mimic->joint_name;
     robot.joints.push_back(std::move(j));
   }
   return robot;

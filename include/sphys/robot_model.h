@@ -1,0 +1,74 @@
+#pragma once
+
+// A robot as a motion planner's checks need it: a chain (a tree) of links moved by joints, and the
+// spheres on each link, compiled into flat arrays so that the poses of many configurations of joint
+// values are computed together (robot_check.h). Made from a URDF and the spheres `sphys spherize`
+// wrote by tools::load_robot_model (sphys/tools/robot_model_file.h), or by hand.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sphys/math.h"
+#include "sphys/sphere_tree.h"
+
+namespace sphys {
+
+enum class RobotJointType : std::uint8_t {
+  kRevolute,    // turns about its axis by the joint value (rad), within its limits
+  kContinuous,  // turns without limits (rad)
+  kPrismatic,   // slides along its axis by the joint value (m), within its limits
+};
+
+struct RobotModel {
+  // A link of the chain. Links are listed parents first; link 0 is the root.
+  struct Link {
+    std::string name;
+    std::int32_t parent = -1;  // the link it hangs from; -1 for the root
+    // The link's frame in its parent's at joint value 0 (a fixed joint's whole pose). unit: m
+    Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+    // The joint that moves it: its index in joints, or -1 where it is fixed to its
+    // parent.
+    std::int32_t joint = -1;
+  };
+
+  struct Joint {
+    std::string name;
+    RobotJointType type = RobotJointType::kRevolute;
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // a unit vector in the moved link's frame
+    double lower = 0.0;  // limits, unit: rad or m (both infinite for a continuous joint)
+    double upper = 0.0;
+  };
+
+  std::string name;
+  std::vector<Link> links;
+  std::vector<Joint> joints;  // a configuration holds one value per joint, in this order
+  // Each sphere's link and the sphere in that link's frame. unit: m
+  std::vector<std::int32_t> sphere_links;
+  std::vector<Sphere> spheres;
+  // Pairs of links whose spheres are never checked against each other (SRDF's disabled
+  // collisions: neighbours, links that can never meet); a link is never checked against itself.
+  std::vector<std::array<std::int32_t, 2>> allowed_link_pairs;
+  // The root link in the world. unit: m
+  Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+
+  // The index of the link named so; throws sphys::Error naming a link the model does not have.
+  [[nodiscard]] std::int32_t link_index(std::string_view link) const;
+};
+
+// Throws sphys::Error naming what is wrong: no link, a parent that is not listed before its
+// child, a joint used by two links or by none, a joint axis that is not a unit vector, limits
+// that are not finite (continuous joints: not infinite) or lower > upper, a sphere on no link or
+// with a negative or non-finite radius, an allowed pair naming no link, a non-finite pose.
+void check_robot_model(const RobotModel& model);
+
+// Every link's pose in the world for one configuration, in double: the reference the batched
+// float kinematics are checked against. `values`: one per joint; throws sphys::Error naming the
+// joint whose value is NaN or outside its limits.
+[[nodiscard]] std::vector<Eigen::Isometry3d> robot_link_poses(const RobotModel& model,
+                                                              std::span<const double> values);
+
+}  // namespace sphys

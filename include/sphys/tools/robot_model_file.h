@@ -1,0 +1,40 @@
+#pragma once
+
+// A RobotModel (sphys/robot_model.h) from a robot's files: its URDF, the spheres `sphys spherize`
+// wrote for it (cuRobo's YAML, MoveIt's SRDF or a spherized URDF) and, for self-collision, the
+// pairs of links an SRDF's disable_collisions elements name.
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sphys/robot_model.h"
+#include "sphys/tools/robot.h"
+#include "sphys/tools/spherize.h"
+
+namespace sphys::tools {
+
+// The model of a loaded robot with its links' spheres: every link of the URDF (those without
+// geometry or spheres too), parents first, breadth first from the root, siblings by name; its
+// moving joints in the same order (a chain's from the base out). `disabled`: pairs of link names
+// never checked against each other. Throws sphys::Error naming the file and the joint for a
+// mimic, floating or planar joint, and the link for spheres on a link the robot does not have.
+[[nodiscard]] RobotModel robot_model(const Robot& robot, std::span<const LinkSpheres> links,
+                                     std::span<const std::array<std::string, 2>> disabled = {});
+
+// The pairs of links an SRDF's <disable_collisions link1="..." link2="..."/> elements name.
+// Throws sphys::Error naming the file and line for XML that does not parse or an element without
+// both links.
+[[nodiscard]] std::vector<std::array<std::string, 2>> read_disabled_collisions(
+    const std::filesystem::path& srdf);
+
+// load_robot, read_robot_spheres and (with `srdf`) read_disabled_collisions, then robot_model.
+[[nodiscard]] RobotModel load_robot_model(const std::filesystem::path& urdf,
+                                          const std::filesystem::path& spheres,
+                                          std::span<const RobotPackage> packages = {},
+                                          const std::optional<std::filesystem::path>& srdf = {});
+
+}  // namespace sphys::tools

@@ -1,0 +1,23 @@
+// The kinematics kernel in AVX2 lanes. This file alone of the queries is compiled with -mavx2
+// (without FMA): it includes no Eigen and instantiates the kernel in its anonymous namespace only,
+// so that nothing compiled here is linked in place of the rest of the library's code on a
+// processor without AVX2. It is called only where the processor has AVX2 (robot_check.cpp).
+
+#include "core/simd.h"
+#include "query/robot_kinematics.h"
+
+namespace sphys {
+
+#if defined(__AVX2__)
+namespace {
+
+#include "query/robot_kinematics_kernel.h"
+
+}  // namespace
+
+PoseBlock avx2_pose_block() { return &pose_block_of<Avx2Lanes>; }
+#else
+PoseBlock avx2_pose_block() { return nullptr; }
+#endif
+
+}  // namespace sphys

@@ -1,0 +1,130 @@
+// A robot's files compiled into the runtime's RobotModel: the URDF's tree of links and joints,
+// the spheres on its links and the SRDF's pairs of links that are never checked.
+
+#include "sphys/tools/robot_model_file.h"
+
+#include <algorithm>
+#include <deque>
+#include <map>
+#include <string>
+#include <tinyxml2.h>
+
+#include "io/input_file.h"
+#include "sphys/error.h"
+
+namespace sphys::tools {
+namespace {
+
+RobotJointType joint_type(const Robot& robot, const RobotJoint& joint) {
+  if (!joint.mimics.empty()) {
+    throw Error::in_file(robot.file, "joint \"" + joint.name + "\" mimics \"" + joint.mimics +
+                                         "\": mimic joints are not supported by robot checks");
+  }
+  if (joint.type == "revolute") return RobotJointType::kRevolute;
+  if (joint.type == "continuous") return RobotJointType::kContinuous;
+  if (joint.type == "prismatic") return RobotJointType::kPrismatic;
+  throw Error::in_file(robot.file, "joint \"" + joint.name + "\" is " + joint.type +
+                                       ": robot checks take revolute, continuous, prismatic and "
+                                       "fixed joints");
+}
+
+}  // namespace
+
+RobotModel robot_model(const Robot& robot, std::span<const LinkSpheres> links,
+                       std::span<const std::array<std::string, 2>> disabled) {
+  RobotModel model;
+  model.name = robot.name;
+  // Each link's joint from its parent, by the link's name.
+  std::map<std::string, const RobotJoint*> joint_to;
+  std::map<std::string, std::vector<const RobotJoint*>> children;
+  for (const RobotJoint& joint : robot.joints) {
+    joint_to[joint.child] = &joint;
+    children[joint.parent].push_back(&joint);
+  }
+  for (auto& [parent, list] : children) {
+    std::ranges::sort(list,
+                      [](const RobotJoint* a, const RobotJoint* b) { return a->child < b->child; });
+  }
+  std::deque<std::pair<std::string, std::int32_t>> open = {{robot.root_link, -1}};
+  while (!open.empty()) {
+    const auto [name, parent] = open.front();
+    open.pop_front();
+    RobotModel::Link link;
+    link.name = name;
+    link.parent = parent;
+    if (const auto joint = joint_to.find(name); joint != joint_to.end()) {
+      const RobotJoint& j = *joint->second;
+      link.origin = j.origin;
+      if (j.type != "fixed") {
+        RobotJointType type = joint_type(robot, j);
+        link.joint = static_cast<std::int32_t>(model.joints.size());
+        model.joints.push_back({j.name, type, j.axis, j.lower, j.upper});
+      }
+    }
+    const auto index = static_cast<std::int32_t>(model.links.size());
+    model.links.push_back(std::move(link));
+    for (const RobotJoint* child : children[name]) open.emplace_back(child->child, index);
+  }
+  for (const LinkSpheres& link : links) {
+    std::int32_t index = -1;
+    try {
+      index = model.link_index(link.link);
+    } catch (const Error&) {
+      throw Error::in_file(robot.file, "has no link \"" + link.link + "\" for its spheres");
+    }
+    for (const Sphere& sphere : link.spheres) {
+      model.sphere_links.push_back(index);
+      model.spheres.push_back(sphere);
+    }
+  }
+  for (const auto& [a, b] : disabled) {
+    // Pairs naming links the robot does not have (an SRDF for another version of it) are left
+    // out: they disable nothing.
+    const auto has = [&](const std::string& n) {
+      return std::ranges::any_of(model.links,
+                                 [&](const RobotModel::Link& l) { return l.name == n; });
+    };
+    if (has(a) && has(b))
+      model.allowed_link_pairs.push_back({model.link_index(a), model.link_index(b)});
+  }
+  check_robot_model(model);
+  return model;
+}
+
+std::vector<std::array<std::string, 2>> read_disabled_collisions(
+    const std::filesystem::path& srdf) {
+  const std::string text = read_input_file(srdf, InputKind::kRobot);
+  tinyxml2::XMLDocument document;
+  if (document.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
+    throw Error::at_line(srdf, static_cast<std::size_t>(std::max(document.ErrorLineNum(), 1)),
+                         std::string("not valid XML: ") + document.ErrorStr());
+  }
+  const tinyxml2::XMLElement* root = document.RootElement();
+  if (root == nullptr || std::string(root->Name()) != "robot") {
+    throw Error::in_file(srdf, "is not an SRDF (its root element is not <robot>)");
+  }
+  std::vector<std::array<std::string, 2>> pairs;
+  for (const tinyxml2::XMLElement* element = root->FirstChildElement("disable_collisions");
+       element != nullptr; element = element->NextSiblingElement("disable_collisions")) {
+    const char* a = element->Attribute("link1");
+    const char* b = element->Attribute("link2");
+    if (a == nullptr || b == nullptr) {
+      throw Error::at_line(srdf, static_cast<std::size_t>(element->GetLineNum()),
+                           "disable_collisions needs both link1 and link2");
+    }
+    pairs.push_back({a, b});
+  }
+  return pairs;
+}
+
+RobotModel load_robot_model(const std::filesystem::path& urdf, const std::filesystem::path& spheres,
+                            std::span<const RobotPackage> packages,
+                            const std::optional<std::filesystem::path>& srdf) {
+  const Robot robot = load_robot(urdf, packages);
+  const std::vector<LinkSpheres> links = read_robot_spheres(spheres);
+  const std::vector<std::array<std::string, 2>> disabled =
+      srdf ? read_disabled_collisions(*srdf) : std::vector<std::array<std::string, 2>>{};
+  return robot_model(robot, links, disabled);
+}
+
+}  // namespace sphys::tools
