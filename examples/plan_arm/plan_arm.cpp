@@ -1,6 +1,6 @@
-// Plans the test robot's arm around a pile of bunnies with OMPL (RRT-Connect), sphys's batched
-// configuration check serving as OMPL's state-validity checker and motion validator, then checks
-// the path it returns with sphys's own overlap queries at ten times finer steps.
+// Plans the test robot's arm around a pile of bunnies with OMPL (RRT-Connect), sphys's checks from
+// joint values (RobotChecker) serving as OMPL's state-validity checker and motion validator, then
+// checks the path it returns with sphys's own overlap queries at ten times finer steps.
 //
 //   plan_arm [--stacks S] [--per-stack N] [--time SECONDS] [--seed K]
 //
@@ -25,8 +25,9 @@
 
 #include "robot_arm/bunny_pile.h"
 #include "robot_arm/robot_arm.h"
-#include "sphys/configuration_check.h"
 #include "sphys/error.h"
+#include "sphys/robot_check.h"
+#include "sphys/tools/robot_model_file.h"
 #include "sphys/world_query.h"
 
 namespace {
@@ -35,8 +36,8 @@ namespace ob = ompl::base;
 namespace og = ompl::geometric;
 using sphys::examples::RobotArm;
 
-// Largest joint change between two configurations a motion is checked at: OMPL's motion
-// validators check motions at discrete steps too. unit: rad (m for the fingers)
+// Largest change of the joint values (their Euclidean norm) between two states a motion is checked
+// at: OMPL's motion validators check motions at discrete steps too. unit: rad (m for the fingers)
 constexpr double kMotionStep = 0.02;
 // The returned path is checked again at steps this many times finer.
 constexpr int kFinerChecks = 10;
@@ -46,12 +47,13 @@ std::vector<double> values_of(const ob::State* state, std::size_t joints) {
   return {real->values, real->values + joints};
 }
 
-// The configurations from a to b at steps of at most `step` per joint, both ends included.
+// The configurations from a to b at steps of at most `step` (the Euclidean norm of the joint
+// values' change, as RobotChecker::check_motion steps), both ends included.
 std::vector<std::vector<double>> steps_between(const std::vector<double>& a,
                                                const std::vector<double>& b, double step) {
-  double widest = 0.0;
-  for (std::size_t j = 0; j < a.size(); ++j) widest = std::max(widest, std::abs(b[j] - a[j]));
-  const int count = std::max(1, static_cast<int>(std::ceil(widest / step)));
+  double length = 0.0;
+  for (std::size_t j = 0; j < a.size(); ++j) length += (b[j] - a[j]) * (b[j] - a[j]);
+  const int count = std::max(1, static_cast<int>(std::ceil(std::sqrt(length) / step)));
   std::vector<std::vector<double>> out;
   for (int k = 0; k <= count; ++k) {
     std::vector<double> v(a.size());
@@ -61,77 +63,72 @@ std::vector<std::vector<double>> steps_between(const std::vector<double>& a,
   return out;
 }
 
-// sphys's batched check over configurations of the arm: each posed, all checked at once.
+// The arm as sphys's robot checks take it: its URDF's chain with the links' spheres, in the same
+// joint order as the arm's (the order OMPL's states hold the values in).
+sphys::RobotModel model_of(const RobotArm& arm) {
+  sphys::RobotModel model = sphys::tools::robot_model(arm.robot, arm.links);
+  model.base = Eigen::Isometry3d::Identity();
+  model.base.translate(arm.base.translation.cast<double>());
+  model.base.rotate(arm.base.rotation.cast<double>());
+  for (std::size_t j = 0; j < arm.joints.size(); ++j) {
+    if (j >= model.joints.size() || model.joints[j].name != arm.joints[j]) {
+      throw sphys::Error("the arm's joint " + arm.joints[j] + " is not the model's joint " +
+                         std::to_string(j));
+    }
+  }
+  return model;
+}
+
+// sphys's checks from joint values, counted.
 class ArmChecker {
  public:
   ArmChecker(const RobotArm& arm, const sphys::WorldQuery& query)
-      : arm_(arm), checker_(query, arm.sphere_links) {}
-
-  // Per configuration, free or not.
-  [[nodiscard]] std::vector<bool> free(const std::vector<std::vector<double>>& configurations) {
-    spheres_.resize(configurations.size() * arm_.spheres() * 4);
-    results_.resize(configurations.size());
-    for (std::size_t c = 0; c < configurations.size(); ++c) {
-      arm_.posed_spheres(configurations[c],
-                         std::span(spheres_).subspan(c * arm_.spheres() * 4, arm_.spheres() * 4));
-    }
-    checker_.check(spheres_, results_);
-    ++batches_;
-    checked_ += configurations.size();
-    std::vector<bool> out;
-    for (const sphys::ConfigurationResult& r : results_) out.push_back(r.free);
-    return out;
-  }
-  // One configuration: a bool, not the proxy vector<bool>::front() gives, which would dangle
-  // once the vector is gone.
+      : checker_(query, model_of(arm)) {}
   [[nodiscard]] bool free_one(const std::vector<double>& configuration) {
-    return free({configuration}).front();
+    checker_.check(configuration, result_);
+    ++configurations_;
+    return result_.front().free;
   }
-  [[nodiscard]] std::size_t batches() const { return batches_; }
-  [[nodiscard]] std::size_t checked() const { return checked_; }
+  [[nodiscard]] sphys::MotionResult motion(const std::vector<double>& a,
+                                           const std::vector<double>& b) {
+    ++motions_;
+    return checker_.check_motion(a, b, kMotionStep);
+  }
+  [[nodiscard]] std::size_t configurations() const { return configurations_; }
+  [[nodiscard]] std::size_t motions() const { return motions_; }
 
  private:
-  const RobotArm& arm_;
-  sphys::ConfigurationChecker checker_;
-  std::vector<float> spheres_;
-  std::vector<sphys::ConfigurationResult> results_;
-  std::size_t batches_ = 0;
-  std::size_t checked_ = 0;
+  sphys::RobotChecker checker_;
+  std::vector<sphys::ConfigurationResult> result_ = std::vector<sphys::ConfigurationResult>(1);
+  std::size_t configurations_ = 0;
+  std::size_t motions_ = 0;
 };
 
-// OMPL's motion validator: the motion's steps checked in one batch.
+// OMPL's motion validator: RobotChecker::check_motion, its states coarse to fine.
 class SphysMotionValidator final : public ob::MotionValidator {
  public:
   SphysMotionValidator(const ob::SpaceInformationPtr& si, ArmChecker& checker, std::size_t joints)
       : ob::MotionValidator(si), checker_(checker), joints_(joints) {}
 
   bool checkMotion(const ob::State* a, const ob::State* b) const override {
-    const auto steps = steps_between(values_of(a, joints_), values_of(b, joints_), kMotionStep);
-    const std::vector<bool> free = checker_.free(steps);
-    const bool all_free = std::all_of(free.begin(), free.end(), [](bool f) { return f; });
-    if (all_free)
-      ++valid_;
-    else
-      ++invalid_;
-    return all_free;
+    const bool free = checker_.motion(values_of(a, joints_), values_of(b, joints_)).free;
+    ++(free ? valid_ : invalid_);
+    return free;
   }
 
   bool checkMotion(const ob::State* a, const ob::State* b,
                    std::pair<ob::State*, double>& last_valid) const override {
-    const auto steps = steps_between(values_of(a, joints_), values_of(b, joints_), kMotionStep);
-    const std::vector<bool> free = checker_.free(steps);
-    const auto first_bad = std::find(free.begin(), free.end(), false);
-    if (first_bad == free.end()) {
+    const sphys::MotionResult motion =
+        checker_.motion(values_of(a, joints_), values_of(b, joints_));
+    if (motion.free) {
       ++valid_;
       return true;
     }
     ++invalid_;
-    const auto bad = static_cast<std::size_t>(first_bad - free.begin());
-    const double fraction =
-        bad == 0 ? 0.0 : static_cast<double>(bad - 1) / static_cast<double>(steps.size() - 1);
-    if (last_valid.first != nullptr)
-      si_->getStateSpace()->interpolate(a, b, fraction, last_valid.first);
-    last_valid.second = fraction;
+    if (last_valid.first != nullptr) {
+      si_->getStateSpace()->interpolate(a, b, motion.last_free, last_valid.first);
+    }
+    last_valid.second = motion.last_free;
     return false;
   }
 
@@ -213,8 +210,7 @@ int run(const Arguments& arguments) {
     if (tries == 1000) throw sphys::Error("no start and goal blocked from each other found");
     start = random_free();
     goal = random_free();
-    const std::vector<bool> straight = checker.free(steps_between(start, goal, kMotionStep));
-    if (std::find(straight.begin(), straight.end(), false) != straight.end()) break;
+    if (!checker.motion(start, goal).free) break;
   }
   ob::ScopedState<> start_state(space);
   ob::ScopedState<> goal_state(space);
@@ -261,10 +257,10 @@ int run(const Arguments& arguments) {
   std::printf(
       "{\n  \"bunnies\": %zu,\n  \"robot_spheres\": %zu,\n  \"joints\": %zu,\n"
       "  \"solved\": %s,\n  \"planning_seconds\": %.3f,\n  \"waypoints\": %zu,\n"
-      "  \"configurations_checked\": %zu,\n  \"check_batches\": %zu,\n"
+      "  \"configurations_checked\": %zu,\n  \"motions_checked\": %zu,\n"
       "  \"path_states_checked_by_queries\": %zu,\n  \"path_states_colliding\": %zu\n}\n",
       pile.poses.size(), arm.spheres(), joints, solved ? "true" : "false", seconds, waypoints,
-      checker.checked(), checker.batches(), finer_states, colliding_states);
+      checker.configurations(), checker.motions(), finer_states, colliding_states);
   return free_path ? 0 : 1;
 }
 

@@ -125,9 +125,10 @@ TEST(RobotModelFile, MimicJointsAndBrokenSrdfsAreRefusedNamingThem) {
   urdf.insert(urdf.find("</joint>", elbow), "<mimic joint=\"shoulder_lift\"/>");
   const std::filesystem::path mimic = files.robot.urdf.parent_path() / "mimic.urdf";
   write(mimic, urdf);
-  EXPECT_THAT(
-      test::error_message([&] { (void)load_robot_model(mimic, files.spheres, std::span(&files.package, 1)); }),
-      AllOf(HasSubstr("mimic.urdf"), HasSubstr("\"elbow\" mimics \"shoulder_lift\"")));
+  EXPECT_THAT(test::error_message([&] {
+                (void)load_robot_model(mimic, files.spheres, std::span(&files.package, 1));
+              }),
+              AllOf(HasSubstr("mimic.urdf"), HasSubstr("\"elbow\" mimics \"shoulder_lift\"")));
   const std::filesystem::path broken = files.dir.path() / "broken.srdf";
   write(broken, "<robot>\n\n  <disable_collisions link1=\"base_link\"/>\n</robot>\n");
   EXPECT_THAT(test::error_message([&] { (void)read_disabled_collisions(broken); }),
