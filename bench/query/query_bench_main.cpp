@@ -272,6 +272,34 @@ void configuration_checks(const Options& options) {
     values_agree += results[c].free == from_values[c].free ? 1 : 0;
   }
 
+  // Motions of 32 states from the configurations, each joint moved by up to 0.1 (rad or m): the
+  // free ones' check_motion against one configuration's check from joint values.
+  constexpr std::uint32_t kMotionStates = 32;
+  std::vector<double> free_motion_us;
+  std::size_t motions = 0;
+  {
+    Rng motion_rng(5);
+    std::vector<double> to(joints);
+    for (std::size_t c = 0; c < count && free_motion_us.size() < 20000; ++c) {
+      const std::span<const double> from = std::span(model_values).subspan(c * joints, joints);
+      double length = 0.0;
+      bool inside = true;
+      for (std::size_t j = 0; j < joints; ++j) {
+        to[j] = from[j] + std::uniform_real_distribution<double>(-0.1, 0.1)(motion_rng);
+        inside = inside && to[j] >= model.joints[j].lower && to[j] <= model.joints[j].upper;
+        length += (to[j] - from[j]) * (to[j] - from[j]);
+      }
+      if (!inside) continue;
+      // Just over length / 31, so that rounding cannot make it 33 states.
+      const double resolution = std::sqrt(length) / (kMotionStates - 1) * (1.0 + 1e-9);
+      const auto start = Clock::now();
+      const MotionResult motion = robot_checker.check_motion(from, to, resolution);
+      const double us = microseconds(Clock::now() - start);
+      ++motions;
+      if (motion.free && motion.states == kMotionStates) free_motion_us.push_back(us);
+    }
+  }
+
   // Threads: the whole batch at once, one thread then two, alternating.
   std::vector<double> one_ms;
   std::vector<double> two_ms;
@@ -316,6 +344,12 @@ void configuration_checks(const Options& options) {
       "\nBullet, on the same spheres, agrees with sphys on %.2f%% of these "
       "configurations.\n",
       100.0 * double(bullet_agrees) / fcl_n);
+  std::printf(
+      "\nMotions of %u states (each joint moved by up to 0.1 from a configuration above): %zu "
+      "free of %zu, check_motion's median %.3f µs, %.2f× one configuration's check from joint "
+      "values (%.3f µs).\n",
+      kMotionStates, free_motion_us.size(), motions, median(free_motion_us),
+      median(free_motion_us) / median(from_values_us), median(from_values_us));
   std::printf(
       "\nFCL from joint values: %.3f µs a configuration against sphys's %.3f, %.1f× (the FCL row "
       "leaves out FCL's kinematics, which the caller computes: the link poses here come from "

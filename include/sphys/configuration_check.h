@@ -79,15 +79,33 @@ class ConfigurationChecker {
     Run& operator=(const Run&) = delete;
     // One configuration's spheres() spheres, (x, y, z, radius) each, as check() reads them.
     [[nodiscard]] ConfigurationResult check(const float* spheres);
+    // Several configurations checked together, as a motion's states are: `configurations` of them
+    // at `spheres` (which must stay as they are until the next gather or check), each link
+    // bounded once over all of them and the groups near that bound collected once, so that a link
+    // far from everything costs nothing more per configuration. check_gathered(c) then gives what
+    // check() would for configuration c; a configuration out of range throws sphys::Error.
+    void gather(const float* spheres, std::size_t configurations);
+    [[nodiscard]] ConfigurationResult check_gathered(std::size_t configuration);
 
    private:
     const ConfigurationChecker* checker_;
     std::unique_ptr<Scratch> scratch_;
+    const float* gathered_ = nullptr;
+    std::size_t gathered_count_ = 0;
+    bool gathered_finite_ = true;
   };
 
  private:
   // One configuration's S spheres, x y z r each.
   [[nodiscard]] ConfigurationResult check_one(const float* spheres, Scratch& scratch) const;
+  // The groups near the link's bound in `scratch`, into its candidates (up to kMostCandidates).
+  void collect_candidates(std::size_t link, Scratch& scratch) const;
+  // The slot of a body the sphere (x y z r) of `link` touches, from the link's candidates, else -1.
+  [[nodiscard]] std::int32_t sphere_touches(const float* sphere, std::size_t link,
+                                            const Scratch& scratch) const;
+  // The first sphere of the first pair of spheres of different links (not allowed) that touch,
+  // and its partner in `other`; -1 when none do.
+  [[nodiscard]] std::int32_t self_collision(const float* spheres, std::int32_t& other) const;
   // The slot of a body whose leaf spheres the sphere touches, else -1: over every group the
   // hierarchy leads to, or over `candidates` only (groups known to hold every group near it).
   [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius) const;

@@ -100,8 +100,8 @@ void walk_near(const Snapshot& snapshot, float x, float y, float z, float radius
 
 }  // namespace
 
-// Per link of one configuration: the sphere bounding its spheres, and the groups near it,
-// collected when its first sphere is checked.
+// Per link of one configuration (or of several gathered: Run::gather), the sphere bounding its
+// spheres, and the groups near it, collected when its first sphere is checked.
 struct ConfigurationChecker::Scratch {
   // Groups kept per link; a link near more is checked sphere by sphere through the hierarchy.
   static constexpr std::uint32_t kMostCandidates = 32;
@@ -115,27 +115,36 @@ struct ConfigurationChecker::Scratch {
         candidates(links * kMostCandidates),
         candidate_count(links) {}
 
-  // Each link's bounding sphere: about the mean of its spheres' centres, reaching the farthest;
-  // no link's groups collected yet.
-  void bound_links(const float* posed, std::span<const std::int32_t> links) {
+  // Each link's bounding sphere over `configurations` consecutive configurations: about the mean
+  // of its spheres' centres, reaching the farthest; no link's groups collected yet. Whether every
+  // sphere is finite is in `finite`.
+  void bound_links(const float* posed, std::size_t configurations,
+                   std::span<const std::int32_t> links) {
     std::ranges::fill(centre, Vec3::Zero());
     std::ranges::fill(radius, 0.0f);
     std::ranges::fill(spheres, 0u);
     std::ranges::fill(candidate_count, kNotCollected);
-    for (std::size_t i = 0; i < links.size(); ++i) {
-      const float* s = posed + i * kFloatsPerSphere;
-      centre[links[i]] += Vec3(s[0], s[1], s[2]);
-      ++spheres[links[i]];
+    finite = true;
+    const std::size_t per = links.size() * kFloatsPerSphere;
+    for (std::size_t c = 0; c < configurations; ++c) {
+      for (std::size_t i = 0; i < links.size(); ++i) {
+        const float* s = posed + c * per + i * kFloatsPerSphere;
+        centre[links[i]] += Vec3(s[0], s[1], s[2]);
+        ++spheres[links[i]];
+        finite = finite && std::isfinite(s[0] + s[1] + s[2] + s[3]) && s[3] >= 0.0f;
+      }
     }
     for (std::size_t l = 0; l < centre.size(); ++l) {
       if (spheres[l] > 0) centre[l] /= static_cast<float>(spheres[l]);
     }
-    for (std::size_t i = 0; i < links.size(); ++i) {
-      const float* s = posed + i * kFloatsPerSphere;
-      const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
-      // Rounding of the mean and the norm must not leave a sphere's surface outside: a relative
-      // margin, as the narrow phase's bounds have.
-      radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
+    for (std::size_t c = 0; c < configurations; ++c) {
+      for (std::size_t i = 0; i < links.size(); ++i) {
+        const float* s = posed + c * per + i * kFloatsPerSphere;
+        const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
+        // Rounding of the mean and the norm must not leave a sphere's surface outside: a
+        // relative margin, as the narrow phase's bounds have.
+        radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
+      }
     }
   }
 
@@ -144,7 +153,52 @@ struct ConfigurationChecker::Scratch {
   std::vector<std::uint32_t> spheres;
   std::vector<std::uint32_t> candidates;
   std::vector<std::int32_t> candidate_count;
+  bool finite = true;
+  // Gathered configurations: the spheres whose link has groups near it, in order, once known.
+  std::vector<std::uint32_t> near;
+  bool near_known = false;
 };
+
+void ConfigurationChecker::collect_candidates(std::size_t link, Scratch& scratch) const {
+  std::int32_t& count = scratch.candidate_count[link];
+  std::uint32_t* candidates = scratch.candidates.data() + link * Scratch::kMostCandidates;
+  count = 0;
+  walk_near(query_->snapshot(), scratch.centre[link].x(), scratch.centre[link].y(),
+            scratch.centre[link].z(), scratch.radius[link], [&](std::uint32_t g) {
+              if (group_seen_[g] == 0) return true;
+              if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
+                count = Scratch::kTooMany;
+                return false;
+              }
+              candidates[count++] = g;
+              return true;
+            });
+}
+
+std::int32_t ConfigurationChecker::sphere_touches(const float* s, std::size_t link,
+                                                  const Scratch& scratch) const {
+  const std::int32_t count = scratch.candidate_count[link];
+  if (count == Scratch::kTooMany) return touched_body(s[0], s[1], s[2], s[3]);
+  return touched_body(s[0], s[1], s[2], s[3],
+                      std::span(scratch.candidates.data() + link * Scratch::kMostCandidates,
+                                static_cast<std::size_t>(count)));
+}
+
+std::int32_t ConfigurationChecker::self_collision(const float* spheres, std::int32_t& other) const {
+  for (const auto& [i, j] : self_pairs_) {
+    const float* a = spheres + i * kFloatsPerSphere;
+    const float* b = spheres + j * kFloatsPerSphere;
+    const float dx = a[0] - b[0];
+    const float dy = a[1] - b[1];
+    const float dz = a[2] - b[2];
+    const float reach = a[3] + b[3];
+    if (dx * dx + dy * dy + dz * dz <= reach * reach) {
+      other = j;
+      return i;
+    }
+  }
+  return -1;
+}
 
 std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius) const {
   const Snapshot& snapshot = query_->snapshot();
@@ -185,43 +239,19 @@ ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratc
     result.other_sphere = other;
     return result;
   };
-  scratch.bound_links(spheres, links_);
+  scratch.bound_links(spheres, 1, links_);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     const float* s = spheres + i * kFloatsPerSphere;
     // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
     if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
     const auto link = static_cast<std::size_t>(links_[i]);
-    std::int32_t& count = scratch.candidate_count[link];
-    std::uint32_t* candidates = scratch.candidates.data() + link * Scratch::kMostCandidates;
-    if (count == Scratch::kNotCollected) {
-      count = 0;
-      walk_near(query_->snapshot(), scratch.centre[link].x(), scratch.centre[link].y(),
-                scratch.centre[link].z(), scratch.radius[link], [&](std::uint32_t g) {
-                  if (group_seen_[g] == 0) return true;
-                  if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
-                    count = Scratch::kTooMany;
-                    return false;
-                  }
-                  candidates[count++] = g;
-                  return true;
-                });
-    }
-    const std::int32_t body =
-        count == Scratch::kTooMany
-            ? touched_body(s[0], s[1], s[2], s[3])
-            : touched_body(s[0], s[1], s[2], s[3],
-                           std::span(candidates, static_cast<std::size_t>(count)));
+    if (scratch.candidate_count[link] == Scratch::kNotCollected) collect_candidates(link, scratch);
+    const std::int32_t body = sphere_touches(s, link, scratch);
     if (body >= 0) return collide(i, body, -1);
   }
-  for (const auto& [i, j] : self_pairs_) {
-    const float* a = spheres + i * kFloatsPerSphere;
-    const float* b = spheres + j * kFloatsPerSphere;
-    const float dx = a[0] - b[0];
-    const float dy = a[1] - b[1];
-    const float dz = a[2] - b[2];
-    const float reach = a[3] + b[3];
-    if (dx * dx + dy * dy + dz * dz <= reach * reach) return collide(i, -1, j);
-  }
+  std::int32_t other = -1;
+  const std::int32_t sphere = self_collision(spheres, other);
+  if (sphere >= 0) return collide(static_cast<std::size_t>(sphere), -1, other);
   return result;
 }
 
@@ -242,7 +272,53 @@ ConfigurationChecker::Run::Run(const ConfigurationChecker& checker)
 ConfigurationChecker::Run::~Run() = default;
 
 ConfigurationResult ConfigurationChecker::Run::check(const float* spheres) {
+  gathered_count_ = 0;  // the scratch is this configuration's now
+  scratch_->near_known = false;
   return checker_->check_one(spheres, *scratch_);
+}
+
+void ConfigurationChecker::Run::gather(const float* spheres, std::size_t configurations) {
+  scratch_->bound_links(spheres, configurations, checker_->links_);
+  scratch_->near_known = false;
+  gathered_ = spheres;
+  gathered_count_ = configurations;
+  gathered_finite_ = scratch_->finite;
+}
+
+ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t configuration) {
+  Scratch& scratch = *scratch_;
+  const ConfigurationChecker& checker = *checker_;
+  if (configuration >= gathered_count_) {
+    throw Error("check_gathered: configuration " + std::to_string(configuration) + " of " +
+                std::to_string(gathered_count_) + " gathered");
+  }
+  const std::size_t per = checker.links_.size() * kFloatsPerSphere;
+  const float* spheres = gathered_ + configuration * per;
+  // A non-finite sphere anywhere: each configuration on its own (which names the sphere), the
+  // scratch bounding that configuration alone each time.
+  if (!gathered_finite_) return checker.check_one(spheres, scratch);
+  if (!scratch.near_known) {
+    scratch.near.clear();
+    for (std::size_t link = 0; link < checker.link_count_; ++link) {
+      if (scratch.spheres[link] > 0) checker.collect_candidates(link, scratch);
+    }
+    for (std::size_t i = 0; i < checker.links_.size(); ++i) {
+      if (scratch.candidate_count[static_cast<std::size_t>(checker.links_[i])] != 0) {
+        scratch.near.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    scratch.near_known = true;
+  }
+  ConfigurationResult result;
+  for (const std::uint32_t i : scratch.near) {
+    const std::int32_t body = checker.sphere_touches(
+        spheres + i * kFloatsPerSphere, static_cast<std::size_t>(checker.links_[i]), scratch);
+    if (body >= 0) return {false, static_cast<std::int32_t>(i), body, -1};
+  }
+  std::int32_t other = -1;
+  const std::int32_t sphere = checker.self_collision(spheres, other);
+  if (sphere >= 0) return {false, sphere, -1, other};
+  return result;
 }
 
 void ConfigurationChecker::check(std::span<const float> spheres,

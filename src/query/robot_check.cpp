@@ -21,6 +21,8 @@ static_assert(RobotChecker::kPosedTogether == kPoseLanes);
 
 // The most states one motion may be cut into: more is a resolution too fine for its length.
 constexpr double kMostMotionStates = 1e7;
+// Motions of up to this many states are posed whole and checked together. unit: states
+constexpr std::uint32_t kStatesCheckedTogether = 256;
 
 // The rows of a matrix, row-major, as the kernel reads them.
 void put(const Eigen::Matrix3d& m, std::vector<float>& out) {
@@ -305,17 +307,34 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
   const std::size_t per = model_.spheres.size() * kFloatsPerSphere;
   PoseScratch scratch(model_);
   ConfigurationChecker::Run checks(checker_);
+  const std::vector<std::uint32_t> order = coarse_to_fine(result.states);
   std::vector<double> values(kPoseLanes * joints);
-  std::vector<float> posed(kPoseLanes * per);
+  // A motion of few states is posed whole and its states checked together (each link's groups
+  // collected once, for the bound of all its states); a longer one a block of states at a time.
+  const bool together = result.states <= kStatesCheckedTogether;
+  std::vector<float> posed((together ? result.states : kPoseLanes) * per);
+  if (together) {
+    for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
+      const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
+      for (std::size_t i = 0; i < n; ++i) {
+        state(first + static_cast<std::uint32_t>(i), values.data() + i * joints);
+      }
+      pose(values.data(), n, posed.data() + first * per, scratch);
+    }
+    checks.gather(posed.data(), result.states);
+  }
   // Checks `count` states, in order: the position of the first that collides (its answer in
   // result.collision), else -1.
   const auto check_states = [&](const std::uint32_t* states, std::size_t count) {
     for (std::size_t first = 0; first < count; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, count - first);
-      for (std::size_t i = 0; i < n; ++i) state(states[first + i], values.data() + i * joints);
-      pose(values.data(), n, posed.data(), scratch);
+      if (!together) {
+        for (std::size_t i = 0; i < n; ++i) state(states[first + i], values.data() + i * joints);
+        pose(values.data(), n, posed.data(), scratch);
+      }
       for (std::size_t i = 0; i < n; ++i) {
-        const ConfigurationResult answer = checks.check(posed.data() + i * per);
+        const ConfigurationResult answer = together ? checks.check_gathered(states[first + i])
+                                                    : checks.check(posed.data() + i * per);
         if (!answer.free) {
           result.collision = answer;
           return static_cast<std::int64_t>(first + i);
@@ -324,7 +343,6 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
     }
     return std::int64_t{-1};
   };
-  const std::vector<std::uint32_t> order = coarse_to_fine(result.states);
   const std::int64_t hit = check_states(order.data(), order.size());
   if (hit < 0) return result;
   // The states before the one found, those not checked yet, in order: the first that collides.

@@ -116,6 +116,61 @@ TEST(ConfigurationCheck, AnswersMatchEverySpherePairOnAnyThreads) {
   }
 }
 
+TEST(ConfigurationCheck, GatheredConfigurationsGetTheAnswersOfEverySpherePair) {
+  // Configurations gathered in runs of 1 to 40, as a motion's states are (each run's links bounded
+  // together, from near to spread over the world), against the oracle; a NaN sphere in one run.
+  QueryRng rng(43);
+  const World world = random_query_world(rng, 40, 2.5f);
+  const WorldQuery query(world);
+  const std::vector<std::int32_t> links{0, 0, 1, 1, 1, 2, 3, 3, 4, 4, 4, 4};
+  const std::vector<std::array<std::int32_t, 2>> allowed{{0, 1}, {1, 2}, {3, 2}};
+  const std::vector<WorldLeaf> leaves = oracle_leaves(world);
+  const std::size_t per = 4 * links.size();
+  for (const bool self_collision : {false, true}) {
+    ConfigurationCheckSettings settings;
+    settings.self_collision = self_collision;
+    settings.allowed_link_pairs = allowed;
+    const ConfigurationChecker checker(query, links, settings);
+    ConfigurationChecker::Run run(checker);
+    std::size_t free = 0;
+    std::size_t checked = 0;
+    for (std::size_t count : {1u, 2u, 8u, 40u, 40u, 17u}) {
+      // A run's configurations near each other: one random configuration, moved a little.
+      const std::vector<float> first = random_configurations(rng, 1, links, 3.0f);
+      std::vector<float> spheres;
+      for (std::size_t c = 0; c < count; ++c) {
+        const Vec3 shift = uniform_point(rng, 0.05f * static_cast<float>(count));
+        for (std::size_t i = 0; i < links.size(); ++i) {
+          spheres.insert(spheres.end(), {first[4 * i] + shift.x(), first[4 * i + 1] + shift.y(),
+                                         first[4 * i + 2] + shift.z(), first[4 * i + 3]});
+        }
+      }
+      if (count == 17) spheres[per * 5 + 4 * 3 + 1] = std::numeric_limits<float>::quiet_NaN();
+      run.gather(spheres.data(), count);
+      // In an order of their own, as a motion's coarse-to-fine order is.
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t c = (k * 7) % count;
+        const ConfigurationResult got = run.check_gathered(c);
+        ConfigurationResult expected =
+            oracle_check(leaves, spheres.data() + c * per, links, allowed, self_collision);
+        // The NaN sphere collides, unless a sphere before it touches a body.
+        if (count == 17 && c == 5 && !(expected.body >= 0 && expected.sphere < 3)) {
+          expected = {false, 3, -1, -1};
+        }
+        ASSERT_EQ(got.free, expected.free) << count << " " << c;
+        EXPECT_EQ(got.sphere, expected.sphere);
+        EXPECT_EQ(got.other_sphere, expected.other_sphere);
+        free += got.free ? 1 : 0;
+        ++checked;
+      }
+    }
+    EXPECT_GT(free, 0u);
+    EXPECT_LT(free, checked);
+    EXPECT_THAT(error_message([&] { (void)run.check_gathered(17); }),
+                testing::HasSubstr("17 gathered"));
+  }
+}
+
 TEST(ConfigurationCheck, ALinkSpanningTheWorldIsCheckedSphereBySphere) {
   // Two spheres of one link at opposite corners: the link's bound holds every group of the
   // world, more than a link keeps as candidates, so its spheres walk the hierarchy themselves.
