@@ -1,9 +1,11 @@
-"""Python's world.check_configurations against the C++ loop on the same world and configurations.
+"""Python's batched checks against the C++ loops on the same world and configurations.
 
 sphys-query-bench --python-reference DIR writes the batched checks' world (100 bunnies at rest,
 the test robot's 60 spheres beside them, 100,000 random configurations) and times the C++ loop
 over them; this script then builds the same world in Python from those files and times the same
-call, one thread, five runs each, medians. Run from the repository root:
+call, one thread, five runs each, medians; then the same from joint values
+(world.check_joint_values against RobotChecker::check, the robot's model loaded from its URDF and
+spheres). Run from the repository root:
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/query_python_bench.py
 """
@@ -17,6 +19,16 @@ import time
 import numpy as np
 
 import sphys
+
+
+def median_ms(call, runs=5):
+    """The median of `runs` timings of call() in ms, and its last result."""
+    times = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        result = call()
+        times.append(1e3 * (time.perf_counter() - start))
+    return float(np.median(times)), result
 
 
 def main():
@@ -35,20 +47,26 @@ def main():
         poses = np.fromfile(path / "poses.f32", dtype=np.float32).reshape(-1, 7)
         links = np.fromfile(path / "links.i32", dtype=np.int32)
         spheres = np.fromfile(path / "spheres.f32", dtype=np.float32).reshape(-1, len(links), 4)
+        package_name, package_dir = reference["package"].split("=", 1)
+        model = sphys.load_robot_model(reference["urdf"], path / "arm.yml",
+                                       packages={package_name: package_dir})
+        values = np.fromfile(path / "values.f64", dtype=np.float64).reshape(-1, len(model.joints))
+        base = np.fromfile(path / "base.f32", dtype=np.float32)
+        model.set_base(base[:3], base[3:])
     world = sphys.World(gravity=(0, 0, 0))
     for pose in poses:
         world.add_body(tree, position=pose[:3], orientation=pose[3:], static=True)
-    times = []
-    for _ in range(5):
-        start = time.perf_counter()
-        result = world.check_configurations(spheres, links)
-        times.append(1e3 * (time.perf_counter() - start))
-    python_ms = float(np.median(times))
+    python_ms, result = median_ms(lambda: world.check_configurations(spheres, links))
     colliding = int((~result["free"]).sum())
     print(f"| configurations | C++ loop ms | Python ms | Python / C++ | colliding (C++, Python) |")
     print(f"| --- | --- | --- | --- | --- |")
     print(f"| {len(spheres)} | {cpp_ms:.1f} | {python_ms:.1f} | {python_ms / cpp_ms:.3f} | "
           f"{reference['colliding']}, {colliding} |")
+    values_ms, result = median_ms(lambda: world.check_joint_values(model, values))
+    cpp_values_ms = float(reference["cpp_values_ms"])
+    colliding = int((~result["free"]).sum())
+    print(f"| from joint values, {len(values)} | {cpp_values_ms:.1f} | {values_ms:.1f} | "
+          f"{values_ms / cpp_values_ms:.3f} | {reference['values_colliding']}, {colliding} |")
 
 
 if __name__ == "__main__":

@@ -31,7 +31,9 @@
 #include "sphys/tools/median.h"
 #include "sphys/tools/robot_model_file.h"
 #include "sphys/tools/sph_file.h"
+#include "sphys/tools/spherize.h"
 #include "sphys/world_query.h"
+#include "support/test_robot.h"
 
 namespace sphys::query_bench {
 namespace {
@@ -150,6 +152,30 @@ Configurations random_configurations(const examples::RobotArm& arm, int count, R
   return out;
 }
 
+// The arm as a RobotModel: its URDF's chain with the links' spheres, standing where the arm does.
+RobotModel arm_model(const examples::RobotArm& arm) {
+  RobotModel model = tools::robot_model(arm.robot, arm.links);
+  model.base = Eigen::Isometry3d::Identity();
+  model.base.translate(arm.base.translation.cast<double>());
+  model.base.rotate(arm.base.rotation.cast<double>());
+  return model;
+}
+
+// Configurations of the arm's joint values (its order) in the model's joint order.
+std::vector<double> in_model_order(const examples::RobotArm& arm, const RobotModel& model,
+                                   const std::vector<double>& values) {
+  const std::size_t joints = model.joints.size();
+  std::vector<double> out(values.size());
+  for (std::size_t j = 0; j < joints; ++j) {
+    const auto at = static_cast<std::size_t>(std::ranges::find(arm.joints, model.joints[j].name) -
+                                             arm.joints.begin());
+    for (std::size_t c = 0; c * joints < out.size(); ++c) {
+      out[c * joints + j] = values[c * joints + at];
+    }
+  }
+  return out;
+}
+
 // The checks' world: the pile, the arm beside it and its random configurations.
 struct CheckScene {
   examples::BunnyPile heap;
@@ -183,20 +209,10 @@ void configuration_checks(const Options& options) {
   const ConfigurationChecker checker(query, arm.sphere_links);
   // From joint values: the arm's model, its kinematics and check in one call,
   // RobotChecker::kPosedTogether configurations a call, the values in the model's joint order.
-  RobotModel model = tools::robot_model(arm.robot, arm.links);
-  model.base = Eigen::Isometry3d::Identity();
-  model.base.translate(arm.base.translation.cast<double>());
-  model.base.rotate(arm.base.rotation.cast<double>());
+  const RobotModel model = arm_model(arm);
   const RobotChecker robot_checker(query, model);
   const std::size_t joints = model.joints.size();
-  std::vector<double> model_values(configurations.values.size());
-  for (std::size_t j = 0; j < joints; ++j) {
-    const auto at = std::ranges::find(arm.joints, model.joints[j].name) - arm.joints.begin();
-    for (std::size_t c = 0; c * joints < model_values.size(); ++c) {
-      model_values[c * joints + j] =
-          configurations.values[c * joints + static_cast<std::size_t>(at)];
-    }
-  }
+  const std::vector<double> model_values = in_model_order(arm, model, configurations.values);
   std::vector<tools::TriangleMesh> link_meshes;
   for (const tools::LinkSpheres& link : arm.links) {
     const auto geometry =
@@ -462,8 +478,34 @@ void python_reference(const Options& options, const std::filesystem::path& dir) 
   }
   std::size_t colliding = 0;
   for (const ConfigurationResult& r : results) colliding += r.free ? 0 : 1;
-  std::printf("configurations %zu spheres %zu colliding %zu cpp_loop_ms %.3f\n", results.size(),
-              scene.arm.spheres(), colliding, median(ms));
+  // From joint values: the test robot's files again (the URDF and its meshes, the spheres as
+  // cuRobo's YAML), the values in the model's order as float64 and the base's pose.
+  const test::TestRobot robot = test::write_test_robot(dir / "robot", test::standard_test_robot());
+  tools::write_robot_spheres(dir / "arm.yml", tools::SphereFileFormat::Curobo, scene.arm.robot,
+                             scene.arm.links);
+  const RobotModel model = arm_model(scene.arm);
+  const std::vector<double> values = in_model_order(scene.arm, model, scene.configurations.values);
+  write("values.f64", values.data(), values.size() * sizeof(double));
+  const Transform& base = scene.arm.base;
+  const std::vector<float> base_pose = {
+      base.translation.x(), base.translation.y(), base.translation.z(), base.rotation.x(),
+      base.rotation.y(),    base.rotation.z(),    base.rotation.w()};
+  write("base.f32", base_pose.data(), base_pose.size() * sizeof(float));
+  const RobotChecker robot_checker(*scene.query, model);
+  std::vector<ConfigurationResult> from_values(results.size());
+  std::vector<double> values_ms;
+  for (int run = 0; run < 5; ++run) {
+    const auto start = Clock::now();
+    robot_checker.check(values, from_values);
+    values_ms.push_back(microseconds(Clock::now() - start) / 1e3);
+  }
+  std::size_t values_colliding = 0;
+  for (const ConfigurationResult& r : from_values) values_colliding += r.free ? 0 : 1;
+  std::printf(
+      "configurations %zu spheres %zu colliding %zu cpp_loop_ms %.3f urdf %s package %s "
+      "values_colliding %zu cpp_values_ms %.3f\n",
+      results.size(), scene.arm.spheres(), colliding, median(ms), robot.urdf.string().c_str(),
+      robot.package_option.c_str(), values_colliding, median(values_ms));
 }
 
 }  // namespace

@@ -13,10 +13,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "sphys/configuration_check.h"
 #include "sphys/error.h"
 #include "sphys/math.h"
 
@@ -57,6 +59,8 @@ inline std::string to_json_text(const py::handle& value) {
 // Three numbers from any sequence (a tuple, a list, a numpy array); sphys::Error naming `what`
 // otherwise or when one is not finite.
 Vec3 vec3_from(const py::handle& value, const char* what);
+// A batched check's answers as a dict of (N,) arrays: free, sphere, body, other_sphere.
+py::dict configuration_results_dict(std::span<const ConfigurationResult> results);
 // A preset's name or a file's path from a str or an os.PathLike (pathlib.Path); sphys::Error
 // naming `what` otherwise.
 std::string spec_from(const py::handle& value, const char* what);
@@ -68,6 +72,7 @@ void bind_mesh(py::module_& m);
 void bind_tree(py::module_& m);
 void bind_world(py::module_& m);
 void bind_query(py::module_& m);  // after bind_world: it adds to World
+void bind_robot(py::module_& m);  // after bind_query: it adds to World and WorldQuery
 void bind_scene(py::module_& m);
 void bind_experiment(py::module_& m);
 

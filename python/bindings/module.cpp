@@ -67,6 +67,7 @@ PYBIND11_MODULE(_sphys, m) {
   bind_tree(m);
   bind_world(m);
   bind_query(m);
+  bind_robot(m);
   bind_scene(m);
   bind_experiment(m);
 }

@@ -105,23 +105,7 @@ py::dict check_configurations(const WorldQuery& query, const py::object& spheres
     checker.check(std::span(rows.data(), static_cast<std::size_t>(rows.size())), results,
                   &parallel);
   }
-  const auto n = static_cast<py::ssize_t>(count);
-  py::array_t<bool> free({n});
-  py::array_t<std::int32_t> sphere({n});
-  py::array_t<std::int32_t> body({n});
-  py::array_t<std::int32_t> other({n});
-  for (std::size_t i = 0; i < count; ++i) {
-    free.mutable_data()[i] = results[i].free;
-    sphere.mutable_data()[i] = results[i].sphere;
-    body.mutable_data()[i] = results[i].body;
-    other.mutable_data()[i] = results[i].other_sphere;
-  }
-  py::dict d;
-  d["free"] = free;
-  d["sphere"] = sphere;
-  d["body"] = body;
-  d["other_sphere"] = other;
-  return d;
+  return configuration_results_dict(results);
 }
 
 constexpr const char* kCheckDoc =
@@ -134,6 +118,26 @@ constexpr const char* kCheckDoc =
     "the sphere it touches, -1).";
 
 }  // namespace
+
+py::dict configuration_results_dict(std::span<const ConfigurationResult> results) {
+  const auto n = static_cast<py::ssize_t>(results.size());
+  py::array_t<bool> free({n});
+  py::array_t<std::int32_t> sphere({n});
+  py::array_t<std::int32_t> body({n});
+  py::array_t<std::int32_t> other({n});
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    free.mutable_data()[i] = results[i].free;
+    sphere.mutable_data()[i] = results[i].sphere;
+    body.mutable_data()[i] = results[i].body;
+    other.mutable_data()[i] = results[i].other_sphere;
+  }
+  py::dict d;
+  d["free"] = free;
+  d["sphere"] = sphere;
+  d["body"] = body;
+  d["other_sphere"] = other;
+  return d;
+}
 
 SharedQuery::SharedQuery(SharedWorld world) : world_(std::move(world)) { refresh(); }
 

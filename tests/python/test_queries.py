@@ -210,3 +210,76 @@ def test_bad_input_raises_errors_naming_the_argument(scene):
         small.query().overlap_sphere((0, 0, 0), 1,
                                      filter=sphys.QueryFilter(skip=[other.body_ids()[1]]))
     assert stranger.index == 0
+
+
+# ---------------------------------------------------------------------------------------------
+# Checks from joint values: a one-link arm from its URDF and spheres, swung into a ball
+
+
+SWING_URDF = """<?xml version="1.0"?>
+<robot name="swing">
+  <link name="base"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="arm"><collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/></geometry>
+  </collision></link>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 1 0"/><limit lower="-3.14" upper="3.14" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+# cuRobo's YAML: one sphere of 0.1 m at the arm's tip, one at the base.
+SWING_SPHERES = """collision_spheres:
+  base:
+    - center: [0.0, 0.0, 0.0]
+      radius: 0.05
+  arm:
+    - center: [1.0, 0.0, 0.0]
+      radius: 0.1
+"""
+
+
+@pytest.fixture
+def swing(tmp_path, sphere_tree):
+    """The arm's model, and a world with a ball of 0.1 m at (0, 0, -1): the tip meets it when the
+    arm has turned about y by asin(0.98) to pi - asin(0.98)."""
+    (tmp_path / "swing.urdf").write_text(SWING_URDF)
+    (tmp_path / "swing.yml").write_text(SWING_SPHERES)
+    model = sphys.load_robot_model(tmp_path / "swing.urdf", tmp_path / "swing.yml")
+    world = sphys.World(gravity=(0, 0, 0))
+    world.add_body(sphere_tree(0.1), position=(0, 0, -1), static=True)
+    return model, world
+
+
+def test_joint_values_and_motions_from_a_urdf(swing):
+    model, world = swing
+    assert model.joints == ["turn"] and model.links == ["base", "arm"] and model.spheres == 2
+    np.testing.assert_allclose(model.limits, [[-3.14, 3.14]])
+    touch = np.arcsin(0.98)
+    angles = np.array([0.0, touch - 0.01, touch + 0.01, np.pi / 2, np.pi - touch - 0.01, -1.0])
+    got = world.check_joint_values(model, angles[:, None], threads=2)
+    np.testing.assert_array_equal(got["free"], [True, True, False, False, False, True])
+    assert list(got["sphere"][2:5]) == [1, 1, 1] and got["body"][2] == 0
+    # The same from a query, and motions: through the ball, beside it, and from inside it.
+    query = world.query()
+    np.testing.assert_array_equal(query.check_joint_values(model, angles[:, None])["free"],
+                                  got["free"])
+    motions = world.check_motions(model, [[0.0], [0.0], [np.pi / 2]], [[3.0], [1.0], [0.0]], 0.01)
+    np.testing.assert_array_equal(motions["free"], [False, True, False])
+    assert motions["first_collision"][1] == -1 and motions["last_free"][1] == 1.0
+    assert motions["first_collision"][2] == 0 and motions["last_free"][2] == 0.0
+    # The first colliding state of the first motion is within a step past the first touch.
+    step = 3.0 / (motions["states"][0] - 1)
+    first = motions["first_collision"][0] * step
+    assert touch <= first + 1e-5 < touch + step + 1e-5
+    assert motions["last_free"][0] == pytest.approx((motions["first_collision"][0] - 1) * step / 3.0)
+
+
+def test_bad_joint_values_name_the_joint(swing):
+    model, world = swing
+    with pytest.raises(sphys.Error, match="joint 'turn'.*outside its limits"):
+        world.check_joint_values(model, [[4.0]])
+    with pytest.raises(sphys.Error, match=r"values must be an \(N, 1\) array"):
+        world.check_joint_values(model, [[0.0, 1.0]])
+    with pytest.raises(sphys.Error, match="resolution"):
+        world.check_motions(model, [[0.0]], [[1.0]], 0.0)
+    with pytest.raises(sphys.Error, match="no_such.urdf"):
+        sphys.load_robot_model("no_such.urdf", "no_such.yml")
