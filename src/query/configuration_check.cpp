@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "query/body_filter.h"
@@ -115,36 +116,71 @@ struct ConfigurationChecker::Scratch {
         candidates(links * kMostCandidates),
         candidate_count(links) {}
 
-  // Each link's bounding sphere over `configurations` consecutive configurations: about the mean
-  // of its spheres' centres, reaching the farthest; no link's groups collected yet. Whether every
-  // sphere is finite is in `finite`.
-  void bound_links(const float* posed, std::size_t configurations,
-                   std::span<const std::int32_t> links) {
+  // Each link's bounding sphere: about the mean of its spheres' centres, reaching the farthest;
+  // no link's groups collected yet.
+  void bound_links(const float* posed, std::span<const std::int32_t> links) {
     std::ranges::fill(centre, Vec3::Zero());
     std::ranges::fill(radius, 0.0f);
     std::ranges::fill(spheres, 0u);
     std::ranges::fill(candidate_count, kNotCollected);
-    finite = true;
-    const std::size_t per = links.size() * kFloatsPerSphere;
-    for (std::size_t c = 0; c < configurations; ++c) {
-      for (std::size_t i = 0; i < links.size(); ++i) {
-        const float* s = posed + c * per + i * kFloatsPerSphere;
-        centre[links[i]] += Vec3(s[0], s[1], s[2]);
-        ++spheres[links[i]];
-        finite = finite && std::isfinite(s[0] + s[1] + s[2] + s[3]) && s[3] >= 0.0f;
-      }
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = posed + i * kFloatsPerSphere;
+      centre[links[i]] += Vec3(s[0], s[1], s[2]);
+      ++spheres[links[i]];
     }
     for (std::size_t l = 0; l < centre.size(); ++l) {
       if (spheres[l] > 0) centre[l] /= static_cast<float>(spheres[l]);
     }
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = posed + i * kFloatsPerSphere;
+      const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
+      // Rounding of the mean and the norm must not leave a sphere's surface outside: a relative
+      // margin, as the narrow phase's bounds have.
+      radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
+    }
+  }
+
+  // For configurations gathered together: each sphere's box of centres and largest radius over
+  // all of them, and each link's bounding sphere from its spheres' boxes (the box's half
+  // diagonal plus the largest radius); no link's groups collected yet. Whether every sphere is
+  // finite is in `finite`.
+  void bound_gathered(const float* posed, std::size_t configurations,
+                      std::span<const std::int32_t> links) {
+    const std::size_t count = links.size();
+    sphere_low.assign(count, Vec3::Constant(std::numeric_limits<float>::infinity()));
+    sphere_high.assign(count, Vec3::Constant(-std::numeric_limits<float>::infinity()));
+    sphere_radius.assign(count, 0.0f);
+    finite = true;
     for (std::size_t c = 0; c < configurations; ++c) {
-      for (std::size_t i = 0; i < links.size(); ++i) {
-        const float* s = posed + c * per + i * kFloatsPerSphere;
-        const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
-        // Rounding of the mean and the norm must not leave a sphere's surface outside: a
-        // relative margin, as the narrow phase's bounds have.
-        radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
+      const float* state = posed + c * count * kFloatsPerSphere;
+      for (std::size_t i = 0; i < count; ++i) {
+        const float* s = state + i * kFloatsPerSphere;
+        const Vec3 at(s[0], s[1], s[2]);
+        sphere_low[i] = sphere_low[i].cwiseMin(at);
+        sphere_high[i] = sphere_high[i].cwiseMax(at);
+        sphere_radius[i] = std::max(sphere_radius[i], s[3]);
+        finite = finite && std::isfinite(s[0] + s[1] + s[2] + s[3]) && s[3] >= 0.0f;
       }
+    }
+    std::vector<Vec3>& low = link_low;
+    std::vector<Vec3>& high = link_high;
+    low.assign(centre.size(), Vec3::Constant(std::numeric_limits<float>::infinity()));
+    high.assign(centre.size(), Vec3::Constant(-std::numeric_limits<float>::infinity()));
+    std::ranges::fill(radius, 0.0f);
+    std::ranges::fill(spheres, 0u);
+    std::ranges::fill(candidate_count, kNotCollected);
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto l = static_cast<std::size_t>(links[i]);
+      low[l] = low[l].cwiseMin(sphere_low[i]);
+      high[l] = high[l].cwiseMax(sphere_high[i]);
+      radius[l] = std::max(radius[l], sphere_radius[i]);
+      ++spheres[l];
+    }
+    for (std::size_t l = 0; l < centre.size(); ++l) {
+      if (spheres[l] == 0) continue;
+      centre[l] = 0.5f * (low[l] + high[l]);
+      // With the relative margin against the rounding of the half diagonal.
+      radius[l] = (0.5f * (high[l] - low[l]).norm() + radius[l]) * (1.0f + 1e-5f);
     }
   }
 
@@ -154,7 +190,13 @@ struct ConfigurationChecker::Scratch {
   std::vector<std::uint32_t> candidates;
   std::vector<std::int32_t> candidate_count;
   bool finite = true;
-  // Gathered configurations: the spheres whose link has groups near it, in order, once known.
+  // Gathered configurations: each sphere's box of centres and largest radius, each link's box,
+  // and the spheres whose bound touches a leaf, in order, once known.
+  std::vector<Vec3> sphere_low;
+  std::vector<Vec3> sphere_high;
+  std::vector<float> sphere_radius;
+  std::vector<Vec3> link_low;
+  std::vector<Vec3> link_high;
   std::vector<std::uint32_t> near;
   bool near_known = false;
 };
@@ -239,7 +281,7 @@ ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratc
     result.other_sphere = other;
     return result;
   };
-  scratch.bound_links(spheres, 1, links_);
+  scratch.bound_links(spheres, links_);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     const float* s = spheres + i * kFloatsPerSphere;
     // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
@@ -278,7 +320,7 @@ ConfigurationResult ConfigurationChecker::Run::check(const float* spheres) {
 }
 
 void ConfigurationChecker::Run::gather(const float* spheres, std::size_t configurations) {
-  scratch_->bound_links(spheres, configurations, checker_->links_);
+  scratch_->bound_gathered(spheres, configurations, checker_->links_);
   scratch_->near_known = false;
   gathered_ = spheres;
   gathered_count_ = configurations;
@@ -302,8 +344,18 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
     for (std::size_t link = 0; link < checker.link_count_; ++link) {
       if (scratch.spheres[link] > 0) checker.collect_candidates(link, scratch);
     }
+    // A sphere whose box over all the gathered configurations, as a sphere, touches nothing
+    // cannot touch anything in any of them.
     for (std::size_t i = 0; i < checker.links_.size(); ++i) {
-      if (scratch.candidate_count[static_cast<std::size_t>(checker.links_[i])] != 0) {
+      const auto link = static_cast<std::size_t>(checker.links_[i]);
+      if (scratch.candidate_count[link] == 0) continue;
+      // With the bounds' relative margin against the rounding of the half diagonal.
+      const Vec3 middle = 0.5f * (scratch.sphere_low[i] + scratch.sphere_high[i]);
+      const float reach = (0.5f * (scratch.sphere_high[i] - scratch.sphere_low[i]).norm() +
+                           scratch.sphere_radius[i]) *
+                          (1.0f + 1e-5f);
+      const float bound[4] = {middle.x(), middle.y(), middle.z(), reach};
+      if (checker.sphere_touches(bound, link, scratch) >= 0) {
         scratch.near.push_back(static_cast<std::uint32_t>(i));
       }
     }

@@ -164,11 +164,12 @@ void RobotChecker::pose(const double* values, std::size_t count, float* out,
     for (std::size_t i = 0; i < static_cast<std::size_t>(kPoseLanes); ++i) {
       // Lanes past `count` repeat the first configuration: posed, never read.
       const double value = values[(i < count ? i : 0) * joints + j];
-      // Turning joints' values brought into [-pi, pi] in double (exactly, by std::remainder),
-      // where the kernel's sine is accurate.
-      scratch.values[j].v[i] = static_cast<float>(
-          joint.type == RobotJointType::kPrismatic ? value
-                                                   : std::remainder(value, 2.0 * std::numbers::pi));
+      // Turning joints' values brought into [-pi, pi] in double (exactly, by std::remainder,
+      // which leaves a value already there as it is), where the kernel's sine is accurate.
+      const bool turned = joint.type != RobotJointType::kPrismatic &&
+                          !(std::abs(value) <= std::numbers::pi);
+      scratch.values[j].v[i] =
+          static_cast<float>(turned ? std::remainder(value, 2.0 * std::numbers::pi) : value);
     }
   }
   compiled_->kernel(compiled_->tables, scratch.values.front().v, scratch.links.front().v,
