@@ -95,8 +95,9 @@ struct StepStats : DetectionCounters {
   std::optional<std::uint32_t> non_finite_body;
 };
 
-// One figure of StepStats, for whatever lists them all (the frames CSV of `sphys simulate`,
-// Python's StepStats): adding a figure to StepStats means adding it to step_figures() alone.
+// One figure of StepStats, for whatever lists them all (the frames CSV of `sphys simulate`, the
+// run summary's time shares, Python's StepStats): adding a figure to StepStats means adding it to
+// step_figures() alone.
 struct StepFigure {
   std::string_view name;  // the member's name, and Python's
   std::string_view unit;  // "ms", "m", "m/s", "J"; empty for counts

@@ -166,8 +166,8 @@ void RobotChecker::pose(const double* values, std::size_t count, float* out,
       const double value = values[(i < count ? i : 0) * joints + j];
       // Turning joints' values brought into [-pi, pi] in double (exactly, by std::remainder,
       // which leaves a value already there as it is), where the kernel's sine is accurate.
-      const bool turned = joint.type != RobotJointType::kPrismatic &&
-                          !(std::abs(value) <= std::numbers::pi);
+      const bool turned =
+          joint.type != RobotJointType::kPrismatic && !(std::abs(value) <= std::numbers::pi);
       scratch.values[j].v[i] =
           static_cast<float>(turned ? std::remainder(value, 2.0 * std::numbers::pi) : value);
     }

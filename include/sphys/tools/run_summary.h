@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sphys/step_stats.h"
@@ -19,9 +20,10 @@ namespace sphys::tools {
 struct RunTotals {
   double wall_s = 0.0;          // unit: s
   std::vector<double> step_ms;  // per frame. unit: ms
-  // Phase times summed over the frames. unit: ms
-  double broad = 0, narrow = 0, contacts_time = 0, response = 0, integration = 0, sleep = 0,
-         step = 0;
+  // Each phase's time summed over the frames, by the figure it is (step_figures(): the frames
+  // CSV's times but the step's), and the steps'. unit: ms
+  std::vector<std::pair<const StepFigure*, double>> phases;
+  double step = 0;
   double contacts = 0;  // summed over the frames
   std::uint32_t max_contacts = 0;
   double substeps = 0;  // summed over the frames

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -67,13 +69,15 @@ void add_end_state(nlohmann::ordered_json& summary, const Scene& scene,
 }  // namespace
 
 void RunTotals::add(const StepStats& s, const SimulationSetup& setup) {
+  if (phases.empty()) {
+    for (const StepFigure& figure : step_figures()) {
+      if (figure.in_frames_csv && figure.unit == "ms" && figure.name != "step_ms") {
+        phases.emplace_back(&figure, 0.0);
+      }
+    }
+  }
   step_ms.push_back(s.step_ms);
-  broad += s.broad_phase_ms;
-  narrow += s.narrow_phase_ms;
-  contacts_time += s.contacts_ms;
-  response += s.response_ms;
-  integration += s.integration_ms;
-  sleep += s.sleep_ms;
+  for (auto& [figure, sum] : phases) sum += figure->read(s);
   step += s.step_ms;
   contacts += s.contacts;
   max_contacts = std::max(max_contacts, s.contacts);
@@ -107,12 +111,14 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
   summary["step_ms"] = {{"mean", mean_ms}, {"median", median(totals.step_ms)}};
   summary["contacts_per_frame"] = {{"mean", totals.contacts / frames},
                                    {"max", totals.max_contacts}};
-  summary["time_share_percent"] = {{"broad_phase", totals.share(totals.broad)},
-                                   {"narrow_phase", totals.share(totals.narrow)},
-                                   {"contacts", totals.share(totals.contacts_time)},
-                                   {"response", totals.share(totals.response)},
-                                   {"integration", totals.share(totals.integration)},
-                                   {"sleep", totals.share(totals.sleep)}};
+  // Per phase, named as its figure less "_ms".
+  nlohmann::ordered_json shares = nlohmann::ordered_json::object();
+  for (const auto& [figure, sum] : totals.phases) {
+    std::string name(figure->name);
+    name.resize(name.size() - std::string_view("_ms").size());
+    shares[name] = totals.share(sum);
+  }
+  summary["time_share_percent"] = shares;
   add_end_state(summary, scene, setup, totals.plausibility.result(), totals.lowest_center_y);
   return summary.dump(2);
 }
