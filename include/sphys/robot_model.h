@@ -65,6 +65,12 @@ struct RobotModel {
 // with a negative or non-finite radius, an allowed pair naming no link, a non-finite pose.
 void check_robot_model(const RobotModel& model);
 
+// Throws sphys::Error naming the configuration and joint of the first value that is NaN, infinite
+// or outside its joint's limits, and `what` (the argument) when `values` is no whole number of
+// configurations of the model's joints.
+void check_joint_values(const RobotModel& model, std::span<const double> values,
+                        std::string_view what);
+
 // Every link's pose in the world for one configuration, in double: the reference the batched
 // float kinematics are checked against. `values`: one per joint; throws sphys::Error naming the
 // joint whose value is NaN or outside its limits.

@@ -91,12 +91,34 @@ void check_robot_model(const RobotModel& model) {
   }
 }
 
+void check_joint_values(const RobotModel& model, std::span<const double> values,
+                        std::string_view what) {
+  const std::size_t joints = model.joints.size();
+  if (joints == 0 ? !values.empty() : values.size() % joints != 0) {
+    throw Error(std::string(what) + ": " + std::to_string(values.size()) +
+                " values is no whole number of configurations of " + std::to_string(joints) +
+                " joints");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const RobotModel::Joint& joint = model.joints[i % joints];
+    const double value = values[i];
+    if (!std::isfinite(value) || value < joint.lower || value > joint.upper) {
+      throw Error(std::string(what) + ": configuration " + std::to_string(i / joints) +
+                  ", joint '" + joint.name + "': " + std::to_string(value) +
+                  (std::isfinite(value) ? " is outside its limits " + std::to_string(joint.lower) +
+                                              " .. " + std::to_string(joint.upper)
+                                        : " is not finite"));
+    }
+  }
+}
+
 std::vector<Eigen::Isometry3d> robot_link_poses(const RobotModel& model,
                                                 std::span<const double> values) {
   if (values.size() != model.joints.size()) {
     throw Error("robot '" + model.name + "': " + std::to_string(values.size()) +
                 " joint values for " + std::to_string(model.joints.size()) + " joints");
   }
+  check_joint_values(model, values, "values");
   std::vector<Eigen::Isometry3d> poses(model.links.size());
   for (std::size_t l = 0; l < model.links.size(); ++l) {
     const RobotModel::Link& link = model.links[l];
@@ -105,11 +127,6 @@ std::vector<Eigen::Isometry3d> robot_link_poses(const RobotModel& model,
       const auto j = static_cast<std::size_t>(link.joint);
       const RobotModel::Joint& joint = model.joints[j];
       const double value = values[j];
-      if (!std::isfinite(value) || !(value >= joint.lower && value <= joint.upper)) {
-        throw Error(joint_text(model, j) + ": the value " + std::to_string(value) +
-                    " is outside its limits " + std::to_string(joint.lower) + " .. " +
-                    std::to_string(joint.upper));
-      }
       if (joint.type == RobotJointType::kPrismatic) {
         local.translate(value * joint.axis);
       } else {
