@@ -77,8 +77,9 @@ class RobotChecker {
   // The kinematics as flat float tables (robot_check.cpp) and a kernel call's buffers.
   struct Compiled;
   struct PoseScratch;
-  // Poses `count` (at most one kernel call's) configurations into `out`.
-  void pose(const double* values, std::size_t count, float* out, PoseScratch& scratch) const;
+  // Poses `count` (at most one kernel call's) configurations: their spheres, in `scratch`.
+  [[nodiscard]] const float* pose(const double* values, std::size_t count,
+                                  PoseScratch& scratch) const;
 
   RobotModel model_;
   ConfigurationChecker checker_;

@@ -143,14 +143,14 @@ struct ConfigurationChecker::Scratch {
   // For configurations gathered together: each sphere's box of centres and largest radius over
   // all of them, and each link's bounding sphere from its spheres' boxes (the box's half
   // diagonal plus the largest radius); no link's groups collected yet. Whether every sphere is
-  // finite is in `finite`.
-  void bound_gathered(const float* posed, std::size_t configurations,
+  // finite.
+  bool bound_gathered(const float* posed, std::size_t configurations,
                       std::span<const std::int32_t> links) {
     const std::size_t count = links.size();
     sphere_low.assign(count, Vec3::Constant(std::numeric_limits<float>::infinity()));
     sphere_high.assign(count, Vec3::Constant(-std::numeric_limits<float>::infinity()));
     sphere_radius.assign(count, 0.0f);
-    finite = true;
+    bool finite = true;
     for (std::size_t c = 0; c < configurations; ++c) {
       const float* state = posed + c * count * kFloatsPerSphere;
       for (std::size_t i = 0; i < count; ++i) {
@@ -182,6 +182,7 @@ struct ConfigurationChecker::Scratch {
       // With the relative margin against the rounding of the half diagonal.
       radius[l] = (0.5f * (high[l] - low[l]).norm() + radius[l]) * (1.0f + 1e-5f);
     }
+    return finite;
   }
 
   std::vector<Vec3> centre;
@@ -189,7 +190,6 @@ struct ConfigurationChecker::Scratch {
   std::vector<std::uint32_t> spheres;
   std::vector<std::uint32_t> candidates;
   std::vector<std::int32_t> candidate_count;
-  bool finite = true;
   // Gathered configurations: each sphere's box of centres and largest radius, each link's box,
   // and the spheres whose bound touches a leaf, in order, once known.
   std::vector<Vec3> sphere_low;
@@ -315,16 +315,14 @@ ConfigurationChecker::Run::~Run() = default;
 
 ConfigurationResult ConfigurationChecker::Run::check(const float* spheres) {
   gathered_count_ = 0;  // the scratch is this configuration's now
-  scratch_->near_known = false;
   return checker_->check_one(spheres, *scratch_);
 }
 
 void ConfigurationChecker::Run::gather(const float* spheres, std::size_t configurations) {
-  scratch_->bound_gathered(spheres, configurations, checker_->links_);
+  gathered_finite_ = scratch_->bound_gathered(spheres, configurations, checker_->links_);
   scratch_->near_known = false;
   gathered_ = spheres;
   gathered_count_ = configurations;
-  gathered_finite_ = scratch_->finite;
 }
 
 ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t configuration) {

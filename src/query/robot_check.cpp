@@ -142,8 +142,8 @@ RobotChecker::~RobotChecker() = default;
 
 const char* RobotChecker::lanes() const { return compiled_->lanes; }
 
-void RobotChecker::pose(const double* values, std::size_t count, float* out,
-                        PoseScratch& scratch) const {
+const float* RobotChecker::pose(const double* values, std::size_t count,
+                                PoseScratch& scratch) const {
   const std::size_t joints = model_.joints.size();
   for (std::size_t j = 0; j < joints; ++j) {
     const RobotModel::Joint& joint = model_.joints[j];
@@ -160,7 +160,7 @@ void RobotChecker::pose(const double* values, std::size_t count, float* out,
   }
   compiled_->kernel(compiled_->tables, scratch.values.front().v, scratch.links.front().v,
                     scratch.posed.data());
-  std::copy_n(scratch.posed.begin(), count * model_.spheres.size() * kFloatsPerSphere, out);
+  return scratch.posed.data();
 }
 
 void RobotChecker::pose_spheres(std::span<const double> values, std::span<float> spheres) const {
@@ -176,7 +176,8 @@ void RobotChecker::pose_spheres(std::span<const double> values, std::span<float>
   PoseScratch scratch(model_);
   for (std::size_t first = 0; first < count; first += kPoseLanes) {
     const std::size_t n = std::min<std::size_t>(kPoseLanes, count - first);
-    pose(values.data() + first * joints, n, spheres.data() + first * per, scratch);
+    std::copy_n(pose(values.data() + first * joints, n, scratch), n * per,
+                spheres.data() + first * per);
   }
 }
 
@@ -193,18 +194,16 @@ void RobotChecker::check(std::span<const double> values, std::span<Configuration
   const auto run = [&](std::size_t begin, std::size_t end) {
     PoseScratch scratch(model_);
     ConfigurationChecker::Run checks(checker_);
-    std::vector<float> posed(kPoseLanes * per);
     for (std::size_t first = begin; first < end; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, end - first);
-      pose(values.data() + first * joints, n, posed.data(), scratch);
-      for (std::size_t i = 0; i < n; ++i) results[first + i] = checks.check(posed.data() + i * per);
+      const float* posed = pose(values.data() + first * joints, n, scratch);
+      for (std::size_t i = 0; i < n; ++i) results[first + i] = checks.check(posed + i * per);
     }
   };
-  if (parallel == nullptr) {
-    run(0, count);
-  } else {
-    parallel->for_each_run(count, kConfigurationsPerRun, run);
-  }
+  const std::size_t runs = (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun;
+  for_each_on(parallel, runs, [&](std::size_t r) {
+    run(r * kConfigurationsPerRun, std::min(count, (r + 1) * kConfigurationsPerRun));
+  });
 }
 
 }  // namespace sphys

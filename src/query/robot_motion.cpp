@@ -85,14 +85,15 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
   // A motion of few states is posed whole and its states checked together (each link's groups
   // collected once, for the bound of all its states); a longer one a block of states at a time.
   const bool together = result.states <= kStatesCheckedTogether;
-  std::vector<float> posed((together ? result.states : kPoseLanes) * per);
+  // The whole motion's states, posed, when they are checked together.
+  std::vector<float> posed(together ? result.states * per : 0);
   if (together) {
     for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
       for (std::size_t i = 0; i < n; ++i) {
         state(first + static_cast<std::uint32_t>(i), values.data() + i * joints);
       }
-      pose(values.data(), n, posed.data() + first * per, scratch);
+      std::copy_n(pose(values.data(), n, scratch), n * per, posed.data() + first * per);
     }
     checks.gather(posed.data(), result.states);
   }
@@ -101,13 +102,14 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
   const auto check_states = [&](const std::uint32_t* states, std::size_t count) {
     for (std::size_t first = 0; first < count; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, count - first);
+      const float* block = nullptr;
       if (!together) {
         for (std::size_t i = 0; i < n; ++i) state(states[first + i], values.data() + i * joints);
-        pose(values.data(), n, posed.data(), scratch);
+        block = pose(values.data(), n, scratch);
       }
       for (std::size_t i = 0; i < n; ++i) {
-        const ConfigurationResult answer = together ? checks.check_gathered(states[first + i])
-                                                    : checks.check(posed.data() + i * per);
+        const ConfigurationResult answer =
+            together ? checks.check_gathered(states[first + i]) : checks.check(block + i * per);
         if (!answer.free) {
           result.collision = answer;
           return static_cast<std::int64_t>(first + i);
@@ -151,11 +153,7 @@ void RobotChecker::check_motions(std::span<const double> from, std::span<const d
     results[m] =
         check_motion(from.subspan(m * joints, joints), to.subspan(m * joints, joints), resolution);
   };
-  if (parallel == nullptr) {
-    for (std::size_t m = 0; m < results.size(); ++m) one(m);
-  } else {
-    parallel->for_each(results.size(), one);
-  }
+  for_each_on(parallel, results.size(), one);
 }
 
 }  // namespace sphys
