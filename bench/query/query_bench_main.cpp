@@ -42,9 +42,15 @@ using Clock = std::chrono::steady_clock;
 using Rng = std::mt19937;
 using tools::median;
 
+// The checks' pile: its bunnies' trees are built to kCheckTreeDepth levels, of which the world
+// uses kCheckLevelsUsed, as a simulation of it would; the checks may ask the deeper ones.
+constexpr int kCheckTreeDepth = 4;   // unit: levels
+constexpr int kCheckLevelsUsed = 2;  // unit: levels
+
 struct Options {
-  int ray_stacks = 100;  // × 10 bunnies
-  int check_stacks = 10;
+  int ray_stacks = 100;   // × 10 bunnies
+  int check_stacks = 10;  // × 10 bunnies, settled by --write-check-pile
+  std::filesystem::path check_pile = examples::kept_bunny_pile();
   int rays = 20000;
   int configurations = 100000;
   int fcl_configurations = 10000;
@@ -186,7 +192,7 @@ struct CheckScene {
 
 CheckScene make_check_scene(const Options& options) {
   CheckScene scene;
-  scene.heap = examples::settle_bunny_pile(options.check_stacks, 10, 900);
+  scene.heap = examples::read_bunny_pile(options.check_pile, kCheckTreeDepth, kCheckLevelsUsed);
   // The robot's files, written for the run and removed after it.
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("sphys-query-bench-" + std::to_string(getpid()));
@@ -211,6 +217,22 @@ void configuration_checks(const Options& options) {
   // RobotChecker::kPosedTogether configurations a call, the values in the model's joint order.
   const RobotModel model = arm_model(arm);
   const RobotChecker robot_checker(query, model);
+  // The same from the bunnies' deeper levels, below the world's leaves a sphere touches.
+  struct DeeperLevel {
+    int depth;
+    std::unique_ptr<RobotChecker> checker;
+    std::vector<ConfigurationResult> results;
+    std::vector<double> us;  // per configuration, of a call for kPosedTogether of them
+  };
+  std::vector<DeeperLevel> deeper;
+  for (int depth = kCheckLevelsUsed + 1; depth <= kCheckTreeDepth; ++depth) {
+    RobotCheckSettings settings;
+    settings.tree_depth = depth;
+    deeper.push_back({depth,
+                      std::make_unique<RobotChecker>(query, model, settings),
+                      std::vector<ConfigurationResult>(options.configurations),
+                      {}});
+  }
   const std::size_t joints = model.joints.size();
   const std::vector<double> model_values = in_model_order(arm, model, configurations.values);
   std::vector<tools::TriangleMesh> link_meshes;
@@ -242,6 +264,7 @@ void configuration_checks(const Options& options) {
   std::vector<double> bullet_us;
   std::size_t bullet_agrees = 0;
   std::size_t both_hit = 0, both_free = 0, spheres_only = 0, mesh_only = 0;
+  std::vector<std::pair<std::size_t, bool>> fcl_hit;  // FCL's configurations and answers
   for (std::size_t block = 0; block < blocks; ++block) {
     const std::size_t begin = block * options.block;
     const std::size_t end = std::min(count, begin + options.block);
@@ -263,6 +286,15 @@ void configuration_checks(const Options& options) {
       from_values_us.push_back(us);
       if (with_fcl) from_values_on_fcl_us.push_back(us);
     }
+    for (DeeperLevel& level : deeper) {
+      for (std::size_t c = begin; c < end; c += RobotChecker::kPosedTogether) {
+        const std::size_t n = std::min<std::size_t>(RobotChecker::kPosedTogether, end - c);
+        const auto start = Clock::now();
+        level.checker->check(std::span(model_values).subspan(c * joints, n * joints),
+                             std::span(level.results).subspan(c, n));
+        level.us.push_back(microseconds(Clock::now() - start) / static_cast<double>(n));
+      }
+    }
     if (!with_fcl) continue;
     for (std::size_t c = begin; c < end; ++c) {
       const auto start = Clock::now();
@@ -275,6 +307,7 @@ void configuration_checks(const Options& options) {
           bullet.touches(std::span(configurations.spheres).subspan(c * per, per));
       bullet_us.push_back(microseconds(Clock::now() - bullet_start));
       bullet_agrees += bullet_hit == sphere_hit ? 1 : 0;
+      fcl_hit.emplace_back(c, mesh_hit);
       both_hit += sphere_hit && mesh_hit ? 1 : 0;
       both_free += !sphere_hit && !mesh_hit ? 1 : 0;
       spheres_only += sphere_hit && !mesh_hit ? 1 : 0;
@@ -384,6 +417,31 @@ void configuration_checks(const Options& options) {
       "\nThreads, the whole batch of %zu: one thread %.1f ms, two threads %.1f ms "
       "(medians of 5 alternating runs): %.2f× on two\n",
       count, median(one_ms), median(two_ms), median(one_ms) / median(two_ms));
+
+  // The levels: what each costs and how often its spheres collide where the meshes are free.
+  std::printf(
+      "\n### The bunnies' levels (trees of %d levels, the world using %d; from joint values)\n\n"
+      "| levels | colliding | median µs/configuration | ratio to %d levels | FCL's "
+      "configurations: spheres collide, meshes free | spheres free, meshes collide |\n"
+      "| --- | --- | --- | --- | --- | --- |\n",
+      kCheckTreeDepth, kCheckLevelsUsed, kCheckLevelsUsed);
+  const auto level_row = [&](int depth, const std::vector<ConfigurationResult>& answers,
+                             const std::vector<double>& us) {
+    std::size_t hits = 0;
+    for (const ConfigurationResult& r : answers) hits += r.free ? 0 : 1;
+    std::size_t only_spheres = 0;
+    std::size_t only_mesh = 0;
+    for (const auto& [c, mesh_hit] : fcl_hit) {
+      only_spheres += !answers[c].free && !mesh_hit ? 1 : 0;
+      only_mesh += answers[c].free && mesh_hit ? 1 : 0;
+    }
+    std::printf("| %d | %.1f%% | %.3f | %.2f | %.2f%% | %.2f%% |\n", depth,
+                100.0 * double(hits) / double(count), median(us),
+                median(us) / median(from_values_us), 100.0 * double(only_spheres) / fcl_n,
+                100.0 * double(only_mesh) / fcl_n);
+  };
+  level_row(kCheckLevelsUsed, from_values, from_values_us);
+  for (const DeeperLevel& level : deeper) level_row(level.depth, level.results, level.us);
 }
 
 void distances(const Options& options) {
@@ -450,7 +508,8 @@ void distances(const Options& options) {
 void python_reference(const Options& options, const std::filesystem::path& dir) {
   const CheckScene scene = make_check_scene(options);
   std::filesystem::create_directories(dir);
-  tools::write_sph(dir / "bunny.sph", *scene.heap.setup.shapes.front().tree);
+  tools::write_sph(dir / "bunny.sph",
+                   scene.heap.setup.shapes.front().tree->truncated(kCheckLevelsUsed));
   const auto write = [&](const std::string& name, const void* data, std::size_t bytes) {
     std::ofstream out(dir / name, std::ios::binary);
     out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
@@ -516,7 +575,7 @@ int main(int argc, char** argv) {
   CLI::App app("sphys-query-bench: sphys's queries beside Bullet and FCL (docs/queries.md)");
   app.add_option("--ray-stacks", options.ray_stacks, "Stacks of 10 bunnies for the rays");
   app.add_option("--check-stacks", options.check_stacks,
-                 "Stacks of 10 bunnies for the configuration checks");
+                 "Stacks of 10 bunnies that --write-check-pile settles");
   app.add_option("--rays", options.rays, "Rays cast");
   app.add_option("--configurations", options.configurations, "Robot configurations checked");
   app.add_option("--fcl-configurations", options.fcl_configurations, "Of them, checked by FCL too");
@@ -524,12 +583,24 @@ int main(int argc, char** argv) {
   app.add_option("--spheres", options.spheres, "The robot's spheres (spherize --spheres)");
   std::vector<std::string> sections = {"rays", "checks", "distance"};
   app.add_option("--sections", sections, "Which of rays, checks, distance to run");
+  app.add_option("--check-pile", options.check_pile,
+                 "The checks' pile, a scene of bunnies at rest (default: the one kept with the "
+                 "sources)");
+  std::string write_pile;
+  app.add_option("--write-check-pile", write_pile,
+                 "Instead: settle --check-stacks stacks of 10 bunnies and write them to this scene "
+                 "file, for --check-pile");
   std::string python_dir;
   app.add_option("--python-reference", python_dir,
                  "Instead: write the checks' world and configurations to this folder and time "
                  "the C++ loop over them (bench/query_python_bench.py)");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (!write_pile.empty()) {
+      sphys::examples::write_bunny_pile(
+          sphys::examples::settle_bunny_pile(options.check_stacks, 10, 900), write_pile);
+      return 0;
+    }
     if (!python_dir.empty()) {
       sphys::query_bench::python_reference(options, python_dir);
       return 0;

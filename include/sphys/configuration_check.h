@@ -24,6 +24,12 @@ struct ConfigurationCheckSettings {
   // can never meet). Spheres of one link never are.
   bool self_collision = false;
   std::vector<std::array<std::int32_t, 2>> allowed_link_pairs;
+  // Levels of the world's sphere-trees the check answers at, the root included; 0: the levels the
+  // world uses (CollisionSettings::tree_depth). Deeper than the world's, a sphere is tested below
+  // the world's leaves it touches only, down to this level (or a tree's last), so that it costs
+  // more only near bodies: fewer configurations collide by the trees' conservatism, and never one
+  // more. unit: levels
+  int tree_depth = 0;
 };
 
 // One configuration's answer.
@@ -111,6 +117,13 @@ class ConfigurationChecker {
   [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius) const;
   [[nodiscard]] std::int32_t touched_body(float x, float y, float z, float radius,
                                           std::span<const std::uint32_t> candidates) const;
+  // Whether the sphere touches the group's leaf spheres at the check's level: those the world
+  // uses, or, with a deeper tree_depth, the spheres at that level below the group's leaves.
+  [[nodiscard]] bool group_touches(std::uint32_t group, const Vec3& centre, float radius) const;
+  // Below the group's leaves, whether the sphere touches a sphere at the level asked: a subtree is
+  // entered where the sphere reaches its bound (SphereTree::subtree_radius), since builders do
+  // not nest children inside their parents.
+  [[nodiscard]] bool touches_below(std::uint32_t group, const Vec3& centre, float radius) const;
   // Runs of configurations, each with its scratch, on the threads.
   template <class Check>
   void run_configurations(std::size_t count, const Parallel* parallel, const Check& check) const;
@@ -119,6 +132,10 @@ class ConfigurationChecker {
   std::vector<std::int32_t> links_;
   std::size_t link_count_ = 0;
   std::vector<std::uint8_t> group_seen_;  // per group of the snapshot: the filter sees its body
+  // The level asked (ConfigurationCheckSettings::tree_depth) when deeper than the world's, else 0;
+  // then each body slot's rotation, as the snapshot placed its leaves.
+  int deeper_depth_ = 0;
+  std::vector<Mat3> rotations_;
   std::vector<std::array<std::int32_t, 2>> self_pairs_;  // sphere pairs checked for self-collision
 };
 

@@ -23,6 +23,9 @@ struct RobotCheckSettings {
   QueryFilter filter;
   // The robot's spheres against each other too, but for the model's allowed link pairs.
   bool self_collision = false;
+  // Levels of the world's sphere-trees the checks answer at (ConfigurationCheckSettings's, which
+  // says how): 0 the world's. unit: levels
+  int tree_depth = 0;
 };
 
 // A straight motion's answer.

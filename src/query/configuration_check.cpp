@@ -22,8 +22,15 @@
 namespace sphys {
 namespace {
 
+using query_detail::kGroupLeaves;
 using query_detail::LeafGroup;
 using query_detail::Snapshot;
+
+// The deepest level a check may ask for. unit: levels
+constexpr int kMostTreeDepth = 16;
+// What touches_below's stack holds at most: a group's leaves, then (branching - 1) more nodes for
+// each level below them (SphereTree's branching is 8 at most).
+constexpr std::size_t kGroupLeavesAndLevelsBelow = kGroupLeaves + 7 * kMostTreeDepth;
 
 // The squared distance from a point to a box. unit: m²
 float squared_distance(const Aabb& box, float x, float y, float z) {
@@ -59,6 +66,28 @@ ConfigurationChecker::ConfigurationChecker(const WorldQuery& query,
   group_seen_.reserve(snapshot.groups.size());
   for (const LeafGroup& group : snapshot.groups) {
     group_seen_.push_back(filter.sees(group.body) ? 1 : 0);
+  }
+  if (settings.tree_depth < 0 || settings.tree_depth > kMostTreeDepth) {
+    throw Error("tree_depth: " + std::to_string(settings.tree_depth) + " levels; give 0 (the " +
+                "world's) to " + std::to_string(kMostTreeDepth));
+  }
+  if (settings.tree_depth > 0) {
+    // A check looks at the world's leaves or below them, never above: it must not be free where
+    // the world's own contacts would not be.
+    if (snapshot.tree_depth == 0 || settings.tree_depth < snapshot.tree_depth) {
+      throw Error("tree_depth: " + std::to_string(settings.tree_depth) +
+                  " levels is shallower than the world's " +
+                  (snapshot.tree_depth == 0 ? std::string("(every level)")
+                                            : std::to_string(snapshot.tree_depth)) +
+                  "; a check may only look deeper");
+    }
+    if (settings.tree_depth > snapshot.tree_depth) {
+      deeper_depth_ = settings.tree_depth;
+      rotations_.reserve(snapshot.poses.size());
+      for (const Transform& pose : snapshot.poses) {
+        rotations_.push_back(pose.rotation.toRotationMatrix());
+      }
+    }
   }
   if (!settings.self_collision) return;
   // Allowed link pairs as a table, either order.
@@ -242,13 +271,55 @@ std::int32_t ConfigurationChecker::self_collision(const float* spheres, std::int
   return -1;
 }
 
+bool ConfigurationChecker::group_touches(std::uint32_t group, const Vec3& centre,
+                                         float radius) const {
+  const Snapshot& snapshot = query_->snapshot();
+  return query_detail::group_touches_sphere(snapshot, snapshot.groups[group], centre, radius) &&
+         (deeper_depth_ == 0 || touches_below(group, centre, radius));
+}
+
+bool ConfigurationChecker::touches_below(std::uint32_t group_index, const Vec3& centre,
+                                         float radius) const {
+  const Snapshot& snapshot = query_->snapshot();
+  const LeafGroup& group = snapshot.groups[group_index];
+  const SphereTree& tree = *snapshot.trees[group.body];
+  const Transform& pose = snapshot.poses[group.body];
+  const Mat3& rotation = rotations_[group.body];
+  // Nodes from here on answer as spheres: the level asked, or a tree's last.
+  const std::uint32_t answer_from = tree.level_begin(tree.last_level(deeper_depth_));
+  // Depth first; each node pops once and pushes at most a branching's children, so the stack
+  // holds at most the group's leaves and (branching - 1) more per level below them.
+  std::array<std::uint32_t, kGroupLeavesAndLevelsBelow> stack;
+  int top = 0;
+  for (std::uint32_t i = group.first; i < group.first + group.count; ++i) {
+    stack[top++] = snapshot.node[i];
+  }
+  while (top > 0) {
+    const std::uint32_t n = stack[--top];
+    const Vec3 at = rotation * tree.sphere(n).center + pose.translation;
+    const float distance_squared = (at - centre).squaredNorm();
+    if (n >= answer_from || tree.is_leaf(n)) {
+      const float reach = tree.sphere(n).radius + radius;
+      if (distance_squared <= reach * reach) return true;
+      continue;
+    }
+    // With the bounds' relative margin against the rounding of the placed centre.
+    const float reach = (tree.subtree_radius(n) + radius) * (1.0f + 1e-5f);
+    if (distance_squared > reach * reach) continue;
+    for (std::uint32_t c = tree.first_child(n); c < tree.first_child(n) + tree.child_count(n);
+         ++c) {
+      stack[top++] = c;
+    }
+  }
+  return false;
+}
+
 std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float radius) const {
   const Snapshot& snapshot = query_->snapshot();
   const Vec3 centre(x, y, z);
   std::int32_t body = -1;
   walk_near(snapshot, x, y, z, radius, [&](std::uint32_t g) {
-    if (group_seen_[g] != 0 &&
-        query_detail::group_touches_sphere(snapshot, snapshot.groups[g], centre, radius)) {
+    if (group_seen_[g] != 0 && group_touches(g, centre, radius)) {
       body = static_cast<std::int32_t>(snapshot.groups[g].body);
       return false;
     }
@@ -265,7 +336,7 @@ std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float
   for (const std::uint32_t g : candidates) {
     const LeafGroup& group = snapshot.groups[g];
     if (squared_distance(group.bounds, x, y, z) <= radius_squared &&
-        query_detail::group_touches_sphere(snapshot, group, centre, radius)) {
+        group_touches(g, centre, radius)) {
       return static_cast<std::int32_t>(group.body);
     }
   }

@@ -48,6 +48,7 @@ ConfigurationCheckSettings configuration_settings(const RobotModel& model,
   out.filter = settings.filter;
   out.self_collision = settings.self_collision;
   out.allowed_link_pairs = model.allowed_link_pairs;
+  out.tree_depth = settings.tree_depth;
   return out;
 }
 

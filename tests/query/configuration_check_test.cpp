@@ -260,6 +260,109 @@ TEST(ConfigurationCheck, TheFilterLeavesBodiesOutAndNaNSpheresNeverPassAsFree) {
   EXPECT_EQ(result[0].sphere, 1);
 }
 
+// Bodies whose trees have 4 levels (children sticking out of their parents, some nodes without
+// children), in a world that uses 2 of them.
+World deep_tree_world(QueryRng& rng, int bodies, float half_side) {
+  WorldSettings settings;
+  settings.gravity = Vec3::Zero();
+  settings.collision.tree_depth = 2;
+  World world(settings);
+  for (int i = 0; i < bodies; ++i) {
+    BodyDesc desc;
+    desc.tree = random_query_tree(rng, std::uniform_int_distribution<int>(2, 8)(rng), 4);
+    desc.pose.rotation = uniform_rotation(rng);
+    desc.pose.translation = uniform_point(rng, half_side);
+    desc.is_static = true;
+    world.add_body(desc);
+  }
+  return world;
+}
+
+// The first sphere that touches, at `depth` levels, a body it also touches at the world's: its
+// index and the bodies it could name (-1 and none when free).
+std::pair<std::int32_t, std::vector<std::uint32_t>> first_touching_at(
+    const std::vector<WorldLeaf>& world_leaves, const std::vector<WorldLeaf>& deep_leaves,
+    const float* spheres, std::size_t count) {
+  const auto touched = [&](const std::vector<WorldLeaf>& leaves, const float* sphere) {
+    std::vector<std::uint32_t> bodies;
+    for (const WorldLeaf& leaf : leaves) {
+      if (touch(sphere, leaf.sphere)) bodies.push_back(leaf.body.index);
+    }
+    return bodies;
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::vector<std::uint32_t> coarse = touched(world_leaves, spheres + 4 * i);
+    std::vector<std::uint32_t> both;
+    for (const std::uint32_t body : touched(deep_leaves, spheres + 4 * i)) {
+      if (std::ranges::find(coarse, body) != coarse.end()) both.push_back(body);
+    }
+    if (!both.empty()) return {static_cast<std::int32_t>(i), both};
+  }
+  return {-1, {}};
+}
+
+TEST(ConfigurationCheck, ADeeperLevelCollidesWhereASphereTouchesABodyAtBothLevels) {
+  QueryRng rng(59);
+  const World world = deep_tree_world(rng, 30, 2.5f);
+  const WorldQuery query(world);
+  const std::vector<std::int32_t> links{0, 0, 1, 1, 1, 2};
+  const std::vector<WorldLeaf> world_leaves = oracle_leaves(world);
+  constexpr std::size_t kConfigurations = 3000;
+  const std::vector<float> spheres = random_configurations(rng, kConfigurations, links, 3.0f);
+  std::vector<ConfigurationResult> at_world(kConfigurations);
+  ConfigurationChecker(query, links).check(spheres, at_world);
+  for (const int depth : {2, 3, 4}) {
+    SCOPED_TRACE(depth);
+    ConfigurationCheckSettings settings;
+    settings.tree_depth = depth;
+    const ConfigurationChecker checker(query, links, settings);
+    const std::vector<WorldLeaf> deep_leaves = oracle_leaves(world, {}, depth);
+    std::vector<ConfigurationResult> results(kConfigurations);
+    checker.check(spheres, results);
+    std::size_t freed = 0;
+    for (std::size_t c = 0; c < kConfigurations; ++c) {
+      const auto [sphere, bodies] = first_touching_at(
+          world_leaves, deep_leaves, spheres.data() + c * 4 * links.size(), links.size());
+      ASSERT_EQ(results[c].free, sphere < 0) << "configuration " << c;
+      EXPECT_EQ(results[c].sphere, sphere);
+      if (sphere >= 0) {
+        EXPECT_THAT(bodies, testing::Contains(std::uint32_t(results[c].body)));
+      }
+      // Never one more collision than at the world's level.
+      if (at_world[c].free) {
+        EXPECT_TRUE(results[c].free);
+      }
+      freed += results[c].free && !at_world[c].free ? 1 : 0;
+    }
+    // Deeper levels free configurations that the world's leaves alone call colliding.
+    if (depth > 2) {
+      EXPECT_GT(freed, kConfigurations / 100);
+    } else {
+      EXPECT_EQ(freed, 0u);
+    }
+  }
+}
+
+TEST(ConfigurationCheck, ALevelAboveTheWorldsIsAnError) {
+  QueryRng rng(61);
+  const World world = deep_tree_world(rng, 3, 1.0f);
+  const WorldQuery query(world);
+  using testing::HasSubstr;
+  for (const int depth : {-1, 1, 17}) {
+    ConfigurationCheckSettings settings;
+    settings.tree_depth = depth;
+    EXPECT_THAT(error_message([&] { ConfigurationChecker(query, {0}, settings); }),
+                HasSubstr("tree_depth: " + std::to_string(depth) + " levels"));
+  }
+  // A world that uses every level has none deeper.
+  const World every_level = random_query_world(rng, 3, 1.0f);
+  const WorldQuery every_query(every_level);
+  ConfigurationCheckSettings three;
+  three.tree_depth = 3;
+  EXPECT_THAT(error_message([&] { ConfigurationChecker(every_query, {0}, three); }),
+              HasSubstr("shallower than the world's (every level)"));
+}
+
 TEST(ConfigurationCheck, BadShapesAreErrorsNamingTheArgument) {
   QueryRng rng(53);
   const World world = random_query_world(rng, 3, 1.0f);

@@ -4,6 +4,7 @@
 // of every body, placed as the world places it, in a plain loop.
 
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -81,11 +82,13 @@ struct WorldLeaf {
   Sphere sphere;
 };
 
-// Every leaf sphere (at the world's tree_depth) of every body the filter sees (categories, mask,
-// skip and sleep read by a plain loop), centres placed as the world places them.
-inline std::vector<WorldLeaf> oracle_leaves(const World& world, const QueryFilter& filter = {}) {
+// Every leaf sphere (at the world's tree_depth, or at `depth` levels when given) of every body
+// the filter sees (categories, mask, skip and sleep read by a plain loop), centres placed as the
+// world places them.
+inline std::vector<WorldLeaf> oracle_leaves(const World& world, const QueryFilter& filter = {},
+                                            std::optional<int> levels = std::nullopt) {
   std::vector<WorldLeaf> out;
-  const int depth = world.settings().collision.tree_depth;
+  const int depth = levels.value_or(world.settings().collision.tree_depth);
   for (std::uint32_t slot = 0; slot < world.body_slots(); ++slot) {
     const BodyId id = world.id_of(slot);
     if (!world.alive(id)) continue;
