@@ -15,6 +15,10 @@ enum class BroadPhaseKind : std::uint8_t {
   kCells,          // Sweep & Prune per cell of a coarse grid (CellSweepAndPrune)
 };
 
+// The most levels a world or a check may be asked to use (CollisionSettings::tree_depth,
+// ConfigurationCheckSettings::tree_depth). unit: levels
+inline constexpr int kMostTreeDepth = 16;
+
 struct CollisionSettings {
   // Levels of every sphere-tree used, the root included; 0 uses them all (a depth-3 tree used as
   // depth 2: the nodes of the last used level are the leaves). unit: levels

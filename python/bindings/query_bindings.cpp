@@ -81,7 +81,7 @@ Ray ray_from(const py::object& origin, const py::object& direction, float max_di
 py::dict check_configurations(const WorldQuery& query, const py::object& spheres,
                               const py::object& links, bool self_collision,
                               const std::vector<std::array<std::int32_t, 2>>& allowed_pairs,
-                              const QueryFilter& filter, std::uint32_t threads) {
+                              const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
   const FloatRows rows =
       float_array(spheres, "spheres", {-1, -1, 4}, "an (N, S, 4) array of x, y, z, radius (m)");
   const auto link_array =
@@ -94,6 +94,7 @@ py::dict check_configurations(const WorldQuery& query, const py::object& spheres
   settings.filter = filter;
   settings.self_collision = self_collision;
   settings.allowed_link_pairs = allowed_pairs;
+  settings.tree_depth = tree_depth;
   const ConfigurationChecker checker(
       query, std::vector<std::int32_t>(link_array.data(), link_array.data() + link_array.size()),
       settings);
@@ -111,7 +112,9 @@ py::dict check_configurations(const WorldQuery& query, const py::object& spheres
 constexpr const char* kCheckDoc =
     "Checks N configurations of S spheres at once: spheres (N, S, 4) float32 (x, y, z, radius in "
     "m, world frame), links (S,) each sphere's link. With self_collision, spheres of different "
-    "links not listed in allowed_pairs ((a, b) link pairs) count too. Runs on `threads` threads "
+    "links not listed in allowed_pairs ((a, b) link pairs) count too. tree_depth: the levels of "
+    "the bodies' trees to answer at, deeper than the world's (0: the world's). Runs on `threads` "
+    "threads "
     "with the GIL released. Returns a dict of (N,) arrays: free (bool), sphere (the first "
     "colliding sphere, -1), body (the slot of a body it touches, -1), other_sphere "
     "(self-collision: "
@@ -317,13 +320,14 @@ void bind_query(py::module_& m) {
           "check_configurations",
           [](const SharedQuery& shared, const py::object& spheres, const py::object& links,
              bool self_collision, const std::vector<std::array<std::int32_t, 2>>& allowed_pairs,
-             const QueryFilter& filter, std::uint32_t threads) {
+             const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
             return check_configurations(*shared.current(), spheres, links, self_collision,
-                                        allowed_pairs, filter, threads);
+                                        allowed_pairs, filter, tree_depth, threads);
           },
           py::arg("spheres"), py::arg("links"), py::kw_only(), py::arg("self_collision") = false,
           py::arg("allowed_pairs") = std::vector<std::array<std::int32_t, 2>>{},
-          py::arg("filter") = QueryFilter{}, py::arg("threads") = 1, kCheckDoc);
+          py::arg("filter") = QueryFilter{}, py::arg("tree_depth") = 0, py::arg("threads") = 1,
+          kCheckDoc);
 
   // The same from a world directly, through a query made for the call in the world's turn; the
   // check itself reads the query's snapshot alone, so other calls on the world go on meanwhile.
@@ -335,13 +339,14 @@ void bind_query(py::module_& m) {
       "check_configurations",
       [](const SharedWorld& w, const py::object& spheres, const py::object& links,
          bool self_collision, const std::vector<std::array<std::int32_t, 2>>& allowed_pairs,
-         const QueryFilter& filter, std::uint32_t threads) {
+         const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
         return check_configurations(*SharedQuery(w).current(), spheres, links, self_collision,
-                                    allowed_pairs, filter, threads);
+                                    allowed_pairs, filter, tree_depth, threads);
       },
       py::arg("spheres"), py::arg("links"), py::kw_only(), py::arg("self_collision") = false,
       py::arg("allowed_pairs") = std::vector<std::array<std::int32_t, 2>>{},
-      py::arg("filter") = QueryFilter{}, py::arg("threads") = 1, kCheckDoc);
+      py::arg("filter") = QueryFilter{}, py::arg("tree_depth") = 0, py::arg("threads") = 1,
+      kCheckDoc);
 }
 
 }  // namespace sphys::python

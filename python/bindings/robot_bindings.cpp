@@ -28,18 +28,19 @@ DoubleRows joint_rows(const py::handle& value, const char* what, std::size_t joi
   return array;
 }
 
-RobotCheckSettings check_settings(bool self_collision, const QueryFilter& filter) {
+RobotCheckSettings check_settings(bool self_collision, const QueryFilter& filter, int tree_depth) {
   RobotCheckSettings settings;
   settings.filter = filter;
   settings.self_collision = self_collision;
+  settings.tree_depth = tree_depth;
   return settings;
 }
 
 py::dict check_joint_values(const WorldQuery& query, const RobotModel& model,
                             const py::object& values, bool self_collision,
-                            const QueryFilter& filter, std::uint32_t threads) {
+                            const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
   const DoubleRows rows = joint_rows(values, "values", model.joints.size());
-  const RobotChecker checker(query, model, check_settings(self_collision, filter));
+  const RobotChecker checker(query, model, check_settings(self_collision, filter, tree_depth));
   const auto count = static_cast<std::size_t>(rows.shape(0));
   std::vector<ConfigurationResult> results(count);
   {
@@ -53,11 +54,11 @@ py::dict check_joint_values(const WorldQuery& query, const RobotModel& model,
 
 py::dict check_motions(const WorldQuery& query, const RobotModel& model, const py::object& from,
                        const py::object& to, double resolution, bool self_collision,
-                       const QueryFilter& filter, std::uint32_t threads) {
+                       const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
   const DoubleRows starts = joint_rows(from, "from", model.joints.size());
   const DoubleRows ends = joint_rows(to, "to", model.joints.size());
   if (starts.shape(0) != ends.shape(0)) throw Error("from and to must hold as many motions");
-  const RobotChecker checker(query, model, check_settings(self_collision, filter));
+  const RobotChecker checker(query, model, check_settings(self_collision, filter, tree_depth));
   const auto count = static_cast<std::size_t>(starts.shape(0));
   std::vector<MotionResult> results(count);
   {
@@ -90,13 +91,15 @@ constexpr const char* kJointValuesDoc =
     "Checks N configurations of a robot from its joint values: values (N, J) float64 (rad, m, in "
     "model.joints' order), posed by the model's kinematics (float, in SIMD lanes) and checked as "
     "check_configurations checks spheres (self_collision: spheres of links the model does not "
-    "allow). A value that is NaN or outside its joint's limits is an error naming it. Returns a "
+    "allow; tree_depth: the bodies' trees' levels asked, deeper than the world's, 0 for the "
+    "world's). A value that is NaN or outside its joint's limits is an error naming it. Returns a "
     "dict of (N,) arrays: free, sphere, body, other_sphere.";
 
 constexpr const char* kMotionsDoc =
     "Checks M straight motions from[m] -> to[m] ((M, J) float64 each): states no farther apart "
     "than `resolution` in joint space, both ends included, coarse to fine, stopping at the first "
-    "collision. Returns a dict of (M,) arrays: free, states, first_collision (the first "
+    "collision (self_collision and tree_depth as check_joint_values'). Returns a dict of (M,) "
+    "arrays: free, states, first_collision (the first "
     "colliding state, -1), last_free (0..1 along the motion: the last free state before the "
     "first colliding one).";
 
@@ -163,43 +166,45 @@ void bind_robot(py::module_& m) {
   query.def(
       "check_joint_values",
       [](const SharedQuery& shared, const RobotModel& model, const py::object& values,
-         bool self_collision, const QueryFilter& filter, std::uint32_t threads) {
+         bool self_collision, const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
         return check_joint_values(*shared.current(), model, values, self_collision, filter,
-                                  threads);
+                                  tree_depth, threads);
       },
       py::arg("model"), py::arg("values"), py::kw_only(), py::arg("self_collision") = false,
-      py::arg("filter") = QueryFilter{}, py::arg("threads") = 1, kJointValuesDoc);
+      py::arg("filter") = QueryFilter{}, py::arg("tree_depth") = 0, py::arg("threads") = 1,
+      kJointValuesDoc);
   world.def(
       "check_joint_values",
       [](const SharedWorld& w, const RobotModel& model, const py::object& values,
-         bool self_collision, const QueryFilter& filter, std::uint32_t threads) {
+         bool self_collision, const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
         return check_joint_values(*SharedQuery(w).current(), model, values, self_collision, filter,
-                                  threads);
+                                  tree_depth, threads);
       },
       py::arg("model"), py::arg("values"), py::kw_only(), py::arg("self_collision") = false,
-      py::arg("filter") = QueryFilter{}, py::arg("threads") = 1, kJointValuesDoc);
+      py::arg("filter") = QueryFilter{}, py::arg("tree_depth") = 0, py::arg("threads") = 1,
+      kJointValuesDoc);
   query.def(
       "check_motions",
       [](const SharedQuery& shared, const RobotModel& model, const py::object& from,
          const py::object& to, double resolution, bool self_collision, const QueryFilter& filter,
-         std::uint32_t threads) {
+         int tree_depth, std::uint32_t threads) {
         return check_motions(*shared.current(), model, from, to, resolution, self_collision, filter,
-                             threads);
+                             tree_depth, threads);
       },
       py::arg("model"), py::arg("from_values"), py::arg("to_values"), py::arg("resolution"),
       py::kw_only(), py::arg("self_collision") = false, py::arg("filter") = QueryFilter{},
-      py::arg("threads") = 1, kMotionsDoc);
+      py::arg("tree_depth") = 0, py::arg("threads") = 1, kMotionsDoc);
   world.def(
       "check_motions",
       [](const SharedWorld& w, const RobotModel& model, const py::object& from,
          const py::object& to, double resolution, bool self_collision, const QueryFilter& filter,
-         std::uint32_t threads) {
+         int tree_depth, std::uint32_t threads) {
         return check_motions(*SharedQuery(w).current(), model, from, to, resolution, self_collision,
-                             filter, threads);
+                             filter, tree_depth, threads);
       },
       py::arg("model"), py::arg("from_values"), py::arg("to_values"), py::arg("resolution"),
       py::kw_only(), py::arg("self_collision") = false, py::arg("filter") = QueryFilter{},
-      py::arg("threads") = 1, kMotionsDoc);
+      py::arg("tree_depth") = 0, py::arg("threads") = 1, kMotionsDoc);
 }
 
 }  // namespace sphys::python

@@ -26,8 +26,6 @@ using query_detail::kGroupLeaves;
 using query_detail::LeafGroup;
 using query_detail::Snapshot;
 
-// The deepest level a check may ask for. unit: levels
-constexpr int kMostTreeDepth = 16;
 // What touches_below's stack holds at most: a group's leaves, then (branching - 1) more nodes for
 // each level below them (SphereTree's branching is 8 at most).
 constexpr std::size_t kGroupLeavesAndLevelsBelow = kGroupLeaves + 7 * kMostTreeDepth;

@@ -327,6 +327,17 @@ const auto kTable = std::to_array<Setting>({
         .doc = "Compute StepStats' plausibility figures (penetration, kinetic energy, rest, "
                "jitter) every step: each a pass over every leaf pair or body.",
     }),
+    scalar<Nested<&W::collision, &C::tree_depth>>({
+        .key = "tree_depth",
+        .in_scene = false,
+        .field = "collision.tree_depth",
+        .kind = SettingKind::kInteger,
+        .unit = "levels",
+        .range = between(0, kMostTreeDepth),
+        .doc = "Levels of every sphere-tree the narrow phase and the queries use, the root "
+               "included; 0 uses them all. A check may still ask for deeper ones "
+               "(check_configurations' tree_depth).",
+    }),
     scalar<Nested<&W::collision, &C::crowd_pairs_per_body>>({
         .key = "crowd_pairs_per_body",
         .in_scene = false,

@@ -162,6 +162,24 @@ def test_check_configurations_matches_loops_on_threads(scene):
     assert allowed["free"][0]
 
 
+def test_a_deeper_level_frees_what_only_the_worlds_leaves_touch():
+    """A 3-level tree in a world that uses 2: one leaf of radius 1 m about the centre, and below
+    it one sphere of 0.1 m at (0, 0.9, 0). A small sphere at the leaf's bottom touches the world's
+    leaf but not the level below; one at its top touches both."""
+    world = sphys.World(gravity=(0, 0, 0), collision={"tree_depth": 2})
+    tree = sphys.SphereTree.from_arrays([[0, 0, 0], [0, 0, 0], [0, 0.9, 0]], [1.0, 1.0, 0.1],
+                                        [-1, 0, 1], 8)
+    world.add_body(tree, position=(0, 0, 0), static=True)
+    spheres = np.array([[[0, -1.0, 0, 0.01]], [[0, 1.0, 0, 0.01]], [[3, 0, 0, 0.01]]],
+                       dtype=np.float32)
+    np.testing.assert_array_equal(world.check_configurations(spheres, [0])["free"],
+                                  [False, False, True])
+    deeper = world.query().check_configurations(spheres, [0], tree_depth=3)
+    np.testing.assert_array_equal(deeper["free"], [True, False, True])
+    with pytest.raises(sphys.Error, match="tree_depth: 1 levels is shallower than the world's 2"):
+        world.check_configurations(spheres, [0], tree_depth=1)
+
+
 def test_check_configurations_releases_the_gil(scene, side_by_side):
     # With a switch interval of 1000 s a thread that holds the GIL keeps it until it releases
     # it, so were the GIL held during a check, two threads' checks could never overlap in time.
@@ -281,5 +299,10 @@ def test_bad_joint_values_name_the_joint(swing):
         world.check_joint_values(model, [[0.0, 1.0]])
     with pytest.raises(sphys.Error, match="resolution"):
         world.check_motions(model, [[0.0]], [[1.0]], 0.0)
+    # The world uses every level of its trees: none is deeper.
+    with pytest.raises(sphys.Error, match="tree_depth: 3 levels is shallower"):
+        world.check_joint_values(model, [[0.0]], tree_depth=3)
+    with pytest.raises(sphys.Error, match="tree_depth: 3 levels is shallower"):
+        world.check_motions(model, [[0.0]], [[1.0]], 0.1, tree_depth=3)
     with pytest.raises(sphys.Error, match="no_such.urdf"):
         sphys.load_robot_model("no_such.urdf", "no_such.yml")
