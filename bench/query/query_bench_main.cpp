@@ -235,14 +235,7 @@ void configuration_checks(const Options& options) {
   }
   const std::size_t joints = model.joints.size();
   const std::vector<double> model_values = in_model_order(arm, model, configurations.values);
-  std::vector<tools::TriangleMesh> link_meshes;
-  for (const tools::LinkSpheres& link : arm.links) {
-    const auto geometry =
-        std::find_if(arm.robot.links.begin(), arm.robot.links.end(),
-                     [&](const tools::LinkGeometry& g) { return g.link == link.link; });
-    link_meshes.push_back(geometry->mesh);
-  }
-  const FclScene fcl(heap.mesh(), heap.poses, link_meshes);
+  const FclScene fcl(heap.mesh(), heap.poses, arm.link_meshes());
   std::vector<float> robot_radii;
   for (const Sphere& sphere : arm.link_spheres) robot_radii.push_back(sphere.radius);
   const BulletScene bullet(heap.leaves, heap.poses, robot_radii);

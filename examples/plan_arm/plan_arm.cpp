@@ -23,6 +23,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "plan_arm/ompl_arm.h"
 #include "robot_arm/bunny_pile.h"
 #include "robot_arm/robot_arm.h"
 #include "sphys/error.h"
@@ -34,108 +35,13 @@ namespace {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
+using sphys::examples::ArmChecker;
+using sphys::examples::kFinerChecks;
+using sphys::examples::kMotionStep;
 using sphys::examples::RobotArm;
-
-// Largest change of the joint values (their Euclidean norm) between two states a motion is checked
-// at: OMPL's motion validators check motions at discrete steps too. unit: rad (m for the fingers)
-constexpr double kMotionStep = 0.02;
-// The returned path is checked again at steps this many times finer.
-constexpr int kFinerChecks = 10;
-
-std::vector<double> values_of(const ob::State* state, std::size_t joints) {
-  const auto* real = state->as<ob::RealVectorStateSpace::StateType>();
-  return {real->values, real->values + joints};
-}
-
-// The configurations from a to b at steps of at most `step` (the Euclidean norm of the joint
-// values' change, as RobotChecker::check_motion steps), both ends included.
-std::vector<std::vector<double>> steps_between(const std::vector<double>& a,
-                                               const std::vector<double>& b, double step) {
-  double length = 0.0;
-  for (std::size_t j = 0; j < a.size(); ++j) length += (b[j] - a[j]) * (b[j] - a[j]);
-  const int count = std::max(1, static_cast<int>(std::ceil(std::sqrt(length) / step)));
-  std::vector<std::vector<double>> out;
-  for (int k = 0; k <= count; ++k) {
-    std::vector<double> v(a.size());
-    for (std::size_t j = 0; j < a.size(); ++j) v[j] = a[j] + (b[j] - a[j]) * k / count;
-    out.push_back(std::move(v));
-  }
-  return out;
-}
-
-// The arm as sphys's robot checks take it: its URDF's chain with the links' spheres, in the same
-// joint order as the arm's (the order OMPL's states hold the values in).
-sphys::RobotModel model_of(const RobotArm& arm) {
-  sphys::RobotModel model = sphys::tools::robot_model(arm.robot, arm.links);
-  model.base = Eigen::Isometry3d::Identity();
-  model.base.translate(arm.base.translation.cast<double>());
-  model.base.rotate(arm.base.rotation.cast<double>());
-  for (std::size_t j = 0; j < arm.joints.size(); ++j) {
-    if (j >= model.joints.size() || model.joints[j].name != arm.joints[j]) {
-      throw sphys::Error("the arm's joint " + arm.joints[j] + " is not the model's joint " +
-                         std::to_string(j));
-    }
-  }
-  return model;
-}
-
-// sphys's checks from joint values, counted.
-class ArmChecker {
- public:
-  ArmChecker(const RobotArm& arm, const sphys::WorldQuery& query)
-      : checker_(query, model_of(arm)) {}
-  [[nodiscard]] bool free_one(const std::vector<double>& configuration) {
-    checker_.check(configuration, result_);
-    ++configurations_;
-    return result_.front().free;
-  }
-  [[nodiscard]] sphys::MotionResult motion(const std::vector<double>& a,
-                                           const std::vector<double>& b) {
-    ++motions_;
-    return checker_.check_motion(a, b, kMotionStep);
-  }
-  [[nodiscard]] std::size_t configurations() const { return configurations_; }
-  [[nodiscard]] std::size_t motions() const { return motions_; }
-
- private:
-  sphys::RobotChecker checker_;
-  std::vector<sphys::ConfigurationResult> result_ = std::vector<sphys::ConfigurationResult>(1);
-  std::size_t configurations_ = 0;
-  std::size_t motions_ = 0;
-};
-
-// OMPL's motion validator: RobotChecker::check_motion, its states coarse to fine.
-class SphysMotionValidator final : public ob::MotionValidator {
- public:
-  SphysMotionValidator(const ob::SpaceInformationPtr& si, ArmChecker& checker, std::size_t joints)
-      : ob::MotionValidator(si), checker_(checker), joints_(joints) {}
-
-  bool checkMotion(const ob::State* a, const ob::State* b) const override {
-    const bool free = checker_.motion(values_of(a, joints_), values_of(b, joints_)).free;
-    ++(free ? valid_ : invalid_);
-    return free;
-  }
-
-  bool checkMotion(const ob::State* a, const ob::State* b,
-                   std::pair<ob::State*, double>& last_valid) const override {
-    const sphys::MotionResult motion =
-        checker_.motion(values_of(a, joints_), values_of(b, joints_));
-    if (motion.free) {
-      ++valid_;
-      return true;
-    }
-    ++invalid_;
-    if (last_valid.first != nullptr) {
-      si_->getStateSpace()->interpolate(a, b, motion.last_free, last_valid.first);
-    }
-    last_valid.second = motion.last_free;
-    return false;
-  }
-
- private:
-  ArmChecker& checker_;
-  std::size_t joints_;
-};
+using sphys::examples::SphysMotionValidator;
+using sphys::examples::steps_between;
+using sphys::examples::values_of;
 
 struct Arguments {
   int stacks = 3;
@@ -178,13 +84,7 @@ int run(const Arguments& arguments) {
   ArmChecker checker(arm, query);
   const std::size_t joints = arm.joints.size();
 
-  auto space = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned>(joints));
-  ob::RealVectorBounds bounds(static_cast<unsigned>(joints));
-  for (std::size_t j = 0; j < joints; ++j) {
-    bounds.setLow(static_cast<unsigned>(j), arm.limits[j][0]);
-    bounds.setHigh(static_cast<unsigned>(j), arm.limits[j][1]);
-  }
-  space->setBounds(bounds);
+  const auto space = sphys::examples::arm_space(arm);
   og::SimpleSetup setup(space);
   const ob::SpaceInformationPtr si = setup.getSpaceInformation();
   setup.setStateValidityChecker(
@@ -195,23 +95,7 @@ int run(const Arguments& arguments) {
   // A start and a goal that are free but not joined by a free straight motion: the planner must
   // go around the bunnies.
   std::mt19937 rng(arguments.seed);
-  const auto random_free = [&] {
-    for (;;) {
-      std::vector<double> v(joints);
-      for (std::size_t j = 0; j < joints; ++j) {
-        v[j] = std::uniform_real_distribution<double>(arm.limits[j][0], arm.limits[j][1])(rng);
-      }
-      if (checker.free_one(v)) return v;
-    }
-  };
-  std::vector<double> start;
-  std::vector<double> goal;
-  for (int tries = 0;; ++tries) {
-    if (tries == 1000) throw sphys::Error("no start and goal blocked from each other found");
-    start = random_free();
-    goal = random_free();
-    if (!checker.motion(start, goal).free) break;
-  }
+  const auto [start, goal] = sphys::examples::blocked_problem(arm, checker, rng);
   ob::ScopedState<> start_state(space);
   ob::ScopedState<> goal_state(space);
   for (std::size_t j = 0; j < joints; ++j) {

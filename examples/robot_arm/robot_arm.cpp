@@ -1,5 +1,6 @@
 #include "robot_arm.h"
 
+#include <algorithm>
 #include <map>
 #include <numbers>
 
@@ -58,6 +59,17 @@ void RobotArm::posed_spheres(std::span<const double> values, std::span<float> ou
     out[4 * i + 2] = centre.z();
     out[4 * i + 3] = link_spheres[i].radius;
   }
+}
+
+std::vector<tools::TriangleMesh> RobotArm::link_meshes() const {
+  std::vector<tools::TriangleMesh> out;
+  for (const tools::LinkSpheres& link : links) {
+    const auto geometry =
+        std::find_if(robot.links.begin(), robot.links.end(),
+                     [&](const tools::LinkGeometry& g) { return g.link == link.link; });
+    out.push_back(geometry->mesh);
+  }
+  return out;
 }
 
 void place_arm_beside(RobotArm& arm, const WorldQuery& query, const Vec3& centre, float clearance) {

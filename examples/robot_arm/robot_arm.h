@@ -33,6 +33,8 @@ struct RobotArm {
   void link_poses(std::span<const double> values, std::span<Transform> out) const;
   // The spheres in the world: spheres() × (x, y, z, radius). unit: m
   void posed_spheres(std::span<const double> values, std::span<float> out) const;
+  // The meshes of `links`, each in its link's frame, in their order.
+  [[nodiscard]] std::vector<tools::TriangleMesh> link_meshes() const;
 };
 
 // Writes the test robot into `dir`, reads it back and spherizes it to `total_spheres` spheres.
