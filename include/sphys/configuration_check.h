@@ -104,8 +104,11 @@ class ConfigurationChecker {
  private:
   // One configuration's S spheres, x y z r each.
   [[nodiscard]] ConfigurationResult check_one(const float* spheres, Scratch& scratch) const;
-  // The groups near the link's bound in `scratch`, into its candidates (up to kMostCandidates).
-  void collect_candidates(std::size_t link, Scratch& scratch) const;
+  // The groups near each link's bound in `scratch`, into its candidates (up to kMostCandidates),
+  // kLinksPerWalk links a walk of the hierarchy, their bounds in lanes.
+  static constexpr std::size_t kLinksPerWalk = 32;
+  void collect_candidates(Scratch& scratch) const;
+  void collect_candidates(std::size_t first, std::size_t end, Scratch& scratch) const;
   // The slot of a body the sphere (x y z r) of `link` touches, from the link's candidates, else -1.
   [[nodiscard]] std::int32_t sphere_touches(const float* sphere, std::size_t link,
                                             const Scratch& scratch) const;

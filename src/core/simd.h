@@ -125,6 +125,12 @@ struct PortableLanes {
     }
     return false;
   }
+  // Lane i's flag as bit i.
+  friend std::uint32_t bits(Mask m) {
+    std::uint32_t out = 0;
+    for (int i = 0; i < W; ++i) out |= m.on[i] ? 1u << i : 0u;
+    return out;
+  }
   // a where the mask is on, else b.
   friend PortableLanes select(Mask m, PortableLanes a, PortableLanes b) {
     PortableLanes r;
@@ -186,6 +192,8 @@ struct Sse2Lanes {
   friend Mask operator<=(Sse2Lanes a, Sse2Lanes b) { return {_mm_cmple_ps(a.v, b.v)}; }
   friend Mask operator&(Mask a, Mask b) { return {_mm_and_ps(a.on, b.on)}; }
   friend bool any(Mask m) { return _mm_movemask_ps(m.on) != 0; }
+  // Lane i's flag as bit i.
+  friend std::uint32_t bits(Mask m) { return static_cast<std::uint32_t>(_mm_movemask_ps(m.on)); }
   friend Sse2Lanes select(Mask m, Sse2Lanes a, Sse2Lanes b) {
     return {_mm_or_ps(_mm_and_ps(m.on, a.v), _mm_andnot_ps(m.on, b.v))};
   }

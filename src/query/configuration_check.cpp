@@ -1,5 +1,6 @@
 // Batched configuration checks. Per configuration, each link's spheres are bounded by one sphere,
-// which walks the snapshot's hierarchy once for the groups near the link; then sphere after
+// and one walk of the snapshot's hierarchy, the links' bounds in lanes, collects the groups near
+// each link; then sphere after
 // sphere is tested against its link's groups only (kLaneWidth leaves at a time), stopping at the
 // first sphere that touches; then, if asked, the pairs of spheres of links that may collide.
 // Configurations run in runs on the threads.
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -23,6 +25,8 @@ namespace sphys {
 namespace {
 
 using query_detail::kGroupLeaves;
+using query_detail::kLaneWidth;
+using query_detail::Lanes;
 using query_detail::LeafGroup;
 using query_detail::Snapshot;
 
@@ -128,49 +132,40 @@ void walk_near(const Snapshot& snapshot, float x, float y, float z, float radius
 
 }  // namespace
 
-// Per link of one configuration (or of several gathered: Run::gather), the sphere bounding its
-// spheres, and the groups near it, collected when its first sphere is checked.
+// Per link of one configuration (or of several gathered: Run::gather), the box around its
+// spheres, and the groups near it.
 struct ConfigurationChecker::Scratch {
   // Groups kept per link; a link near more is checked sphere by sphere through the hierarchy.
   static constexpr std::uint32_t kMostCandidates = 32;
-  static constexpr std::int32_t kNotCollected = -1;
   static constexpr std::int32_t kTooMany = -2;
 
-  explicit Scratch(std::size_t links)
-      : centre(links),
-        radius(links),
-        spheres(links),
-        candidates(links * kMostCandidates),
-        candidate_count(links) {}
+  Scratch(std::span<const std::int32_t> links, std::size_t link_count)
+      : low(link_count),
+        high(link_count),
+        spheres(link_count),
+        candidates(link_count * kMostCandidates),
+        candidate_count(link_count) {
+    for (const std::int32_t link : links) ++spheres[static_cast<std::size_t>(link)];
+  }
 
-  // Each link's bounding sphere: about the mean of its spheres' centres, reaching the farthest;
-  // no link's groups collected yet.
+  // Each link's box: around its spheres.
   void bound_links(const float* posed, std::span<const std::int32_t> links) {
-    std::ranges::fill(centre, Vec3::Zero());
-    std::ranges::fill(radius, 0.0f);
-    std::ranges::fill(spheres, 0u);
-    std::ranges::fill(candidate_count, kNotCollected);
+    std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
+    std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
     for (std::size_t i = 0; i < links.size(); ++i) {
       const float* s = posed + i * kFloatsPerSphere;
-      centre[links[i]] += Vec3(s[0], s[1], s[2]);
-      ++spheres[links[i]];
+      const Vec3 at(s[0], s[1], s[2]);
+      const Vec3 reach = Vec3::Constant(s[3]);
+      const auto l = static_cast<std::size_t>(links[i]);
+      low[l] = low[l].cwiseMin(at - reach);
+      high[l] = high[l].cwiseMax(at + reach);
     }
-    for (std::size_t l = 0; l < centre.size(); ++l) {
-      if (spheres[l] > 0) centre[l] /= static_cast<float>(spheres[l]);
-    }
-    for (std::size_t i = 0; i < links.size(); ++i) {
-      const float* s = posed + i * kFloatsPerSphere;
-      const float reach = (Vec3(s[0], s[1], s[2]) - centre[links[i]]).norm() + s[3];
-      // Rounding of the mean and the norm must not leave a sphere's surface outside: a relative
-      // margin, as the narrow phase's bounds have.
-      radius[links[i]] = std::max(radius[links[i]], reach * (1.0f + 1e-5f));
-    }
+    widen_links();
   }
 
   // For configurations gathered together: each sphere's box of centres and largest radius over
-  // all of them, and each link's bounding sphere from its spheres' boxes (the box's half
-  // diagonal plus the largest radius); no link's groups collected yet. Whether every sphere is
-  // finite.
+  // all of them, and each link's box around its spheres' boxes grown by their radii. Whether
+  // every sphere is finite.
   bool bound_gathered(const float* posed, std::size_t configurations,
                       std::span<const std::int32_t> links) {
     const std::size_t count = links.size();
@@ -189,59 +184,133 @@ struct ConfigurationChecker::Scratch {
         finite = finite && std::isfinite(s[0] + s[1] + s[2] + s[3]) && s[3] >= 0.0f;
       }
     }
-    std::vector<Vec3>& low = link_low;
-    std::vector<Vec3>& high = link_high;
-    low.assign(centre.size(), Vec3::Constant(std::numeric_limits<float>::infinity()));
-    high.assign(centre.size(), Vec3::Constant(-std::numeric_limits<float>::infinity()));
-    std::ranges::fill(radius, 0.0f);
-    std::ranges::fill(spheres, 0u);
-    std::ranges::fill(candidate_count, kNotCollected);
+    std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
+    std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
     for (std::size_t i = 0; i < count; ++i) {
       const auto l = static_cast<std::size_t>(links[i]);
-      low[l] = low[l].cwiseMin(sphere_low[i]);
-      high[l] = high[l].cwiseMax(sphere_high[i]);
-      radius[l] = std::max(radius[l], sphere_radius[i]);
-      ++spheres[l];
+      const Vec3 reach = Vec3::Constant(sphere_radius[i]);
+      low[l] = low[l].cwiseMin(sphere_low[i] - reach);
+      high[l] = high[l].cwiseMax(sphere_high[i] + reach);
     }
-    for (std::size_t l = 0; l < centre.size(); ++l) {
-      if (spheres[l] == 0) continue;
-      centre[l] = 0.5f * (low[l] + high[l]);
-      // With the relative margin against the rounding of the half diagonal.
-      radius[l] = (0.5f * (high[l] - low[l]).norm() + radius[l]) * (1.0f + 1e-5f);
-    }
+    widen_links();
     return finite;
   }
 
-  std::vector<Vec3> centre;
-  std::vector<float> radius;
-  std::vector<std::uint32_t> spheres;
+  // Rounding c ± r to float may leave a sphere's surface up to half an ulp outside its link's
+  // box: each box is widened by a millionth of its size and distance from the origin, far more
+  // than that.
+  void widen_links() {
+    for (std::size_t l = 0; l < low.size(); ++l) {
+      const Vec3 far = low[l].cwiseAbs().cwiseMax(high[l].cwiseAbs());
+      const Vec3 margin = 1e-6f * (far + (high[l] - low[l]));
+      low[l] -= margin;
+      high[l] += margin;
+    }
+  }
+
+  std::vector<Vec3> low;  // each link's box. unit: m
+  std::vector<Vec3> high;
+  std::vector<std::uint32_t> spheres;  // each link's count
   std::vector<std::uint32_t> candidates;
   std::vector<std::int32_t> candidate_count;
-  // Gathered configurations: each sphere's box of centres and largest radius, each link's box,
-  // and the spheres whose bound touches a leaf, in order, once known.
+  // Gathered configurations: each sphere's box of centres and largest radius, and the spheres
+  // whose bound touches a leaf, in order, once known.
   std::vector<Vec3> sphere_low;
   std::vector<Vec3> sphere_high;
   std::vector<float> sphere_radius;
-  std::vector<Vec3> link_low;
-  std::vector<Vec3> link_high;
   std::vector<std::uint32_t> near;
   bool near_known = false;
 };
 
-void ConfigurationChecker::collect_candidates(std::size_t link, Scratch& scratch) const {
-  std::int32_t& count = scratch.candidate_count[link];
-  std::uint32_t* candidates = scratch.candidates.data() + link * Scratch::kMostCandidates;
-  count = 0;
-  walk_near(query_->snapshot(), scratch.centre[link].x(), scratch.centre[link].y(),
-            scratch.centre[link].z(), scratch.radius[link], [&](std::uint32_t g) {
-              if (group_seen_[g] == 0) return true;
-              if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
-                count = Scratch::kTooMany;
-                return false;
-              }
-              candidates[count++] = g;
-              return true;
-            });
+void ConfigurationChecker::collect_candidates(Scratch& scratch) const {
+  for (std::size_t first = 0; first < link_count_; first += kLinksPerWalk) {
+    collect_candidates(first, std::min(link_count_, first + kLinksPerWalk), scratch);
+  }
+}
+
+void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end,
+                                              Scratch& scratch) const {
+  const Snapshot& snapshot = query_->snapshot();
+  // The links' boxes in lanes, link first + k in lane k; a link without spheres meets nothing.
+  alignas(32) std::array<float, kLinksPerWalk> low_x{};
+  alignas(32) std::array<float, kLinksPerWalk> low_y{};
+  alignas(32) std::array<float, kLinksPerWalk> low_z{};
+  alignas(32) std::array<float, kLinksPerWalk> high_x{};
+  alignas(32) std::array<float, kLinksPerWalk> high_y{};
+  alignas(32) std::array<float, kLinksPerWalk> high_z{};
+  const std::size_t registers = (end - first + kLaneWidth - 1) / kLaneWidth;
+  std::uint32_t walking = 0;  // bit k: link first + k is still collecting
+  for (std::size_t k = 0; k < end - first; ++k) {
+    const std::size_t link = first + k;
+    scratch.candidate_count[link] = 0;
+    if (scratch.spheres[link] == 0) continue;
+    low_x[k] = scratch.low[link].x();
+    low_y[k] = scratch.low[link].y();
+    low_z[k] = scratch.low[link].z();
+    high_x[k] = scratch.high[link].x();
+    high_y[k] = scratch.high[link].y();
+    high_z[k] = scratch.high[link].z();
+    walking |= 1u << k;
+  }
+  if (walking == 0 || snapshot.bvh.empty()) return;
+  // Bit k: link first + k, among `among`, has a box that meets this one (touching counts).
+  const auto reached = [&](const Aabb& box, std::uint32_t among) {
+    std::uint32_t out = 0;
+    for (std::size_t r = 0; r < registers; ++r) {
+      const std::size_t lane = r * kLaneWidth;
+      if (((among >> lane) & ((1u << kLaneWidth) - 1)) == 0) continue;
+      const auto meets = [&](const std::array<float, kLinksPerWalk>& lows,
+                             const std::array<float, kLinksPerWalk>& highs, float box_low,
+                             float box_high) {
+        return (Lanes::load(&lows[lane]) <= Lanes::splat(box_high)) &
+               (Lanes::splat(box_low) <= Lanes::load(&highs[lane]));
+      };
+      out |= bits(meets(low_x, high_x, box.min.x(), box.max.x()) &
+                  meets(low_y, high_y, box.min.y(), box.max.y()) &
+                  meets(low_z, high_z, box.min.z(), box.max.z()))
+             << lane;
+    }
+    return out & among;
+  };
+  // One walk for every link, depth first and left first as each link's own walk would go, so
+  // that each link's groups come in the same order: a node is entered by the links that reach
+  // it and every box above it.
+  struct Entry {
+    std::uint32_t node;
+    std::uint32_t links;
+  };
+  std::array<Entry, query_detail::kMaxBvhDepth> stack;
+  int top = 0;
+  const std::uint32_t at_root = reached(snapshot.bvh[0].bounds, walking);
+  if (at_root != 0) stack[top++] = {0, at_root};
+  while (top > 0) {
+    const Entry entry = stack[--top];
+    const std::uint32_t links = entry.links & walking;
+    if (links == 0) continue;
+    const query_detail::BvhNode& node = snapshot.bvh[entry.node];
+    if (node.count == 0) {
+      const std::uint32_t right = reached(snapshot.bvh[node.first + 1].bounds, links);
+      const std::uint32_t left = reached(snapshot.bvh[node.first].bounds, links);
+      if (right != 0) stack[top++] = {node.first + 1, right};
+      if (left != 0) stack[top++] = {node.first, left};
+      continue;
+    }
+    for (std::uint32_t g = node.first; g < node.first + node.count; ++g) {
+      if (group_seen_[g] == 0) continue;
+      for (std::uint32_t hit = reached(snapshot.groups[g].bounds, links & walking); hit != 0;
+           hit &= hit - 1) {
+        const auto k = static_cast<std::size_t>(std::countr_zero(hit));
+        std::int32_t& count = scratch.candidate_count[first + k];
+        if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
+          // Near too many: this link's spheres walk the hierarchy one by one.
+          count = Scratch::kTooMany;
+          walking &= ~(1u << k);
+          continue;
+        }
+        scratch.candidates[(first + k) * Scratch::kMostCandidates + count++] = g;
+      }
+    }
+  }
 }
 
 std::int32_t ConfigurationChecker::sphere_touches(const float* s, std::size_t link,
@@ -351,12 +420,13 @@ ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratc
     return result;
   };
   scratch.bound_links(spheres, links_);
+  collect_candidates(scratch);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     const float* s = spheres + i * kFloatsPerSphere;
     // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
     if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
     const auto link = static_cast<std::size_t>(links_[i]);
-    if (scratch.candidate_count[link] == Scratch::kNotCollected) collect_candidates(link, scratch);
+    if (scratch.candidate_count[link] == 0) continue;  // nothing near the link
     const std::int32_t body = sphere_touches(s, link, scratch);
     if (body >= 0) return collide(i, body, -1);
   }
@@ -371,14 +441,15 @@ void ConfigurationChecker::run_configurations(std::size_t count, const Parallel*
                                               const Check& check) const {
   for_each_on(parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun,
               [&](std::size_t run) {
-                Scratch scratch(link_count_);
+                Scratch scratch(links_, link_count_);
                 const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
                 for (std::size_t c = run * kConfigurationsPerRun; c < end; ++c) check(c, scratch);
               });
 }
 
 ConfigurationChecker::Run::Run(const ConfigurationChecker& checker)
-    : checker_(&checker), scratch_(std::make_unique<Scratch>(checker.link_count_)) {}
+    : checker_(&checker),
+      scratch_(std::make_unique<Scratch>(checker.links_, checker.link_count_)) {}
 
 ConfigurationChecker::Run::~Run() = default;
 
@@ -408,9 +479,7 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
   if (!gathered_finite_) return checker.check_one(spheres, scratch);
   if (!scratch.near_known) {
     scratch.near.clear();
-    for (std::size_t link = 0; link < checker.link_count_; ++link) {
-      if (scratch.spheres[link] > 0) checker.collect_candidates(link, scratch);
-    }
+    checker.collect_candidates(scratch);
     // A sphere whose box over all the gathered configurations, as a sphere, touches nothing
     // cannot touch anything in any of them.
     for (std::size_t i = 0; i < checker.links_.size(); ++i) {
@@ -474,7 +543,7 @@ void ConfigurationChecker::check_link_poses(std::span<const Transform> link_pose
   // Each run poses its configurations in its own buffer.
   for_each_on(
       parallel, (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun, [&](std::size_t run) {
-        Scratch scratch(link_count_);
+        Scratch scratch(links_, link_count_);
         std::vector<Mat3> rotations(link_count_);
         std::vector<float> posed_run(links_.size() * kFloatsPerSphere);
         const std::size_t end = std::min(count, (run + 1) * kConfigurationsPerRun);
