@@ -146,7 +146,7 @@ std::string closedness(const tools::MeshReport& report) {
   if (report.watertight()) return "yes";
   std::string text = "no:";
   auto add = [&](std::size_t count, const char* what) {
-    if (count != 0) text += " " + std::to_string(count) + " " + what;
+    if (count != 0) text += (text.size() > 3 ? ", " : " ") + std::to_string(count) + " " + what;
   };
   add(report.boundary_edges, "boundary edges");
   add(report.non_manifold_edges, "non-manifold edges");
@@ -189,6 +189,38 @@ void print_meshes(const std::vector<MeshFacts>& facts) {
                 f.triangles, f.closed.c_str(), f.volume, f.diagonal);
   }
   std::printf("\n");
+}
+
+// One row per method: each figure's mean over the rows of the meshes `counted` accepts.
+void print_means(const std::vector<tools::BuildMethod>& methods, const std::vector<Row>& rows,
+                 const std::function<bool(const std::string&)>& counted) {
+  print_table_head();
+  for (const tools::BuildMethod method : methods) {
+    const std::string name(tools::method_name(method));
+    double spheres[2] = {}, outside[2] = {}, protrusion[2] = {}, coverage[2] = {};
+    double lowest[2] = {1.0, 1.0};
+    double seconds = 0.0;
+    std::size_t count = 0;
+    for (const Row& row : rows) {
+      if (row.method != name || !counted(row.mesh)) continue;
+      ++count;
+      seconds += row.build_seconds;
+      for (std::size_t k = 0; k < 2; ++k) {
+        spheres[k] += static_cast<double>(row.levels[k].spheres);
+        outside[k] += row.levels[k].outside_volume;
+        protrusion[k] += row.levels[k].worst_protrusion;
+        coverage[k] += row.levels[k].coverage;
+        lowest[k] = std::min(lowest[k], row.levels[k].coverage);
+      }
+    }
+    const auto n = static_cast<double>(count);
+    std::printf("| %s", name.c_str());
+    for (std::size_t k = 0; k < 2; ++k) {
+      std::printf(" | %.1f | %.3f | %.4f | %.4f%% (%.4f%%)", spheres[k] / n, outside[k] / n,
+                  protrusion[k] / n, 100.0 * coverage[k] / n, 100.0 * lowest[k]);
+    }
+    std::printf(" | %.3f |\n", seconds / n);
+  }
 }
 
 struct Options {
@@ -303,32 +335,17 @@ int run(const Options& options) {
   std::printf("## Mean over the set (%zu meshes)\n\n", facts.size());
   std::printf(
       "Each figure's plain mean over the meshes; the lowest coverage of any mesh in brackets.\n\n");
-  print_table_head();
-  for (const tools::BuildMethod method : methods) {
-    const std::string name(tools::method_name(method));
-    double spheres[2] = {}, outside[2] = {}, protrusion[2] = {}, coverage[2] = {};
-    double lowest[2] = {1.0, 1.0};
-    double seconds = 0.0;
-    std::size_t count = 0;
-    for (const Row& row : rows) {
-      if (row.method != name) continue;
-      ++count;
-      seconds += row.build_seconds;
-      for (std::size_t k = 0; k < 2; ++k) {
-        spheres[k] += static_cast<double>(row.levels[k].spheres);
-        outside[k] += row.levels[k].outside_volume;
-        protrusion[k] += row.levels[k].worst_protrusion;
-        coverage[k] += row.levels[k].coverage;
-        lowest[k] = std::min(lowest[k], row.levels[k].coverage);
-      }
-    }
-    const auto n = static_cast<double>(count);
-    std::printf("| %s", name.c_str());
-    for (std::size_t k = 0; k < 2; ++k) {
-      std::printf(" | %.1f | %.3f | %.4f | %.4f%% (%.4f%%)", spheres[k] / n, outside[k] / n,
-                  protrusion[k] / n, 100.0 * coverage[k] / n, 100.0 * lowest[k]);
-    }
-    std::printf(" | %.3f |\n", seconds / n);
+  print_means(methods, rows, [](const std::string&) { return true; });
+  std::vector<std::string> closed;
+  for (const MeshFacts& f : facts) {
+    if (f.closed == "yes") closed.push_back(f.name);
+  }
+  if (closed.size() != facts.size()) {
+    std::printf("\n## Mean over the closed meshes (%zu)\n\n", closed.size());
+    std::printf("The same, without the meshes that are not closed.\n\n");
+    print_means(methods, rows, [&](const std::string& mesh) {
+      return std::find(closed.begin(), closed.end(), mesh) != closed.end();
+    });
   }
   std::printf("\nWhole run: %.0f s.\n",
               std::chrono::duration<double>(Clock::now() - start).count());
