@@ -1,10 +1,11 @@
-// sphys-tree-eval: every sphere-tree build method on a fixed set of closed meshes, with the
-// figures `sphys tree-info` prints (docs/sphere-tree-methods.md, "The evaluation set").
+// sphys-tree-eval: every sphere-tree build method on a fixed set of meshes, with the figures
+// `sphys tree-info` prints (docs/sphere-tree-methods.md, "The evaluation set").
 //
 // Each mesh of the set gets a tree of depth 3, branching 8, from every method; its level 1 (up to
 // 8 spheres) and level 2 (up to 64) are measured by tools::measure_levels with tree-info's
-// options (the same Monte Carlo, the same seeds). The output is markdown: the meshes, one table
-// per mesh, and the mean over the set per method; --csv writes the rows as well.
+// options (the same Monte Carlo, the same seeds). The output is markdown: the meshes (closed or
+// not, as check_mesh finds them), one table per mesh, and per method the mean over the set and
+// over its closed meshes; --csv writes the rows as well.
 
 #include <algorithm>
 #include <chrono>
@@ -372,7 +373,7 @@ int run(const Options& options) {
 
 int main(int argc, char** argv) {
   sphys::tree_eval::Options options;
-  CLI::App app("Every sphere-tree build method on the evaluation set of closed meshes");
+  CLI::App app("Every sphere-tree build method on the evaluation set of meshes");
   app.add_option("--meshes", options.meshes,
                  "Comma-separated subset of the set's meshes (default: all)");
   app.add_option("--methods", options.methods,
