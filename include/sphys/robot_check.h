@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -80,6 +81,11 @@ class RobotChecker {
   // The kinematics as flat float tables (robot_check.cpp) and a kernel call's buffers.
   struct Compiled;
   struct PoseScratch;
+  // What one thread's call works in (robot_pose_scratch.h): posing buffers, a run of checks and a
+  // motion's states, kept from one call to the next so that a warm call allocates nothing.
+  struct Workspace;
+  [[nodiscard]] std::unique_ptr<Workspace> take_workspace() const;
+  void keep_workspace(std::unique_ptr<Workspace> workspace) const;
   // Poses `count` (at most one kernel call's) configurations: their spheres, in `scratch`.
   [[nodiscard]] const float* pose(const double* values, std::size_t count,
                                   PoseScratch& scratch) const;
@@ -87,6 +93,8 @@ class RobotChecker {
   RobotModel model_;
   ConfigurationChecker checker_;
   std::unique_ptr<Compiled> compiled_;
+  mutable std::mutex workspaces_mutex_;
+  mutable std::vector<std::unique_ptr<Workspace>> workspaces_;  // those not in use
 };
 
 }  // namespace sphys

@@ -169,28 +169,34 @@ struct ConfigurationChecker::Scratch {
   bool bound_gathered(const float* posed, std::size_t configurations,
                       std::span<const std::int32_t> links) {
     const std::size_t count = links.size();
-    sphere_low.assign(count, Vec3::Constant(std::numeric_limits<float>::infinity()));
-    sphere_high.assign(count, Vec3::Constant(-std::numeric_limits<float>::infinity()));
-    sphere_radius.assign(count, 0.0f);
-    bool finite = true;
+    const std::size_t floats = count * kFloatsPerSphere;
+    // Per sphere, its four floats' least and greatest over the configurations (the greatest
+    // radius among them) and their sum times zero, which stays 0 unless one is NaN or infinite:
+    // one pass over each configuration's floats in order, which compilers turn into lanes.
+    least.assign(floats, std::numeric_limits<float>::infinity());
+    greatest.assign(floats, -std::numeric_limits<float>::infinity());
+    non_finite.assign(floats, 0.0f);
     for (std::size_t c = 0; c < configurations; ++c) {
-      const float* state = posed + c * count * kFloatsPerSphere;
-      for (std::size_t i = 0; i < count; ++i) {
-        const float* s = state + i * kFloatsPerSphere;
-        const Vec3 at(s[0], s[1], s[2]);
-        sphere_low[i] = sphere_low[i].cwiseMin(at);
-        sphere_high[i] = sphere_high[i].cwiseMax(at);
-        sphere_radius[i] = std::max(sphere_radius[i], s[3]);
-        finite = finite && std::isfinite(s[0] + s[1] + s[2] + s[3]) && s[3] >= 0.0f;
+      const float* state = posed + c * floats;
+      for (std::size_t f = 0; f < floats; ++f) {
+        const float v = state[f];
+        least[f] = v < least[f] ? v : least[f];
+        greatest[f] = v > greatest[f] ? v : greatest[f];
+        non_finite[f] += v * 0.0f;
       }
     }
+    bool finite = true;
+    for (std::size_t f = 0; f < floats; ++f) finite = finite && non_finite[f] == 0.0f;
     std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
     std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
     for (std::size_t i = 0; i < count; ++i) {
+      const float* lo = &least[i * kFloatsPerSphere];
+      const float* hi = &greatest[i * kFloatsPerSphere];
+      finite = finite && lo[3] >= 0.0f;
       const auto l = static_cast<std::size_t>(links[i]);
-      const Vec3 reach = Vec3::Constant(sphere_radius[i]);
-      low[l] = low[l].cwiseMin(sphere_low[i] - reach);
-      high[l] = high[l].cwiseMax(sphere_high[i] + reach);
+      const Vec3 reach = Vec3::Constant(hi[3]);
+      low[l] = low[l].cwiseMin(Vec3(lo[0], lo[1], lo[2]) - reach);
+      high[l] = high[l].cwiseMax(Vec3(hi[0], hi[1], hi[2]) + reach);
     }
     widen_links();
     return finite;
@@ -213,11 +219,11 @@ struct ConfigurationChecker::Scratch {
   std::vector<std::uint32_t> spheres;  // each link's count
   std::vector<std::uint32_t> candidates;
   std::vector<std::int32_t> candidate_count;
-  // Gathered configurations: each sphere's box of centres and largest radius, and the spheres
-  // whose bound touches a leaf, in order, once known.
-  std::vector<Vec3> sphere_low;
-  std::vector<Vec3> sphere_high;
-  std::vector<float> sphere_radius;
+  // Gathered configurations: each sphere's (x, y, z, radius) least and greatest over them, and
+  // the spheres whose bound touches a leaf, in order, once known.
+  std::vector<float> least;
+  std::vector<float> greatest;
+  std::vector<float> non_finite;
   std::vector<std::uint32_t> near;
   bool near_known = false;
 };
@@ -486,10 +492,12 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
       const auto link = static_cast<std::size_t>(checker.links_[i]);
       if (scratch.candidate_count[link] == 0) continue;
       // With the bounds' relative margin against the rounding of the half diagonal.
-      const Vec3 middle = 0.5f * (scratch.sphere_low[i] + scratch.sphere_high[i]);
-      const float reach = (0.5f * (scratch.sphere_high[i] - scratch.sphere_low[i]).norm() +
-                           scratch.sphere_radius[i]) *
-                          (1.0f + 1e-5f);
+      const float* lo = &scratch.least[i * kFloatsPerSphere];
+      const float* hi = &scratch.greatest[i * kFloatsPerSphere];
+      const Vec3 middle = 0.5f * (Vec3(lo[0], lo[1], lo[2]) + Vec3(hi[0], hi[1], hi[2]));
+      const float reach =
+          (0.5f * (Vec3(hi[0], hi[1], hi[2]) - Vec3(lo[0], lo[1], lo[2])).norm() + hi[3]) *
+          (1.0f + 1e-5f);
       const float bound[4] = {middle.x(), middle.y(), middle.z(), reach};
       if (checker.sphere_touches(bound, link, scratch) >= 0) {
         scratch.near.push_back(static_cast<std::uint32_t>(i));

@@ -141,6 +141,23 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
 
 RobotChecker::~RobotChecker() = default;
 
+std::unique_ptr<RobotChecker::Workspace> RobotChecker::take_workspace() const {
+  {
+    const std::lock_guard lock(workspaces_mutex_);
+    if (!workspaces_.empty()) {
+      std::unique_ptr<Workspace> kept = std::move(workspaces_.back());
+      workspaces_.pop_back();
+      return kept;
+    }
+  }
+  return std::make_unique<Workspace>(*this);
+}
+
+void RobotChecker::keep_workspace(std::unique_ptr<Workspace> workspace) const {
+  const std::lock_guard lock(workspaces_mutex_);
+  workspaces_.push_back(std::move(workspace));
+}
+
 const char* RobotChecker::lanes() const { return compiled_->lanes; }
 
 const float* RobotChecker::pose(const double* values, std::size_t count,
@@ -193,13 +210,15 @@ void RobotChecker::check(std::span<const double> values, std::span<Configuration
   }
   const std::size_t per = model_.spheres.size() * kFloatsPerSphere;
   const auto run = [&](std::size_t begin, std::size_t end) {
-    PoseScratch scratch(model_);
-    ConfigurationChecker::Run checks(checker_);
+    std::unique_ptr<Workspace> workspace = take_workspace();
     for (std::size_t first = begin; first < end; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, end - first);
-      const float* posed = pose(values.data() + first * joints, n, scratch);
-      for (std::size_t i = 0; i < n; ++i) results[first + i] = checks.check(posed + i * per);
+      const float* posed = pose(values.data() + first * joints, n, workspace->pose);
+      for (std::size_t i = 0; i < n; ++i) {
+        results[first + i] = workspace->checks.check(posed + i * per);
+      }
     }
+    keep_workspace(std::move(workspace));
   };
   const std::size_t runs = (count + kConfigurationsPerRun - 1) / kConfigurationsPerRun;
   for_each_on(parallel, runs, [&](std::size_t r) {

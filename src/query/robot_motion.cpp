@@ -21,13 +21,15 @@ constexpr double kMostMotionStates = 1e7;
 // Motions of up to this many states are posed whole and checked together. unit: states
 constexpr std::uint32_t kStatesCheckedTogether = 256;
 
-// The order in which a motion's `states` states are checked: both ends, then the midpoints of
-// ever finer halves, breadth first, so that a collision anywhere along it is met early.
-std::vector<std::uint32_t> coarse_to_fine(std::uint32_t states) {
-  std::vector<std::uint32_t> order = {0};
+// The order in which a motion's `states` states are checked, into `order`: both ends, then the
+// midpoints of ever finer halves, breadth first, so that a collision anywhere along it is met
+// early. `spans` and `finer` are its working lists.
+void coarse_to_fine(std::uint32_t states, std::vector<std::uint32_t>& order,
+                    std::vector<std::array<std::uint32_t, 2>>& spans,
+                    std::vector<std::array<std::uint32_t, 2>>& finer) {
+  order.assign(1, 0);
   if (states > 1) order.push_back(states - 1);
-  std::vector<std::array<std::uint32_t, 2>> spans = {{0, states - 1}};
-  std::vector<std::array<std::uint32_t, 2>> finer;
+  spans.assign(1, {0, states - 1});
   while (!spans.empty()) {
     finer.clear();
     for (const auto& [low, high] : spans) {
@@ -39,7 +41,6 @@ std::vector<std::uint32_t> coarse_to_fine(std::uint32_t states) {
     }
     spans.swap(finer);
   }
-  return order;
 }
 
 }  // namespace
@@ -78,16 +79,20 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
     }
   };
   const std::size_t per = model_.spheres.size() * kFloatsPerSphere;
-  PoseScratch scratch(model_);
-  ConfigurationChecker::Run checks(checker_);
-  const std::vector<std::uint32_t> order = coarse_to_fine(result.states);
-  std::vector<double> values(kPoseLanes * joints);
+  std::unique_ptr<Workspace> workspace = take_workspace();
+  PoseScratch& scratch = workspace->pose;
+  ConfigurationChecker::Run& checks = workspace->checks;
+  std::vector<std::uint32_t>& order = workspace->order;
+  coarse_to_fine(result.states, order, workspace->spans, workspace->finer);
+  std::vector<double>& values = workspace->values;
+  values.resize(kPoseLanes * joints);
   // A motion of few states is posed whole and its states checked together (each link's groups
   // collected once, for the bound of all its states); a longer one a block of states at a time.
   const bool together = result.states <= kStatesCheckedTogether;
-  // The whole motion's states, posed, when they are checked together.
-  std::vector<float> posed(together ? result.states * per : 0);
   if (together) {
+    // The whole motion's states, posed.
+    std::vector<float>& posed = workspace->posed;
+    posed.resize(result.states * per);
     for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
       for (std::size_t i = 0; i < n; ++i) {
@@ -119,24 +124,29 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
     return std::int64_t{-1};
   };
   const std::int64_t hit = check_states(order.data(), order.size());
-  if (hit < 0) return result;
-  // The states before the one found, those not checked yet, in order: the first that collides.
-  const std::uint32_t found = order[static_cast<std::size_t>(hit)];
-  std::vector<std::uint8_t> checked(found, 0);
-  for (std::int64_t i = 0; i < hit; ++i) {
-    if (order[static_cast<std::size_t>(i)] < found) checked[order[static_cast<std::size_t>(i)]] = 1;
+  if (hit >= 0) {
+    // The states before the one found, those not checked yet, in order: the first that collides.
+    const std::uint32_t found = order[static_cast<std::size_t>(hit)];
+    std::vector<std::uint8_t>& checked = workspace->checked;
+    checked.assign(found, 0);
+    for (std::int64_t i = 0; i < hit; ++i) {
+      const std::uint32_t k = order[static_cast<std::size_t>(i)];
+      if (k < found) checked[k] = 1;
+    }
+    std::vector<std::uint32_t>& before = workspace->before;
+    before.clear();
+    for (std::uint32_t k = 0; k < found; ++k) {
+      if (checked[k] == 0) before.push_back(k);
+    }
+    const ConfigurationResult at_found = result.collision;
+    const std::int64_t earlier = check_states(before.data(), before.size());
+    const std::uint32_t first = earlier < 0 ? found : before[static_cast<std::size_t>(earlier)];
+    if (earlier < 0) result.collision = at_found;
+    result.free = false;
+    result.first_collision = static_cast<std::int32_t>(first);
+    result.last_free = first == 0 ? 0.0 : static_cast<double>(first - 1) / last;
   }
-  std::vector<std::uint32_t> before;
-  for (std::uint32_t k = 0; k < found; ++k) {
-    if (checked[k] == 0) before.push_back(k);
-  }
-  const ConfigurationResult at_found = result.collision;
-  const std::int64_t earlier = check_states(before.data(), before.size());
-  const std::uint32_t first = earlier < 0 ? found : before[static_cast<std::size_t>(earlier)];
-  if (earlier < 0) result.collision = at_found;
-  result.free = false;
-  result.first_collision = static_cast<std::int32_t>(first);
-  result.last_free = first == 0 ? 0.0 : static_cast<double>(first - 1) / last;
+  keep_workspace(std::move(workspace));
   return result;
 }
 
