@@ -40,6 +40,7 @@ struct PortableLanes {
     for (int i = 0; i < W; ++i) r.v[i] = p[i];
     return r;
   }
+  static PortableLanes load_unaligned(const float* p) { return load(p); }
   static PortableLanes splat(float x) {
     PortableLanes r;
     r.v.fill(x);
@@ -148,6 +149,7 @@ struct Sse2Lanes {
   __m128 v;
 
   static Sse2Lanes load(const float* p) { return {_mm_load_ps(p)}; }
+  static Sse2Lanes load_unaligned(const float* p) { return {_mm_loadu_ps(p)}; }
   static Sse2Lanes splat(float x) { return {_mm_set1_ps(x)}; }
   // Lane i takes base[index[i] * stride]: four scalar loads put together in registers.
   static Sse2Lanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {

@@ -170,23 +170,41 @@ struct ConfigurationChecker::Scratch {
                       std::span<const std::int32_t> links) {
     const std::size_t count = links.size();
     const std::size_t floats = count * kFloatsPerSphere;
-    // Per sphere, its four floats' least and greatest over the configurations (the greatest
-    // radius among them) and their sum times zero, which stays 0 unless one is NaN or infinite:
-    // one pass over each configuration's floats in order, which compilers turn into lanes.
-    least.assign(floats, std::numeric_limits<float>::infinity());
-    greatest.assign(floats, -std::numeric_limits<float>::infinity());
-    non_finite.assign(floats, 0.0f);
-    for (std::size_t c = 0; c < configurations; ++c) {
-      const float* state = posed + c * floats;
-      for (std::size_t f = 0; f < floats; ++f) {
-        const float v = state[f];
-        least[f] = v < least[f] ? v : least[f];
-        greatest[f] = v > greatest[f] ? v : greatest[f];
-        non_finite[f] += v * 0.0f;
+    // Per sphere, its four floats' (one register of lanes) least and greatest over the
+    // configurations (the greatest radius among them), and their sum times zero, which stays 0
+    // unless one is NaN or infinite. Spheres go kInterleaved at a time, so that the three stay
+    // in registers over the configurations and the spheres' chains of dependent operations
+    // overlap.
+    static_assert(kFloatsPerSphere == kLaneWidth);
+    constexpr std::size_t kInterleaved = 4;
+    least.resize(floats);
+    greatest.resize(floats);
+    bool finite = true;
+    for (std::size_t first = 0; first < count; first += kInterleaved) {
+      const std::size_t n = std::min(kInterleaved, count - first);
+      std::array<Lanes, kInterleaved> lo;
+      std::array<Lanes, kInterleaved> hi;
+      std::array<Lanes, kInterleaved> zero;
+      lo.fill(Lanes::splat(std::numeric_limits<float>::infinity()));
+      hi.fill(Lanes::splat(-std::numeric_limits<float>::infinity()));
+      zero.fill(Lanes::splat(0.0f));
+      for (std::size_t c = 0; c < configurations; ++c) {
+        const float* state = posed + c * floats + first * kFloatsPerSphere;
+        for (std::size_t k = 0; k < n; ++k) {
+          const Lanes v = Lanes::load_unaligned(state + k * kFloatsPerSphere);
+          lo[k] = min(lo[k], v);
+          hi[k] = max(hi[k], v);
+          zero[k] = zero[k] + v * Lanes::splat(0.0f);
+        }
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        lo[k].store(&least[(first + k) * kFloatsPerSphere]);
+        hi[k].store(&greatest[(first + k) * kFloatsPerSphere]);
+        alignas(32) std::array<float, kLaneWidth> sums{};
+        zero[k].store(sums.data());
+        finite = finite && std::ranges::all_of(sums, [](float sum) { return sum == 0.0f; });
       }
     }
-    bool finite = true;
-    for (std::size_t f = 0; f < floats; ++f) finite = finite && non_finite[f] == 0.0f;
     std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
     std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
     for (std::size_t i = 0; i < count; ++i) {
@@ -221,9 +239,8 @@ struct ConfigurationChecker::Scratch {
   std::vector<std::int32_t> candidate_count;
   // Gathered configurations: each sphere's (x, y, z, radius) least and greatest over them, and
   // the spheres whose bound touches a leaf, in order, once known.
-  std::vector<float> least;
-  std::vector<float> greatest;
-  std::vector<float> non_finite;
+  query_detail::LaneFloats least;
+  query_detail::LaneFloats greatest;
   std::vector<std::uint32_t> near;
   bool near_known = false;
 };
