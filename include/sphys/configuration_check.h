@@ -56,6 +56,8 @@ class ConfigurationChecker {
   [[nodiscard]] std::size_t spheres() const { return links_.size(); }
   // Links: one more than the largest in sphere_links.
   [[nodiscard]] std::size_t links() const { return link_count_; }
+  // Whether a check reads every sphere whatever is near (Run::check_bounded): self-collision.
+  [[nodiscard]] bool reads_every_sphere() const { return !self_pairs_.empty(); }
 
   // `spheres`: N configurations of spheres() spheres, each (x, y, z, radius) in the world frame
   // (N × S × 4 floats, unit: m); `results`: N entries. Configurations run on `parallel`'s
@@ -92,6 +94,15 @@ class ConfigurationChecker {
     // check() would for configuration c; a configuration out of range throws sphys::Error.
     void gather(const float* spheres, std::size_t configurations);
     [[nodiscard]] ConfigurationResult check_gathered(std::size_t configuration);
+    // For a caller that bounds each link itself, as RobotChecker does from its links' poses:
+    // `low` and `high` (links() each, m) are boxes holding every sphere of their link in the
+    // world, and the groups near each box are collected; near(link) says whether there are any.
+    // check_bounded(spheres) then gives what check() would for spheres inside those boxes,
+    // reading only the spheres of links near a group, or every sphere when
+    // reads_every_sphere() (self-collision). Throws sphys::Error for sizes that do not match.
+    void bound(std::span<const Vec3> low, std::span<const Vec3> high);
+    [[nodiscard]] bool near(std::size_t link) const;
+    [[nodiscard]] ConfigurationResult check_bounded(const float* spheres);
 
    private:
     const ConfigurationChecker* checker_;
@@ -104,6 +115,10 @@ class ConfigurationChecker {
  private:
   // One configuration's S spheres, x y z r each.
   [[nodiscard]] ConfigurationResult check_one(const float* spheres, Scratch& scratch) const;
+  // The answer for spheres whose links' groups `scratch` holds: with `every_sphere_given`, each
+  // sphere is checked to be finite first, else only those of links near a group are read.
+  [[nodiscard]] ConfigurationResult answer(const float* spheres, const Scratch& scratch,
+                                           bool every_sphere_given) const;
   // The groups near each link's bound in `scratch`, into its candidates (up to kMostCandidates),
   // kLinksPerWalk links a walk of the hierarchy, their bounds in lanes.
   static constexpr std::size_t kLinksPerWalk = 32;

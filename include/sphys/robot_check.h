@@ -86,9 +86,13 @@ class RobotChecker {
   struct Workspace;
   [[nodiscard]] std::unique_ptr<Workspace> take_workspace() const;
   void keep_workspace(std::unique_ptr<Workspace> workspace) const;
-  // Poses `count` (at most one kernel call's) configurations: their spheres, in `scratch`.
-  [[nodiscard]] const float* pose(const double* values, std::size_t count,
-                                  PoseScratch& scratch) const;
+  // Poses `count` (at most one kernel call's) configurations: their links' poses in `scratch`
+  // and, with_spheres, their spheres, returned.
+  [[nodiscard]] const float* pose(const double* values, std::size_t count, PoseScratch& scratch,
+                                  bool with_spheres = true) const;
+  // The answer for the configuration in lane `lane` of the links' poses `workspace` holds: each
+  // link bounded from its pose, and the spheres of links near a body placed and checked.
+  [[nodiscard]] ConfigurationResult check_from_links(std::size_t lane, Workspace& workspace) const;
 
   RobotModel model_;
   ConfigurationChecker checker_;

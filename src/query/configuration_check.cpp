@@ -434,6 +434,13 @@ std::int32_t ConfigurationChecker::touched_body(float x, float y, float z, float
 }
 
 ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratch& scratch) const {
+  scratch.bound_links(spheres, links_);
+  collect_candidates(scratch);
+  return answer(spheres, scratch, true);
+}
+
+ConfigurationResult ConfigurationChecker::answer(const float* spheres, const Scratch& scratch,
+                                                 bool every_sphere_given) const {
   ConfigurationResult result;
   const auto collide = [&](std::size_t sphere, std::int32_t body, std::int32_t other) {
     result.free = false;
@@ -442,14 +449,14 @@ ConfigurationResult ConfigurationChecker::check_one(const float* spheres, Scratc
     result.other_sphere = other;
     return result;
   };
-  scratch.bound_links(spheres, links_);
-  collect_candidates(scratch);
   for (std::size_t i = 0; i < links_.size(); ++i) {
+    const auto link = static_cast<std::size_t>(links_[i]);
+    const bool near_link = scratch.candidate_count[link] != 0;
+    if (!near_link && !every_sphere_given) continue;  // not given
     const float* s = spheres + i * kFloatsPerSphere;
     // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
     if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
-    const auto link = static_cast<std::size_t>(links_[i]);
-    if (scratch.candidate_count[link] == 0) continue;  // nothing near the link
+    if (!near_link) continue;
     const std::int32_t body = sphere_touches(s, link, scratch);
     if (body >= 0) return collide(i, body, -1);
   }
@@ -532,6 +539,27 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
   const std::int32_t sphere = checker.self_collision(spheres, other);
   if (sphere >= 0) return {false, sphere, -1, other};
   return result;
+}
+
+void ConfigurationChecker::Run::bound(std::span<const Vec3> low, std::span<const Vec3> high) {
+  const std::size_t links = checker_->link_count_;
+  if (low.size() != links || high.size() != links) {
+    throw Error("bound: " + std::to_string(low.size()) + " and " + std::to_string(high.size()) +
+                " boxes' corners for " + std::to_string(links) + " links");
+  }
+  gathered_count_ = 0;  // the scratch is this configuration's now
+  std::ranges::copy(low, scratch_->low.begin());
+  std::ranges::copy(high, scratch_->high.begin());
+  scratch_->widen_links();
+  checker_->collect_candidates(*scratch_);
+}
+
+bool ConfigurationChecker::Run::near(std::size_t link) const {
+  return scratch_->candidate_count[link] != 0;
+}
+
+ConfigurationResult ConfigurationChecker::Run::check_bounded(const float* spheres) {
+  return checker_->answer(spheres, *scratch_, checker_->reads_every_sphere());
 }
 
 void ConfigurationChecker::check(std::span<const float> spheres,

@@ -61,6 +61,11 @@ struct RobotChecker::Compiled {
   std::vector<float> a, b, c, t, d;
   std::vector<std::int32_t> sphere_link;
   std::vector<float> sphere;
+  // Per link, the box around its spheres in its own frame: centre and half extents (3 floats
+  // each a link; a link without spheres has none), and its spheres (link_spheres from
+  // link_first[l] to link_first[l + 1]).
+  std::vector<float> link_centre, link_half;
+  std::vector<std::uint32_t> link_first, link_spheres;
   KinematicsTables tables;
   PoseBlock kernel = nullptr;
   const char* lanes = "portable";
@@ -106,6 +111,20 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
     k.sphere.insert(k.sphere.end(),
                     {sphere.center.x(), sphere.center.y(), sphere.center.z(), sphere.radius});
   }
+  for (std::size_t l = 0; l < model_.links.size(); ++l) {
+    k.link_first.push_back(static_cast<std::uint32_t>(k.link_spheres.size()));
+    Aabb box;
+    for (std::size_t s = 0; s < model_.spheres.size(); ++s) {
+      if (static_cast<std::size_t>(model_.sphere_links[s]) != l) continue;
+      k.link_spheres.push_back(static_cast<std::uint32_t>(s));
+      box.extend(Aabb::around_sphere(model_.spheres[s].center, model_.spheres[s].radius));
+    }
+    const Vec3 centre = box.empty() ? Vec3::Zero() : box.center();
+    const Vec3 half = box.empty() ? Vec3::Zero() : Vec3(0.5f * (box.max - box.min));
+    k.link_centre.insert(k.link_centre.end(), {centre.x(), centre.y(), centre.z()});
+    k.link_half.insert(k.link_half.end(), {half.x(), half.y(), half.z()});
+  }
+  k.link_first.push_back(static_cast<std::uint32_t>(k.link_spheres.size()));
   k.tables = {.links = static_cast<int>(model_.links.size()),
               .spheres = static_cast<int>(model_.spheres.size()),
               .parent = k.parent.data(),
@@ -160,8 +179,8 @@ void RobotChecker::keep_workspace(std::unique_ptr<Workspace> workspace) const {
 
 const char* RobotChecker::lanes() const { return compiled_->lanes; }
 
-const float* RobotChecker::pose(const double* values, std::size_t count,
-                                PoseScratch& scratch) const {
+const float* RobotChecker::pose(const double* values, std::size_t count, PoseScratch& scratch,
+                                bool with_spheres) const {
   const std::size_t joints = model_.joints.size();
   for (std::size_t j = 0; j < joints; ++j) {
     const RobotModel::Joint& joint = model_.joints[j];
@@ -177,8 +196,57 @@ const float* RobotChecker::pose(const double* values, std::size_t count,
     }
   }
   compiled_->kernel(compiled_->tables, scratch.values.front().v, scratch.links.front().v,
-                    scratch.posed.data());
+                    with_spheres ? scratch.posed.data() : nullptr);
   return scratch.posed.data();
+}
+
+ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& workspace) const {
+  const Compiled& k = *compiled_;
+  constexpr auto W = static_cast<std::size_t>(kPoseLanes);
+  const float* links = workspace.pose.links.front().v;
+  // Link l's pose in lane `lane`: rotation r(0..8) row-major, translation r(9..11).
+  const auto at = [&](std::size_t l, std::size_t i) { return links[(12 * l + i) * W + lane]; };
+  // Links past the checker's have no spheres.
+  const std::size_t links_with_spheres = checker_.links();
+  for (std::size_t l = 0; l < links_with_spheres; ++l) {
+    // The box of the link's spheres in its frame, turned and moved: about the centre's place,
+    // |R| times the half extents (each of the box's corners lies within it).
+    const float* c = &k.link_centre[3 * l];
+    const float* h = &k.link_half[3 * l];
+    for (std::size_t r = 0; r < 3; ++r) {
+      const float centre =
+          at(l, 3 * r) * c[0] + at(l, 3 * r + 1) * c[1] + at(l, 3 * r + 2) * c[2] + at(l, 9 + r);
+      const float half = std::abs(at(l, 3 * r)) * h[0] + std::abs(at(l, 3 * r + 1)) * h[1] +
+                         std::abs(at(l, 3 * r + 2)) * h[2];
+      // Against the rounding of both sums and of the spheres' own placing: a hundred-thousandth
+      // of every term's size, far more than a few roundings of each.
+      const float margin =
+          1e-5f * (std::abs(at(l, 9 + r)) + half + std::abs(at(l, 3 * r)) * std::abs(c[0]) +
+                   std::abs(at(l, 3 * r + 1)) * std::abs(c[1]) +
+                   std::abs(at(l, 3 * r + 2)) * std::abs(c[2]));
+      workspace.low[l][static_cast<Eigen::Index>(r)] = centre - half - margin;
+      workspace.high[l][static_cast<Eigen::Index>(r)] = centre + half + margin;
+    }
+  }
+  workspace.checks.bound(std::span(workspace.low).first(links_with_spheres),
+                         std::span(workspace.high).first(links_with_spheres));
+  // Only the spheres of links near a body are placed, as the kernel places them: the same
+  // products added in the same order, so the same bits.
+  float* spheres = workspace.pose.posed.data();
+  for (std::size_t l = 0; l < links_with_spheres; ++l) {
+    if (!workspace.checks.near(l)) continue;
+    for (std::uint32_t i = k.link_first[l]; i < k.link_first[l + 1]; ++i) {
+      const std::uint32_t s = k.link_spheres[i];
+      const float* local = &k.sphere[4 * s];
+      float* out = spheres + kFloatsPerSphere * s;
+      for (std::size_t r = 0; r < 3; ++r) {
+        out[r] = at(l, 3 * r) * local[0] + at(l, 3 * r + 1) * local[1] +
+                 at(l, 3 * r + 2) * local[2] + at(l, 9 + r);
+      }
+      out[3] = local[3];
+    }
+  }
+  return workspace.checks.check_bounded(spheres);
 }
 
 void RobotChecker::pose_spheres(std::span<const double> values, std::span<float> spheres) const {
@@ -211,11 +279,15 @@ void RobotChecker::check(std::span<const double> values, std::span<Configuration
   const std::size_t per = model_.spheres.size() * kFloatsPerSphere;
   const auto run = [&](std::size_t begin, std::size_t end) {
     std::unique_ptr<Workspace> workspace = take_workspace();
+    // Self-collision reads every sphere: each configuration posed whole. Else the links' poses
+    // alone, each link bounded from its pose and only the spheres of links near a body placed.
+    const bool whole = checker_.reads_every_sphere();
     for (std::size_t first = begin; first < end; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, end - first);
-      const float* posed = pose(values.data() + first * joints, n, workspace->pose);
+      const float* posed = pose(values.data() + first * joints, n, workspace->pose, whole);
       for (std::size_t i = 0; i < n; ++i) {
-        results[first + i] = workspace->checks.check(posed + i * per);
+        results[first + i] =
+            whole ? workspace->checks.check(posed + i * per) : check_from_links(i, *workspace);
       }
     }
     keep_workspace(std::move(workspace));

@@ -40,8 +40,9 @@ struct KinematicsTables {
 };
 
 // Poses kPoseLanes configurations: `values` holds, per joint, kPoseLanes joint values (turning
-// joints' already in [-pi, pi]); `links` is scratch of links × 12 × kPoseLanes floats; `out` gets,
-// per configuration, spheres × (x, y, z, radius) in the world. Every kernel gives the same bits.
+// joints' already in [-pi, pi]); `links` gets each link's pose (rotation row-major, then
+// translation: 12 × kPoseLanes floats a link); `out` gets, per configuration, spheres × (x, y, z,
+// radius) in the world, or is null for the links' poses alone. Every kernel gives the same bits.
 using PoseBlock = void (*)(const KinematicsTables& tables, const float* values, float* links,
                            float* out);
 

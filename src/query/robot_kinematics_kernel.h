@@ -76,7 +76,9 @@ void pose_block_of(const sphys::KinematicsTables& k, const float* values, float*
       v.store(pose + W * (9 + r));
     }
   }
-  // Each sphere's centre: its link's rotation times the centre in the link, plus the translation.
+  if (out == nullptr) return;  // the links' poses alone
+  // Each sphere's centre: its link's rotation times the centre in the link, plus the translation
+  // (posed_sphere in robot_check.cpp adds in the same order, for one configuration).
   alignas(32) float xyz[3][W];
   const std::size_t per_configuration = 4 * static_cast<std::size_t>(k.spheres);
   for (int s = 0; s < k.spheres; ++s) {

@@ -26,9 +26,14 @@ struct RobotChecker::PoseScratch {
 
 struct RobotChecker::Workspace {
   explicit Workspace(const RobotChecker& checker)
-      : pose(checker.model_), checks(checker.checker_) {}
+      : pose(checker.model_),
+        checks(checker.checker_),
+        low(checker.model_.links.size()),
+        high(checker.model_.links.size()) {}
   PoseScratch pose;
   ConfigurationChecker::Run checks;
+  std::vector<Vec3> low;  // each link's box in the world (check_from_links). unit: m
+  std::vector<Vec3> high;
   // A motion's (robot_motion.cpp): a block of states' joint values, the states posed, the order
   // they are checked in and its spans, and the states before a collision.
   std::vector<double> values;
