@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -30,6 +31,11 @@ struct ConfigurationCheckSettings {
   // more only near bodies: fewer configurations collide by the trees' conservatism, and never one
   // more. unit: levels
   int tree_depth = 0;
+  // A ball every sphere of every configuration lies in, if known (a robot's reach about its base:
+  // RobotChecker gives its own). The groups reaching into its box are listed once and scanned in
+  // order instead of walking the hierarchy from its root, for each configuration whose links
+  // all lie inside that box; a configuration outside it is walked as without. unit: m
+  std::optional<Sphere> reach;
 };
 
 // One configuration's answer.
@@ -154,6 +160,10 @@ class ConfigurationChecker {
   // then each body slot's rotation, as the snapshot placed its leaves.
   int deeper_depth_ = 0;
   std::vector<Mat3> rotations_;
+  // With ConfigurationCheckSettings::reach: its box, and the seen groups whose boxes meet it,
+  // in order (the hierarchy's leaf order, which a walk visits them in).
+  std::optional<Aabb> reach_box_;
+  std::vector<std::uint32_t> reachable_groups_;
   std::vector<std::array<std::int32_t, 2>> self_pairs_;  // sphere pairs checked for self-collision
 };
 

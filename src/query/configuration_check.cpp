@@ -69,6 +69,18 @@ ConfigurationChecker::ConfigurationChecker(const WorldQuery& query,
   for (const LeafGroup& group : snapshot.groups) {
     group_seen_.push_back(filter.sees(group.body) ? 1 : 0);
   }
+  if (settings.reach) {
+    const Sphere& ball = *settings.reach;
+    if (!ball.center.allFinite() || !std::isfinite(ball.radius) || ball.radius < 0.0f) {
+      throw Error("reach: a ball with a finite centre and a finite radius >= 0 is needed");
+    }
+    reach_box_ = Aabb::around_sphere(ball.center, ball.radius);
+    for (std::uint32_t g = 0; g < snapshot.groups.size(); ++g) {
+      if (group_seen_[g] != 0 && snapshot.groups[g].bounds.overlaps(*reach_box_)) {
+        reachable_groups_.push_back(g);
+      }
+    }
+  }
   if (settings.tree_depth < 0 || settings.tree_depth > kMostTreeDepth) {
     throw Error("tree_depth: " + std::to_string(settings.tree_depth) + " levels; give 0 (the " +
                 "world's) to " + std::to_string(kMostTreeDepth));
@@ -295,6 +307,39 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
     }
     return out & among;
   };
+  // Groups a link's box meets, in the order a walk of the hierarchy meets them (a group's box
+  // lies inside every box above it, so a walk reaches exactly the groups whose boxes meet the
+  // link's): each appended to the candidates of the links in `hit`.
+  const auto take = [&](std::uint32_t g, std::uint32_t hit) {
+    for (; hit != 0; hit &= hit - 1) {
+      const auto k = static_cast<std::size_t>(std::countr_zero(hit));
+      std::int32_t& count = scratch.candidate_count[first + k];
+      if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
+        // Near too many: this link's spheres walk the hierarchy one by one.
+        count = Scratch::kTooMany;
+        walking &= ~(1u << k);
+        continue;
+      }
+      scratch.candidates[(first + k) * Scratch::kMostCandidates + count++] = g;
+    }
+  };
+  // Every link inside the reach's box: the groups that meet that box, scanned in order.
+  if (reach_box_) {
+    bool inside = true;
+    for (std::size_t k = 0; k < end - first; ++k) {
+      const std::size_t link = first + k;
+      inside = inside && (scratch.spheres[link] == 0 ||
+                          (scratch.low[link].cwiseMax(reach_box_->min) == scratch.low[link] &&
+                           scratch.high[link].cwiseMin(reach_box_->max) == scratch.high[link]));
+    }
+    if (inside) {
+      for (const std::uint32_t g : reachable_groups_) {
+        if (walking == 0) return;
+        take(g, reached(snapshot.groups[g].bounds, walking));
+      }
+      return;
+    }
+  }
   // One walk for every link, depth first and left first as each link's own walk would go, so
   // that each link's groups come in the same order: a node is entered by the links that reach
   // it and every box above it.
@@ -319,19 +364,7 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
       continue;
     }
     for (std::uint32_t g = node.first; g < node.first + node.count; ++g) {
-      if (group_seen_[g] == 0) continue;
-      for (std::uint32_t hit = reached(snapshot.groups[g].bounds, links & walking); hit != 0;
-           hit &= hit - 1) {
-        const auto k = static_cast<std::size_t>(std::countr_zero(hit));
-        std::int32_t& count = scratch.candidate_count[first + k];
-        if (count == static_cast<std::int32_t>(Scratch::kMostCandidates)) {
-          // Near too many: this link's spheres walk the hierarchy one by one.
-          count = Scratch::kTooMany;
-          walking &= ~(1u << k);
-          continue;
-        }
-        scratch.candidates[(first + k) * Scratch::kMostCandidates + count++] = g;
-      }
+      if (group_seen_[g] != 0) take(g, reached(snapshot.groups[g].bounds, links & walking));
     }
   }
 }

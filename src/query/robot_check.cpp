@@ -42,9 +42,37 @@ std::vector<std::int32_t> sphere_links_of(const RobotModel& model) {
   return model.sphere_links;
 }
 
+// The ball about the base's place that every sphere of the robot stays in, whatever its joint
+// values: each link's frame lies no farther from it than its parent's plus its origin's offset
+// (and a sliding joint's longest travel); rotations keep distances.
+Sphere robot_reach(const RobotModel& model) {
+  std::vector<double> farthest(model.links.size(), 0.0);  // each link's frame. unit: m
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const RobotModel::Link& link = model.links[l];
+    double far = (link.parent < 0 ? 0.0 : farthest[static_cast<std::size_t>(link.parent)]) +
+                 link.origin.translation().norm();
+    if (link.joint >= 0) {
+      const RobotModel::Joint& joint = model.joints[static_cast<std::size_t>(link.joint)];
+      if (joint.type == RobotJointType::kPrismatic) {
+        far += std::max(std::abs(joint.lower), std::abs(joint.upper));
+      }
+    }
+    farthest[l] = far;
+  }
+  double reach = 0.0;
+  for (std::size_t s = 0; s < model.spheres.size(); ++s) {
+    const Sphere& sphere = model.spheres[s];
+    reach = std::max(reach, farthest[static_cast<std::size_t>(model.sphere_links[s])] +
+                                sphere.center.cast<double>().norm() + sphere.radius);
+  }
+  // Against the float kinematics' rounding: a thousandth more, and a millimetre.
+  return {model.base.translation().cast<float>(), static_cast<float>(reach * 1.001 + 1e-3)};
+}
+
 ConfigurationCheckSettings configuration_settings(const RobotModel& model,
                                                   const RobotCheckSettings& settings) {
   ConfigurationCheckSettings out;
+  out.reach = robot_reach(model);
   out.filter = settings.filter;
   out.self_collision = settings.self_collision;
   out.allowed_link_pairs = model.allowed_link_pairs;

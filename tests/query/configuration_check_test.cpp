@@ -116,6 +116,43 @@ TEST(ConfigurationCheck, AnswersMatchEverySpherePairOnAnyThreads) {
   }
 }
 
+TEST(ConfigurationCheck, AReachBallGivesTheSameAnswersInsideItAndOutside) {
+  // Configurations spread over a cube of half side 3 m; the reach ball of 2 m about the origin
+  // holds some of them whole (its groups scanned) and not others (walked).
+  QueryRng rng(67);
+  const World world = random_query_world(rng, 40, 2.5f);
+  const WorldQuery query(world);
+  const std::vector<std::int32_t> links{0, 0, 1, 1, 1, 2, 3, 3};
+  const std::vector<WorldLeaf> leaves = oracle_leaves(world);
+  constexpr std::size_t kConfigurations = 3000;
+  const std::vector<float> spheres = random_configurations(rng, kConfigurations, links, 3.0f);
+  ConfigurationCheckSettings settings;
+  settings.reach = Sphere{Vec3::Zero(), 2.0f};
+  const ConfigurationChecker checker(query, links, settings);
+  std::vector<ConfigurationResult> results(kConfigurations);
+  checker.check(spheres, results);
+  std::size_t inside = 0;
+  for (std::size_t c = 0; c < kConfigurations; ++c) {
+    const float* configuration = spheres.data() + c * 4 * links.size();
+    const ConfigurationResult expected = oracle_check(leaves, configuration, links, {}, false);
+    ASSERT_EQ(results[c].free, expected.free) << "configuration " << c;
+    EXPECT_EQ(results[c].sphere, expected.sphere);
+    bool whole = true;
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const float* s = configuration + 4 * i;
+      for (int axis = 0; axis < 3; ++axis) whole = whole && std::abs(s[axis]) + s[3] < 2.0f;
+    }
+    inside += whole ? 1 : 0;
+  }
+  // Both ways are taken often.
+  EXPECT_GT(inside, kConfigurations / 10);
+  EXPECT_LT(inside, kConfigurations * 9 / 10);
+  ConfigurationCheckSettings bad;
+  bad.reach = Sphere{Vec3::Zero(), -1.0f};
+  EXPECT_THAT(error_message([&] { ConfigurationChecker(query, links, bad); }),
+              testing::HasSubstr("reach"));
+}
+
 TEST(ConfigurationCheck, GatheredConfigurationsGetTheAnswersOfEverySpherePair) {
   // Configurations gathered in runs of 1 to 40, as a motion's states are (each run's links bounded
   // together, from near to spread over the world), against the oracle; a NaN sphere in one run.
