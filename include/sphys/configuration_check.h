@@ -109,6 +109,11 @@ class ConfigurationChecker {
     void bound(std::span<const Vec3> low, std::span<const Vec3> high);
     [[nodiscard]] bool near(std::size_t link) const;
     [[nodiscard]] ConfigurationResult check_bounded(const float* spheres);
+    // After bound() with boxes that hold their links' spheres in every one of `configurations`
+    // states at `spheres`: those states gathered as gather() gathers them, reading only the
+    // spheres of links near a group; check_gathered then answers for each. Throws sphys::Error
+    // when reads_every_sphere().
+    void gather_bounded(const float* spheres, std::size_t configurations);
 
    private:
     const ConfigurationChecker* checker_;
@@ -116,6 +121,7 @@ class ConfigurationChecker {
     const float* gathered_ = nullptr;
     std::size_t gathered_count_ = 0;
     bool gathered_finite_ = true;
+    bool gathered_bounded_ = false;  // by gather_bounded: only near links' spheres were given
   };
 
  private:

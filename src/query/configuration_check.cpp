@@ -175,14 +175,19 @@ struct ConfigurationChecker::Scratch {
     widen_links();
   }
 
-  // For configurations gathered together: each sphere's box of centres and largest radius over
-  // all of them, and each link's box around its spheres' boxes grown by their radii. Whether
-  // every sphere is finite.
-  bool bound_gathered(const float* posed, std::size_t configurations,
-                      std::span<const std::int32_t> links) {
-    const std::size_t count = links.size();
-    const std::size_t floats = count * kFloatsPerSphere;
-    // Per sphere, its four floats' (one register of lanes) least and greatest over the
+  // For configurations gathered together: each sphere's (x, y, z, radius) least and greatest
+  // over all of them, for every sphere or (near_links_only) those of links near a group alone.
+  // Whether each of those spheres is finite.
+  bool bound_spheres(const float* posed, std::size_t configurations,
+                     std::span<const std::int32_t> links, bool near_links_only) {
+    const std::size_t floats = links.size() * kFloatsPerSphere;
+    bounded.clear();
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      if (!near_links_only || candidate_count[static_cast<std::size_t>(links[i])] != 0) {
+        bounded.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    // Each sphere's four floats (one register of lanes) least and greatest over the
     // configurations (the greatest radius among them), and their sum times zero, which stays 0
     // unless one is NaN or infinite. Spheres go kInterleaved at a time, so that the three stay
     // in registers over the configurations and the spheres' chains of dependent operations
@@ -192,8 +197,8 @@ struct ConfigurationChecker::Scratch {
     least.resize(floats);
     greatest.resize(floats);
     bool finite = true;
-    for (std::size_t first = 0; first < count; first += kInterleaved) {
-      const std::size_t n = std::min(kInterleaved, count - first);
+    for (std::size_t first = 0; first < bounded.size(); first += kInterleaved) {
+      const std::size_t n = std::min(kInterleaved, bounded.size() - first);
       std::array<Lanes, kInterleaved> lo;
       std::array<Lanes, kInterleaved> hi;
       std::array<Lanes, kInterleaved> zero;
@@ -201,35 +206,41 @@ struct ConfigurationChecker::Scratch {
       hi.fill(Lanes::splat(-std::numeric_limits<float>::infinity()));
       zero.fill(Lanes::splat(0.0f));
       for (std::size_t c = 0; c < configurations; ++c) {
-        const float* state = posed + c * floats + first * kFloatsPerSphere;
+        const float* state = posed + c * floats;
         for (std::size_t k = 0; k < n; ++k) {
-          const Lanes v = Lanes::load_unaligned(state + k * kFloatsPerSphere);
+          const Lanes v = Lanes::load_unaligned(state + bounded[first + k] * kFloatsPerSphere);
           lo[k] = min(lo[k], v);
           hi[k] = max(hi[k], v);
           zero[k] = zero[k] + v * Lanes::splat(0.0f);
         }
       }
       for (std::size_t k = 0; k < n; ++k) {
-        lo[k].store(&least[(first + k) * kFloatsPerSphere]);
-        hi[k].store(&greatest[(first + k) * kFloatsPerSphere]);
+        const std::size_t i = bounded[first + k];
+        lo[k].store(&least[i * kFloatsPerSphere]);
+        hi[k].store(&greatest[i * kFloatsPerSphere]);
         alignas(32) std::array<float, kLaneWidth> sums{};
         zero[k].store(sums.data());
-        finite = finite && std::ranges::all_of(sums, [](float sum) { return sum == 0.0f; });
+        finite = finite && std::ranges::all_of(sums, [](float sum) { return sum == 0.0f; }) &&
+                 least[i * kFloatsPerSphere + 3] >= 0.0f;
       }
     }
+    return finite;
+  }
+
+  // Each link's box around its spheres' boxes (bound_spheres, every sphere) grown by their
+  // radii.
+  void box_links_from_spheres(std::span<const std::int32_t> links) {
     std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
     std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t i = 0; i < links.size(); ++i) {
       const float* lo = &least[i * kFloatsPerSphere];
       const float* hi = &greatest[i * kFloatsPerSphere];
-      finite = finite && lo[3] >= 0.0f;
       const auto l = static_cast<std::size_t>(links[i]);
       const Vec3 reach = Vec3::Constant(hi[3]);
       low[l] = low[l].cwiseMin(Vec3(lo[0], lo[1], lo[2]) - reach);
       high[l] = high[l].cwiseMax(Vec3(hi[0], hi[1], hi[2]) + reach);
     }
     widen_links();
-    return finite;
   }
 
   // Rounding c ± r to float may leave a sphere's surface up to half an ulp outside its link's
@@ -253,6 +264,7 @@ struct ConfigurationChecker::Scratch {
   // the spheres whose bound touches a leaf, in order, once known.
   query_detail::LaneFloats least;
   query_detail::LaneFloats greatest;
+  std::vector<std::uint32_t> bounded;  // the spheres bound_spheres bounded
   std::vector<std::uint32_t> near;
   bool near_known = false;
 };
@@ -522,10 +534,24 @@ ConfigurationResult ConfigurationChecker::Run::check(const float* spheres) {
 }
 
 void ConfigurationChecker::Run::gather(const float* spheres, std::size_t configurations) {
-  gathered_finite_ = scratch_->bound_gathered(spheres, configurations, checker_->links_);
+  gathered_finite_ = scratch_->bound_spheres(spheres, configurations, checker_->links_, false);
+  scratch_->box_links_from_spheres(checker_->links_);
+  checker_->collect_candidates(*scratch_);
   scratch_->near_known = false;
   gathered_ = spheres;
   gathered_count_ = configurations;
+  gathered_bounded_ = false;
+}
+
+void ConfigurationChecker::Run::gather_bounded(const float* spheres, std::size_t configurations) {
+  if (checker_->reads_every_sphere()) {
+    throw Error("gather_bounded: self-collision reads every sphere; gather them all instead");
+  }
+  gathered_finite_ = scratch_->bound_spheres(spheres, configurations, checker_->links_, true);
+  scratch_->near_known = false;
+  gathered_ = spheres;
+  gathered_count_ = configurations;
+  gathered_bounded_ = true;
 }
 
 ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t configuration) {
@@ -538,11 +564,14 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
   const std::size_t per = checker.links_.size() * kFloatsPerSphere;
   const float* spheres = gathered_ + configuration * per;
   // A non-finite sphere anywhere: each configuration on its own (which names the sphere), the
-  // scratch bounding that configuration alone each time.
-  if (!gathered_finite_) return checker.check_one(spheres, scratch);
+  // scratch bounding that configuration alone each time, or, bounded, within the links' boxes
+  // given.
+  if (!gathered_finite_) {
+    return gathered_bounded_ ? checker.answer(spheres, scratch, false)
+                             : checker.check_one(spheres, scratch);
+  }
   if (!scratch.near_known) {
     scratch.near.clear();
-    checker.collect_candidates(scratch);
     // A sphere whose box over all the gathered configurations, as a sphere, touches nothing
     // cannot touch anything in any of them.
     for (std::size_t i = 0; i < checker.links_.size(); ++i) {

@@ -228,15 +228,13 @@ const float* RobotChecker::pose(const double* values, std::size_t count, PoseScr
   return scratch.posed.data();
 }
 
-ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& workspace) const {
+void RobotChecker::box_links(const float* links, std::size_t lane, std::span<Vec3> low,
+                             std::span<Vec3> high) const {
   const Compiled& k = *compiled_;
   constexpr auto W = static_cast<std::size_t>(kPoseLanes);
-  const float* links = workspace.pose.links.front().v;
   // Link l's pose in lane `lane`: rotation r(0..8) row-major, translation r(9..11).
   const auto at = [&](std::size_t l, std::size_t i) { return links[(12 * l + i) * W + lane]; };
-  // Links past the checker's have no spheres.
-  const std::size_t links_with_spheres = checker_.links();
-  for (std::size_t l = 0; l < links_with_spheres; ++l) {
+  for (std::size_t l = 0; l < low.size(); ++l) {
     // The box of the link's spheres in its frame, turned and moved: about the centre's place,
     // |R| times the half extents (each of the box's corners lies within it).
     const float* c = &k.link_centre[3 * l];
@@ -252,17 +250,21 @@ ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& 
           1e-5f * (std::abs(at(l, 9 + r)) + half + std::abs(at(l, 3 * r)) * std::abs(c[0]) +
                    std::abs(at(l, 3 * r + 1)) * std::abs(c[1]) +
                    std::abs(at(l, 3 * r + 2)) * std::abs(c[2]));
-      workspace.low[l][static_cast<Eigen::Index>(r)] = centre - half - margin;
-      workspace.high[l][static_cast<Eigen::Index>(r)] = centre + half + margin;
+      low[l][static_cast<Eigen::Index>(r)] = centre - half - margin;
+      high[l][static_cast<Eigen::Index>(r)] = centre + half + margin;
     }
   }
-  workspace.checks.bound(std::span(workspace.low).first(links_with_spheres),
-                         std::span(workspace.high).first(links_with_spheres));
-  // Only the spheres of links near a body are placed, as the kernel places them: the same
-  // products added in the same order, so the same bits.
-  float* spheres = workspace.pose.posed.data();
-  for (std::size_t l = 0; l < links_with_spheres; ++l) {
-    if (!workspace.checks.near(l)) continue;
+}
+
+void RobotChecker::place_near_spheres(const float* links, std::size_t lane,
+                                      const ConfigurationChecker::Run& checks,
+                                      float* spheres) const {
+  const Compiled& k = *compiled_;
+  constexpr auto W = static_cast<std::size_t>(kPoseLanes);
+  const auto at = [&](std::size_t l, std::size_t i) { return links[(12 * l + i) * W + lane]; };
+  // As the kernel places them: the same products added in the same order, so the same bits.
+  for (std::size_t l = 0; l < checker_.links(); ++l) {
+    if (!checks.near(l)) continue;
     for (std::uint32_t i = k.link_first[l]; i < k.link_first[l + 1]; ++i) {
       const std::uint32_t s = k.link_spheres[i];
       const float* local = &k.sphere[4 * s];
@@ -274,6 +276,17 @@ ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& 
       out[3] = local[3];
     }
   }
+}
+
+ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& workspace) const {
+  // Links past the checker's have no spheres.
+  const std::span<Vec3> low = std::span(workspace.low).first(checker_.links());
+  const std::span<Vec3> high = std::span(workspace.high).first(checker_.links());
+  const float* links = workspace.pose.links.front().v;
+  box_links(links, lane, low, high);
+  workspace.checks.bound(low, high);
+  float* spheres = workspace.pose.posed.data();
+  place_near_spheres(links, lane, workspace.checks, spheres);
   return workspace.checks.check_bounded(spheres);
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -89,9 +90,12 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
   // A motion of few states is posed whole and its states checked together (each link's groups
   // collected once, for the bound of all its states); a longer one a block of states at a time.
   const bool together = result.states <= kStatesCheckedTogether;
-  if (together) {
-    // The whole motion's states, posed.
-    std::vector<float>& posed = workspace->posed;
+  // Self-collision reads every sphere: every state posed whole. Else the links' poses alone,
+  // each link bounded over the states from its poses and only the spheres of links near a body
+  // placed.
+  const bool whole = checker_.reads_every_sphere();
+  std::vector<float>& posed = workspace->posed;
+  if (together && whole) {
     posed.resize(result.states * per);
     for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
@@ -101,6 +105,46 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       std::copy_n(pose(values.data(), n, scratch), n * per, posed.data() + first * per);
     }
     checks.gather(posed.data(), result.states);
+  } else if (together) {
+    const std::size_t links = checker_.links();
+    const std::size_t block_floats = scratch.links.size() * kPoseLanes;
+    std::vector<float>& link_poses = workspace->link_poses;  // every block's, as posed
+    link_poses.resize((result.states + kPoseLanes - 1) / kPoseLanes * block_floats);
+    const std::span<Vec3> low = std::span(workspace->low).first(links);
+    const std::span<Vec3> high = std::span(workspace->high).first(links);
+    const std::span<Vec3> state_low = std::span(workspace->state_low).first(links);
+    const std::span<Vec3> state_high = std::span(workspace->state_high).first(links);
+    std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
+    std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
+    for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
+      const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
+      for (std::size_t i = 0; i < n; ++i) {
+        state(first + static_cast<std::uint32_t>(i), values.data() + i * joints);
+      }
+      (void)pose(values.data(), n, scratch, false);
+      float* block = link_poses.data() + first / kPoseLanes * block_floats;
+      std::copy_n(scratch.links.front().v, block_floats, block);
+      for (std::size_t i = 0; i < n; ++i) {
+        box_links(block, i, state_low, state_high);
+        for (std::size_t l = 0; l < links; ++l) {
+          low[l] = low[l].cwiseMin(state_low[l]);
+          high[l] = high[l].cwiseMax(state_high[l]);
+        }
+      }
+    }
+    checks.bound(low, high);
+    bool near = false;
+    for (std::size_t l = 0; l < links; ++l) near = near || checks.near(l);
+    if (!near) {  // every link far from every body in every state
+      keep_workspace(std::move(workspace));
+      return result;
+    }
+    posed.resize(result.states * per);
+    for (std::uint32_t k = 0; k < result.states; ++k) {
+      place_near_spheres(link_poses.data() + k / kPoseLanes * block_floats, k % kPoseLanes, checks,
+                         posed.data() + k * per);
+    }
+    checks.gather_bounded(posed.data(), result.states);
   }
   // Checks `count` states, in order: the position of the first that collides (its answer in
   // result.collision), else -1.
@@ -110,11 +154,12 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       const float* block = nullptr;
       if (!together) {
         for (std::size_t i = 0; i < n; ++i) state(states[first + i], values.data() + i * joints);
-        block = pose(values.data(), n, scratch);
+        block = pose(values.data(), n, scratch, whole);
       }
       for (std::size_t i = 0; i < n; ++i) {
         const ConfigurationResult answer =
-            together ? checks.check_gathered(states[first + i]) : checks.check(block + i * per);
+            together ? checks.check_gathered(states[first + i])
+                     : (whole ? checks.check(block + i * per) : check_from_links(i, *workspace));
         if (!answer.free) {
           result.collision = answer;
           return static_cast<std::int64_t>(first + i);

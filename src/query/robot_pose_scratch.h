@@ -29,11 +29,16 @@ struct RobotChecker::Workspace {
       : pose(checker.model_),
         checks(checker.checker_),
         low(checker.model_.links.size()),
-        high(checker.model_.links.size()) {}
+        high(checker.model_.links.size()),
+        state_low(checker.model_.links.size()),
+        state_high(checker.model_.links.size()) {}
   PoseScratch pose;
   ConfigurationChecker::Run checks;
   std::vector<Vec3> low;  // each link's box in the world (check_from_links). unit: m
   std::vector<Vec3> high;
+  std::vector<Vec3> state_low;   // a motion's: one state's link boxes, and every block's link
+  std::vector<Vec3> state_high;  // poses as the kernel wrote them
+  std::vector<float> link_poses;
   // A motion's (robot_motion.cpp): a block of states' joint values, the states posed, the order
   // they are checked in and its spans, and the states before a collision.
   std::vector<double> values;
