@@ -90,17 +90,17 @@ class RobotChecker {
   // and, with_spheres, their spheres, returned.
   [[nodiscard]] const float* pose(const double* values, std::size_t count, PoseScratch& scratch,
                                   bool with_spheres = true) const;
-  // Each link's box in the world (the first low.size() links: those with spheres) from its pose
-  // in lane `lane` of `links` (as the kernel writes them): the box of its spheres in its own
-  // frame, turned and moved.
-  void box_links(const float* links, std::size_t lane, std::span<Vec3> low,
-                 std::span<Vec3> high) const;
+  // Each link's box in the world (the links with spheres: the checker's), for every lane of the
+  // links' poses `links` (as the kernel writes them): the box of its spheres in its own frame,
+  // turned and moved; low and high get x, y and z of each lane, 3 × kPosedTogether floats a link.
+  void box_links(const float* links, float* low, float* high) const;
   // The spheres of the links `checks` found near a group, placed from their links' poses in lane
   // `lane` of `links` into `spheres` (spheres × 4 floats; the others are left as they are).
   void place_near_spheres(const float* links, std::size_t lane,
                           const ConfigurationChecker::Run& checks, float* spheres) const;
-  // The answer for the configuration in lane `lane` of the links' poses `workspace` holds: each
-  // link bounded from its pose, and the spheres of links near a body placed and checked.
+  // The answer for the configuration in lane `lane` of the links' poses and boxes `workspace`
+  // holds: the groups near each link's box, and the spheres of links near any placed and
+  // checked.
   [[nodiscard]] ConfigurationResult check_from_links(std::size_t lane, Workspace& workspace) const;
 
   RobotModel model_;

@@ -5,10 +5,12 @@
 #include "sphys/robot_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "core/simd.h"
 #include "query/configuration_layout.h"
 #include "query/robot_kinematics.h"
 #include "query/robot_pose_scratch.h"
@@ -19,6 +21,13 @@ namespace sphys {
 namespace {
 
 static_assert(RobotChecker::kPosedTogether == kPoseLanes);
+
+// The lanes the links' boxes are computed in, a kernel call's configurations at once.
+#if defined(__SSE2__)
+using BoxLanes = Sse2PairLanes;
+#else
+using BoxLanes = PortableLanes<kPoseLanes>;
+#endif
 
 // The rows of a matrix, row-major, as the kernel reads them.
 void put(const Eigen::Matrix3d& m, std::vector<float>& out) {
@@ -228,30 +237,34 @@ const float* RobotChecker::pose(const double* values, std::size_t count, PoseScr
   return scratch.posed.data();
 }
 
-void RobotChecker::box_links(const float* links, std::size_t lane, std::span<Vec3> low,
-                             std::span<Vec3> high) const {
+void RobotChecker::box_links(const float* links, float* low, float* high) const {
+  using L = BoxLanes;
   const Compiled& k = *compiled_;
   constexpr auto W = static_cast<std::size_t>(kPoseLanes);
-  // Link l's pose in lane `lane`: rotation r(0..8) row-major, translation r(9..11).
-  const auto at = [&](std::size_t l, std::size_t i) { return links[(12 * l + i) * W + lane]; };
-  for (std::size_t l = 0; l < low.size(); ++l) {
+  const L zero = L::splat(0.0f);
+  const auto magnitude = [&](const L& v) { return max(v, zero - v); };
+  for (std::size_t l = 0; l < checker_.links(); ++l) {
+    // Link l's pose: rotation p[0..8] row-major, translation p[9..11].
+    std::array<L, 12> p;
+    for (std::size_t i = 0; i < 12; ++i) p[i] = L::load(links + (12 * l + i) * W);
     // The box of the link's spheres in its frame, turned and moved: about the centre's place,
     // |R| times the half extents (each of the box's corners lies within it).
     const float* c = &k.link_centre[3 * l];
     const float* h = &k.link_half[3 * l];
     for (std::size_t r = 0; r < 3; ++r) {
-      const float centre =
-          at(l, 3 * r) * c[0] + at(l, 3 * r + 1) * c[1] + at(l, 3 * r + 2) * c[2] + at(l, 9 + r);
-      const float half = std::abs(at(l, 3 * r)) * h[0] + std::abs(at(l, 3 * r + 1)) * h[1] +
-                         std::abs(at(l, 3 * r + 2)) * h[2];
+      const L a0 = magnitude(p[3 * r]);
+      const L a1 = magnitude(p[3 * r + 1]);
+      const L a2 = magnitude(p[3 * r + 2]);
+      const L centre = p[3 * r] * L::splat(c[0]) + p[3 * r + 1] * L::splat(c[1]) +
+                       p[3 * r + 2] * L::splat(c[2]) + p[9 + r];
+      const L half = a0 * L::splat(h[0]) + a1 * L::splat(h[1]) + a2 * L::splat(h[2]);
       // Against the rounding of both sums and of the spheres' own placing: a hundred-thousandth
       // of every term's size, far more than a few roundings of each.
-      const float margin =
-          1e-5f * (std::abs(at(l, 9 + r)) + half + std::abs(at(l, 3 * r)) * std::abs(c[0]) +
-                   std::abs(at(l, 3 * r + 1)) * std::abs(c[1]) +
-                   std::abs(at(l, 3 * r + 2)) * std::abs(c[2]));
-      low[l][static_cast<Eigen::Index>(r)] = centre - half - margin;
-      high[l][static_cast<Eigen::Index>(r)] = centre + half + margin;
+      const L margin =
+          L::splat(1e-5f) * (magnitude(p[9 + r]) + half + a0 * L::splat(std::abs(c[0])) +
+                             a1 * L::splat(std::abs(c[1])) + a2 * L::splat(std::abs(c[2])));
+      (centre - half - margin).store(low + (3 * l + r) * W);
+      (centre + half + margin).store(high + (3 * l + r) * W);
     }
   }
 }
@@ -280,13 +293,18 @@ void RobotChecker::place_near_spheres(const float* links, std::size_t lane,
 
 ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& workspace) const {
   // Links past the checker's have no spheres.
-  const std::span<Vec3> low = std::span(workspace.low).first(checker_.links());
-  const std::span<Vec3> high = std::span(workspace.high).first(checker_.links());
-  const float* links = workspace.pose.links.front().v;
-  box_links(links, lane, low, high);
-  workspace.checks.bound(low, high);
+  const std::size_t links = checker_.links();
+  for (std::size_t l = 0; l < links; ++l) {
+    for (std::size_t r = 0; r < 3; ++r) {
+      const auto axis = static_cast<Eigen::Index>(r);
+      workspace.low[l][axis] = workspace.box_low[3 * l + r].v[lane];
+      workspace.high[l][axis] = workspace.box_high[3 * l + r].v[lane];
+    }
+  }
+  workspace.checks.bound(std::span(workspace.low).first(links),
+                         std::span(workspace.high).first(links));
   float* spheres = workspace.pose.posed.data();
-  place_near_spheres(links, lane, workspace.checks, spheres);
+  place_near_spheres(workspace.pose.links.front().v, lane, workspace.checks, spheres);
   return workspace.checks.check_bounded(spheres);
 }
 
@@ -326,6 +344,10 @@ void RobotChecker::check(std::span<const double> values, std::span<Configuration
     for (std::size_t first = begin; first < end; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, end - first);
       const float* posed = pose(values.data() + first * joints, n, workspace->pose, whole);
+      if (!whole) {
+        box_links(workspace->pose.links.front().v, workspace->box_low.front().v,
+                  workspace->box_high.front().v);
+      }
       for (std::size_t i = 0; i < n; ++i) {
         results[first + i] =
             whole ? workspace->checks.check(posed + i * per) : check_from_links(i, *workspace);

@@ -112,8 +112,6 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
     link_poses.resize((result.states + kPoseLanes - 1) / kPoseLanes * block_floats);
     const std::span<Vec3> low = std::span(workspace->low).first(links);
     const std::span<Vec3> high = std::span(workspace->high).first(links);
-    const std::span<Vec3> state_low = std::span(workspace->state_low).first(links);
-    const std::span<Vec3> state_high = std::span(workspace->state_high).first(links);
     std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
     std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
     for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
@@ -124,11 +122,16 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       (void)pose(values.data(), n, scratch, false);
       float* block = link_poses.data() + first / kPoseLanes * block_floats;
       std::copy_n(scratch.links.front().v, block_floats, block);
-      for (std::size_t i = 0; i < n; ++i) {
-        box_links(block, i, state_low, state_high);
-        for (std::size_t l = 0; l < links; ++l) {
-          low[l] = low[l].cwiseMin(state_low[l]);
-          high[l] = high[l].cwiseMax(state_high[l]);
+      box_links(block, workspace->box_low.front().v, workspace->box_high.front().v);
+      for (std::size_t l = 0; l < links; ++l) {
+        for (std::size_t r = 0; r < 3; ++r) {
+          const auto axis = static_cast<Eigen::Index>(r);
+          const float* lane_low = workspace->box_low[3 * l + r].v;
+          const float* lane_high = workspace->box_high[3 * l + r].v;
+          for (std::size_t i = 0; i < n; ++i) {
+            low[l][axis] = std::min(low[l][axis], lane_low[i]);
+            high[l][axis] = std::max(high[l][axis], lane_high[i]);
+          }
         }
       }
     }
@@ -155,6 +158,10 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       if (!together) {
         for (std::size_t i = 0; i < n; ++i) state(states[first + i], values.data() + i * joints);
         block = pose(values.data(), n, scratch, whole);
+        if (!whole) {
+          box_links(scratch.links.front().v, workspace->box_low.front().v,
+                    workspace->box_high.front().v);
+        }
       }
       for (std::size_t i = 0; i < n; ++i) {
         const ConfigurationResult answer =

@@ -28,13 +28,15 @@ struct RobotChecker::Workspace {
   explicit Workspace(const RobotChecker& checker)
       : pose(checker.model_),
         checks(checker.checker_),
+        box_low(3 * checker.model_.links.size()),
+        box_high(3 * checker.model_.links.size()),
         low(checker.model_.links.size()),
-        high(checker.model_.links.size()),
-        state_low(checker.model_.links.size()),
-        state_high(checker.model_.links.size()) {}
+        high(checker.model_.links.size()) {}
   PoseScratch pose;
   ConfigurationChecker::Run checks;
-  std::vector<Vec3> low;  // each link's box in the world (check_from_links). unit: m
+  std::vector<PoseLane> box_low;  // each link's box in each lane (box_links), 3 a link. unit: m
+  std::vector<PoseLane> box_high;
+  std::vector<Vec3> low;  // each link's box in the world, one configuration's. unit: m
   std::vector<Vec3> high;
   std::vector<Vec3> state_low;   // a motion's: one state's link boxes, and every block's link
   std::vector<Vec3> state_high;  // poses as the kernel wrote them
