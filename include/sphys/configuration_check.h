@@ -102,7 +102,8 @@ class ConfigurationChecker {
     [[nodiscard]] ConfigurationResult check_gathered(std::size_t configuration);
     // For a caller that bounds each link itself, as RobotChecker does from its links' poses:
     // `low` and `high` (links() each, m) are boxes holding every sphere of their link in the
-    // world, and the groups near each box are collected; near(link) says whether there are any.
+    // world (not widened here: the caller's margin covers its roundings), and the groups near
+    // each box are collected; near(link) says whether there are any.
     // check_bounded(spheres) then gives what check() would for spheres inside those boxes,
     // reading only the spheres of links near a group, or every sphere when
     // reads_every_sphere() (self-collision). Throws sphys::Error for sizes that do not match.
@@ -161,6 +162,13 @@ class ConfigurationChecker {
   const WorldQuery* query_;
   std::vector<std::int32_t> links_;
   std::size_t link_count_ = 0;
+  // The spheres in runs of one link each, in order: a link far from everything skips its run.
+  struct SphereRun {
+    std::size_t first;
+    std::size_t end;
+    std::size_t link;
+  };
+  std::vector<SphereRun> runs_;
   std::vector<std::uint8_t> group_seen_;  // per group of the snapshot: the filter sees its body
   // The level asked (ConfigurationCheckSettings::tree_depth) when deeper than the world's, else 0;
   // then each body slot's rotation, as the snapshot placed its leaves.

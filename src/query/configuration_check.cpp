@@ -62,6 +62,10 @@ ConfigurationChecker::ConfigurationChecker(const WorldQuery& query,
                   std::to_string(links_[i]));
     }
     link_count_ = std::max(link_count_, static_cast<std::size_t>(links_[i]) + 1);
+    if (runs_.empty() || runs_.back().link != static_cast<std::size_t>(links_[i])) {
+      runs_.push_back({i, i, static_cast<std::size_t>(links_[i])});
+    }
+    runs_.back().end = i + 1;
   }
   const Snapshot& snapshot = query.snapshot();
   const query_detail::BodyFilter filter(snapshot, settings.filter);
@@ -278,17 +282,20 @@ void ConfigurationChecker::collect_candidates(Scratch& scratch) const {
 void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end,
                                               Scratch& scratch) const {
   const Snapshot& snapshot = query_->snapshot();
-  // The links' boxes in lanes, link first + k in lane k; a link without spheres meets nothing.
-  alignas(32) std::array<float, kLinksPerWalk> low_x{};
-  alignas(32) std::array<float, kLinksPerWalk> low_y{};
-  alignas(32) std::array<float, kLinksPerWalk> low_z{};
-  alignas(32) std::array<float, kLinksPerWalk> high_x{};
-  alignas(32) std::array<float, kLinksPerWalk> high_y{};
-  alignas(32) std::array<float, kLinksPerWalk> high_z{};
+  // The links' boxes in lanes, link first + k in lane k; a link without spheres meets nothing
+  // (its lanes, and those past the last link, are never among the links a test asks about).
+  alignas(32) std::array<float, kLinksPerWalk> low_x;
+  alignas(32) std::array<float, kLinksPerWalk> low_y;
+  alignas(32) std::array<float, kLinksPerWalk> low_z;
+  alignas(32) std::array<float, kLinksPerWalk> high_x;
+  alignas(32) std::array<float, kLinksPerWalk> high_y;
+  alignas(32) std::array<float, kLinksPerWalk> high_z;
   const std::size_t registers = (end - first + kLaneWidth - 1) / kLaneWidth;
   std::uint32_t walking = 0;  // bit k: link first + k is still collecting
-  for (std::size_t k = 0; k < end - first; ++k) {
+  for (std::size_t k = 0; k < registers * kLaneWidth; ++k) {
     const std::size_t link = first + k;
+    low_x[k] = low_y[k] = low_z[k] = high_x[k] = high_y[k] = high_z[k] = 0.0f;
+    if (link >= end) continue;
     scratch.candidate_count[link] = 0;
     if (scratch.spheres[link] == 0) continue;
     low_x[k] = scratch.low[link].x();
@@ -337,14 +344,22 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
   };
   // Every link inside the reach's box: the groups that meet that box, scanned in order.
   if (reach_box_) {
-    bool inside = true;
-    for (std::size_t k = 0; k < end - first; ++k) {
-      const std::size_t link = first + k;
-      inside = inside && (scratch.spheres[link] == 0 ||
-                          (scratch.low[link].cwiseMax(reach_box_->min) == scratch.low[link] &&
-                           scratch.high[link].cwiseMin(reach_box_->max) == scratch.high[link]));
+    std::uint32_t inside = 0;
+    for (std::size_t r = 0; r < registers; ++r) {
+      const std::size_t lane = r * kLaneWidth;
+      const auto within = [&](const std::array<float, kLinksPerWalk>& lows,
+                              const std::array<float, kLinksPerWalk>& highs, float box_low,
+                              float box_high) {
+        return (Lanes::splat(box_low) <= Lanes::load(&lows[lane])) &
+               (Lanes::load(&highs[lane]) <= Lanes::splat(box_high));
+      };
+      const Aabb& box = *reach_box_;
+      inside |= bits(within(low_x, high_x, box.min.x(), box.max.x()) &
+                     within(low_y, high_y, box.min.y(), box.max.y()) &
+                     within(low_z, high_z, box.min.z(), box.max.z()))
+                << lane;
     }
-    if (inside) {
+    if ((inside & walking) == walking) {
       for (const std::uint32_t g : reachable_groups_) {
         if (walking == 0) return;
         take(g, reached(snapshot.groups[g].bounds, walking));
@@ -494,16 +509,17 @@ ConfigurationResult ConfigurationChecker::answer(const float* spheres, const Scr
     result.other_sphere = other;
     return result;
   };
-  for (std::size_t i = 0; i < links_.size(); ++i) {
-    const auto link = static_cast<std::size_t>(links_[i]);
-    const bool near_link = scratch.candidate_count[link] != 0;
+  for (const SphereRun& run : runs_) {
+    const bool near_link = scratch.candidate_count[run.link] != 0;
     if (!near_link && !every_sphere_given) continue;  // not given
-    const float* s = spheres + i * kFloatsPerSphere;
-    // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
-    if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
-    if (!near_link) continue;
-    const std::int32_t body = sphere_touches(s, link, scratch);
-    if (body >= 0) return collide(i, body, -1);
+    for (std::size_t i = run.first; i < run.end; ++i) {
+      const float* s = spheres + i * kFloatsPerSphere;
+      // A sum of the four is finite only when each is: a NaN or infinite sphere is never free.
+      if (!std::isfinite(s[0] + s[1] + s[2] + s[3]) || s[3] < 0.0f) return collide(i, -1, -1);
+      if (!near_link) continue;
+      const std::int32_t body = sphere_touches(s, run.link, scratch);
+      if (body >= 0) return collide(i, body, -1);
+    }
   }
   std::int32_t other = -1;
   const std::int32_t sphere = self_collision(spheres, other);
@@ -612,7 +628,6 @@ void ConfigurationChecker::Run::bound(std::span<const Vec3> low, std::span<const
   gathered_count_ = 0;  // the scratch is this configuration's now
   std::ranges::copy(low, scratch_->low.begin());
   std::ranges::copy(high, scratch_->high.begin());
-  scratch_->widen_links();
   checker_->collect_candidates(*scratch_);
 }
 
