@@ -4,6 +4,7 @@
 
 #include "sphys/robot_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -176,6 +177,66 @@ TEST(RobotCheck, ChecksAsTheConfigurationCheckerDoesOnThePosedSpheres) {
       EXPECT_GT(colliding, count / 20);
       EXPECT_LT(colliding, count - count / 20);
     }
+  }
+}
+
+TEST(RobotCheck, MotionsFindTheFirstStateThatTheConfigurationCheckerFindsColliding) {
+  QueryRng rng(5);
+  const World world = world_around_arm(rng);
+  const WorldQuery query(world);
+  const RobotModel model = test_arm();
+  const std::size_t joints = model.joints.size();
+  const std::size_t per = model.spheres.size() * 4;
+  for (const bool self : {false, true}) {
+    RobotCheckSettings settings;
+    settings.self_collision = self;
+    const RobotChecker checker(query, model, settings);
+    ConfigurationCheckSettings plain;
+    plain.self_collision = self;
+    plain.allowed_link_pairs = model.allowed_link_pairs;
+    const ConfigurationChecker spheres_checker(query, model.sphere_links, plain);
+    constexpr std::size_t kMotions = 200;
+    const std::vector<double> ends = random_values(rng, model, 2 * kMotions);
+    std::size_t free = 0;
+    for (std::size_t m = 0; m < kMotions; ++m) {
+      const std::span<const double> from = std::span(ends).subspan(2 * m * joints, joints);
+      // Short motions (a tenth of the way to another random configuration): some free, some
+      // not, some far from every body.
+      std::vector<double> to(joints);
+      for (std::size_t j = 0; j < joints; ++j) {
+        to[j] = from[j] + 0.1 * (ends[(2 * m + 1) * joints + j] - from[j]);
+      }
+      const MotionResult motion = checker.check_motion(from, to, 0.01);
+      // Every state posed and checked in order by the ConfigurationChecker.
+      std::vector<double> states(motion.states * joints);
+      for (std::uint32_t k = 0; k < motion.states; ++k) {
+        for (std::size_t j = 0; j < joints; ++j) {
+          const double along = static_cast<double>(k) / (motion.states - 1);
+          states[k * joints + j] = k + 1 == motion.states
+                                       ? to[j]
+                                       : std::clamp(from[j] + (to[j] - from[j]) * along,
+                                                    model.joints[j].lower, model.joints[j].upper);
+        }
+      }
+      std::vector<float> spheres(motion.states * per);
+      checker.pose_spheres(states, spheres);
+      std::vector<ConfigurationResult> each(motion.states);
+      spheres_checker.check(spheres, each);
+      const auto first = std::ranges::find_if(each, [](const auto& r) { return !r.free; });
+      if (first == each.end()) {
+        EXPECT_TRUE(motion.free) << m;
+        ++free;
+        continue;
+      }
+      ASSERT_FALSE(motion.free) << m;
+      EXPECT_EQ(motion.first_collision, first - each.begin()) << m;
+      EXPECT_EQ(motion.collision.sphere, first->sphere) << m;
+      EXPECT_EQ(motion.collision.body, first->body) << m;
+      EXPECT_EQ(motion.collision.other_sphere, first->other_sphere) << m;
+    }
+    // Both answers occur.
+    EXPECT_GT(free, kMotions / 10);
+    EXPECT_LT(free, kMotions - kMotions / 10);
   }
 }
 
