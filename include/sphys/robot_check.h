@@ -87,13 +87,9 @@ class RobotChecker {
   [[nodiscard]] std::unique_ptr<Workspace> take_workspace() const;
   void keep_workspace(std::unique_ptr<Workspace> workspace) const;
   // Poses `count` (at most one kernel call's) configurations: their links' poses in `scratch`
-  // and, with_spheres, their spheres, returned.
+  // and, with_spheres, their spheres, returned, else the boxes of the links with spheres.
   [[nodiscard]] const float* pose(const double* values, std::size_t count, PoseScratch& scratch,
                                   bool with_spheres = true) const;
-  // Each link's box in the world (the links with spheres: the checker's), for every lane of the
-  // links' poses `links` (as the kernel writes them): the box of its spheres in its own frame,
-  // turned and moved; low and high get x, y and z of each lane, 3 × kPosedTogether floats a link.
-  void box_links(const float* links, float* low, float* high) const;
   // The spheres of the links `checks` found near a group, placed from their links' poses in lane
   // `lane` of `links` into `spheres` (spheres × 4 floats; the others are left as they are).
   void place_near_spheres(const float* links, std::size_t lane,

@@ -10,7 +10,6 @@
 #include <numbers>
 #include <string>
 
-#include "core/simd.h"
 #include "query/configuration_layout.h"
 #include "query/robot_kinematics.h"
 #include "query/robot_pose_scratch.h"
@@ -21,13 +20,6 @@ namespace sphys {
 namespace {
 
 static_assert(RobotChecker::kPosedTogether == kPoseLanes);
-
-// The lanes the links' boxes are computed in, a kernel call's configurations at once.
-#if defined(__SSE2__)
-using BoxLanes = Sse2PairLanes;
-#else
-using BoxLanes = PortableLanes<kPoseLanes>;
-#endif
 
 // The rows of a matrix, row-major, as the kernel reads them.
 void put(const Eigen::Matrix3d& m, std::vector<float>& out) {
@@ -101,7 +93,7 @@ struct RobotChecker::Compiled {
   // Per link, the box around its spheres in its own frame: centre and half extents (3 floats
   // each a link; a link without spheres has none), and its spheres (link_spheres from
   // link_first[l] to link_first[l + 1]).
-  std::vector<float> link_centre, link_half;
+  std::vector<float> link_centre, link_centre_size, link_half;
   std::vector<std::uint32_t> link_first, link_spheres;
   KinematicsTables tables;
   PoseBlock kernel = nullptr;
@@ -159,6 +151,8 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
     const Vec3 centre = box.empty() ? Vec3::Zero() : box.center();
     const Vec3 half = box.empty() ? Vec3::Zero() : Vec3(0.5f * (box.max - box.min));
     k.link_centre.insert(k.link_centre.end(), {centre.x(), centre.y(), centre.z()});
+    k.link_centre_size.insert(k.link_centre_size.end(),
+                              {std::abs(centre.x()), std::abs(centre.y()), std::abs(centre.z())});
     k.link_half.insert(k.link_half.end(), {half.x(), half.y(), half.z()});
   }
   k.link_first.push_back(static_cast<std::uint32_t>(k.link_spheres.size()));
@@ -173,7 +167,11 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
               .t = k.t.data(),
               .d = k.d.data(),
               .sphere_link = k.sphere_link.data(),
-              .sphere = k.sphere.data()};
+              .sphere = k.sphere.data(),
+              .boxed_links = static_cast<int>(checker_.links()),
+              .box_centre = k.link_centre.data(),
+              .box_centre_size = k.link_centre_size.data(),
+              .box_half = k.link_half.data()};
   // The solver's choice of lanes (SPHYS_SIMD, else the widest the processor has): every kernel
   // gives the same bits, so it changes the speed only.
   switch (resolve_solver_lanes(SolverLanes::kAuto)) {
@@ -232,41 +230,11 @@ const float* RobotChecker::pose(const double* values, std::size_t count, PoseScr
           static_cast<float>(turned ? std::remainder(value, 2.0 * std::numbers::pi) : value);
     }
   }
+  // The links' boxes where the spheres are not all placed: those of links near a body are.
   compiled_->kernel(compiled_->tables, scratch.values.front().v, scratch.links.front().v,
+                    with_spheres ? nullptr : scratch.boxes.front().v,
                     with_spheres ? scratch.posed.data() : nullptr);
   return scratch.posed.data();
-}
-
-void RobotChecker::box_links(const float* links, float* low, float* high) const {
-  using L = BoxLanes;
-  const Compiled& k = *compiled_;
-  constexpr auto W = static_cast<std::size_t>(kPoseLanes);
-  const L zero = L::splat(0.0f);
-  const auto magnitude = [&](const L& v) { return max(v, zero - v); };
-  for (std::size_t l = 0; l < checker_.links(); ++l) {
-    // Link l's pose: rotation p[0..8] row-major, translation p[9..11].
-    std::array<L, 12> p;
-    for (std::size_t i = 0; i < 12; ++i) p[i] = L::load(links + (12 * l + i) * W);
-    // The box of the link's spheres in its frame, turned and moved: about the centre's place,
-    // |R| times the half extents (each of the box's corners lies within it).
-    const float* c = &k.link_centre[3 * l];
-    const float* h = &k.link_half[3 * l];
-    for (std::size_t r = 0; r < 3; ++r) {
-      const L a0 = magnitude(p[3 * r]);
-      const L a1 = magnitude(p[3 * r + 1]);
-      const L a2 = magnitude(p[3 * r + 2]);
-      const L centre = p[3 * r] * L::splat(c[0]) + p[3 * r + 1] * L::splat(c[1]) +
-                       p[3 * r + 2] * L::splat(c[2]) + p[9 + r];
-      const L half = a0 * L::splat(h[0]) + a1 * L::splat(h[1]) + a2 * L::splat(h[2]);
-      // Against the rounding of both sums and of the spheres' own placing: a hundred-thousandth
-      // of every term's size, far more than a few roundings of each.
-      const L margin =
-          L::splat(1e-5f) * (magnitude(p[9 + r]) + half + a0 * L::splat(std::abs(c[0])) +
-                             a1 * L::splat(std::abs(c[1])) + a2 * L::splat(std::abs(c[2])));
-      (centre - half - margin).store(low + (3 * l + r) * W);
-      (centre + half + margin).store(high + (3 * l + r) * W);
-    }
-  }
 }
 
 void RobotChecker::place_near_spheres(const float* links, std::size_t lane,
@@ -297,8 +265,8 @@ ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& 
   for (std::size_t l = 0; l < links; ++l) {
     for (std::size_t r = 0; r < 3; ++r) {
       const auto axis = static_cast<Eigen::Index>(r);
-      workspace.low[l][axis] = workspace.box_low[3 * l + r].v[lane];
-      workspace.high[l][axis] = workspace.box_high[3 * l + r].v[lane];
+      workspace.low[l][axis] = workspace.pose.boxes[6 * l + r].v[lane];
+      workspace.high[l][axis] = workspace.pose.boxes[6 * l + 3 + r].v[lane];
     }
   }
   workspace.checks.bound(std::span(workspace.low).first(links),
@@ -344,10 +312,6 @@ void RobotChecker::check(std::span<const double> values, std::span<Configuration
     for (std::size_t first = begin; first < end; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, end - first);
       const float* posed = pose(values.data() + first * joints, n, workspace->pose, whole);
-      if (!whole) {
-        box_links(workspace->pose.links.front().v, workspace->box_low.front().v,
-                  workspace->box_high.front().v);
-      }
       for (std::size_t i = 0; i < n; ++i) {
         results[first + i] =
             whole ? workspace->checks.check(posed + i * per) : check_from_links(i, *workspace);

@@ -37,15 +37,23 @@ struct KinematicsTables {
   const float* d = nullptr;
   const std::int32_t* sphere_link = nullptr;
   const float* sphere = nullptr;  // x, y, z, radius per sphere, in its link's frame
+  // The first `boxed_links` links' boxes of their spheres in their own frames: centre, its
+  // components' magnitudes and half extents, 3 floats each a link.
+  int boxed_links = 0;
+  const float* box_centre = nullptr;
+  const float* box_centre_size = nullptr;
+  const float* box_half = nullptr;
 };
 
 // Poses kPoseLanes configurations: `values` holds, per joint, kPoseLanes joint values (turning
 // joints' already in [-pi, pi]); `links` gets each link's pose (rotation row-major, then
-// translation: 12 × kPoseLanes floats a link); `out` gets, per configuration, spheres × (x, y, z,
-// radius) in the world, or is null for the links' poses alone. Every kernel gives the same bits.
+// translation: 12 × kPoseLanes floats a link); `boxes`, unless null, each boxed link's box in the
+// world (low x, y, z, then high x, y, z: 6 × kPoseLanes floats a link), the box of its spheres
+// in its frame turned and moved, with a margin against rounding; `out` gets, per configuration,
+// spheres × (x, y, z, radius) in the world, or is null for the links alone. Every kernel gives
+// the same bits.
 using PoseBlock = void (*)(const KinematicsTables& tables, const float* values, float* links,
-                           float* out);
-
+                           float* boxes, float* out);
 [[nodiscard]] PoseBlock portable_pose_block();
 [[nodiscard]] PoseBlock sse2_pose_block();  // nullptr where SSE2 is not compiled in
 [[nodiscard]] PoseBlock avx2_pose_block();  // nullptr where the AVX2 file is not compiled for it

@@ -34,7 +34,7 @@ void sin_and_versine(L q, L& sine, L& versine) {
 
 template <class L>
 void pose_block_of(const sphys::KinematicsTables& k, const float* values, float* links,
-                   float* out) {
+                   float* boxes, float* out) {
   constexpr int W = sphys::kPoseLanes;
   static_assert(L::kWidth == W);
   const auto lane = [&](const float* p) { return L::load(p); };
@@ -74,6 +74,34 @@ void pose_block_of(const sphys::KinematicsTables& k, const float* values, float*
       }
       const L v = p[3 * r] * m[9] + p[3 * r + 1] * m[10] + p[3 * r + 2] * m[11] + p[9 + r];
       v.store(pose + W * (9 + r));
+    }
+  }
+  if (boxes != nullptr) {
+    // Each boxed link's box: about its centre's place, |R| times the half extents (each corner of
+    // the box in the link's frame lies within it); the margin, a hundred-thousandth of every
+    // term's size, is far more than a few roundings of each and of the spheres' own placing.
+    const L zero = L::splat(0.0f);
+    for (int l = 0; l < k.boxed_links; ++l) {
+      const float* pose = links + static_cast<std::ptrdiff_t>(12 * W) * l;
+      const float* c = k.box_centre + 3 * l;
+      const float* size = k.box_centre_size + 3 * l;
+      const float* h = k.box_half + 3 * l;
+      float* box = boxes + static_cast<std::ptrdiff_t>(6 * W) * l;
+      for (int r = 0; r < 3; ++r) {
+        const L p0 = lane(pose + W * (3 * r));
+        const L p1 = lane(pose + W * (3 * r + 1));
+        const L p2 = lane(pose + W * (3 * r + 2));
+        const L t = lane(pose + W * (9 + r));
+        const L a0 = max(p0, zero - p0);
+        const L a1 = max(p1, zero - p1);
+        const L a2 = max(p2, zero - p2);
+        const L centre = p0 * L::splat(c[0]) + p1 * L::splat(c[1]) + p2 * L::splat(c[2]) + t;
+        const L half = a0 * L::splat(h[0]) + a1 * L::splat(h[1]) + a2 * L::splat(h[2]);
+        const L margin = L::splat(1e-5f) * (max(t, zero - t) + half + a0 * L::splat(size[0]) +
+                                            a1 * L::splat(size[1]) + a2 * L::splat(size[2]));
+        (centre - half - margin).store(box + W * r);
+        (centre + half + margin).store(box + W * (3 + r));
+      }
     }
   }
   if (out == nullptr) return;  // the links' poses alone

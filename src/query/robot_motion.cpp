@@ -122,12 +122,11 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       (void)pose(values.data(), n, scratch, false);
       float* block = link_poses.data() + first / kPoseLanes * block_floats;
       std::copy_n(scratch.links.front().v, block_floats, block);
-      box_links(block, workspace->box_low.front().v, workspace->box_high.front().v);
       for (std::size_t l = 0; l < links; ++l) {
         for (std::size_t r = 0; r < 3; ++r) {
           const auto axis = static_cast<Eigen::Index>(r);
-          const float* lane_low = workspace->box_low[3 * l + r].v;
-          const float* lane_high = workspace->box_high[3 * l + r].v;
+          const float* lane_low = scratch.boxes[6 * l + r].v;
+          const float* lane_high = scratch.boxes[6 * l + 3 + r].v;
           for (std::size_t i = 0; i < n; ++i) {
             low[l][axis] = std::min(low[l][axis], lane_low[i]);
             high[l][axis] = std::max(high[l][axis], lane_high[i]);
@@ -158,10 +157,6 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       if (!together) {
         for (std::size_t i = 0; i < n; ++i) state(states[first + i], values.data() + i * joints);
         block = pose(values.data(), n, scratch, whole);
-        if (!whole) {
-          box_links(scratch.links.front().v, workspace->box_low.front().v,
-                    workspace->box_high.front().v);
-        }
       }
       for (std::size_t i = 0; i < n; ++i) {
         const ConfigurationResult answer =

@@ -18,9 +18,11 @@ struct RobotChecker::PoseScratch {
   explicit PoseScratch(const RobotModel& model)
       : values(model.joints.size()),
         links(model.links.size() * 12),
+        boxes(model.links.size() * 6),
         posed(kPoseLanes * model.spheres.size() * kFloatsPerSphere) {}
   std::vector<PoseLane> values;  // per joint
   std::vector<PoseLane> links;   // per link, 12 lane vectors
+  std::vector<PoseLane> boxes;   // per link, 6 lane vectors: its box's low x y z, high x y z
   std::vector<float> posed;      // kPoseLanes configurations' spheres
 };
 
@@ -28,14 +30,10 @@ struct RobotChecker::Workspace {
   explicit Workspace(const RobotChecker& checker)
       : pose(checker.model_),
         checks(checker.checker_),
-        box_low(3 * checker.model_.links.size()),
-        box_high(3 * checker.model_.links.size()),
         low(checker.model_.links.size()),
         high(checker.model_.links.size()) {}
   PoseScratch pose;
   ConfigurationChecker::Run checks;
-  std::vector<PoseLane> box_low;  // each link's box in each lane (box_links), 3 a link. unit: m
-  std::vector<PoseLane> box_high;
   std::vector<Vec3> low;  // each link's box in the world, one configuration's. unit: m
   std::vector<Vec3> high;
   std::vector<Vec3> state_low;   // a motion's: one state's link boxes, and every block's link
