@@ -101,13 +101,13 @@ class ConfigurationChecker {
     void gather(const float* spheres, std::size_t configurations);
     [[nodiscard]] ConfigurationResult check_gathered(std::size_t configuration);
     // For a caller that bounds each link itself, as RobotChecker does from its links' poses:
-    // `low` and `high` (links() each, m) are boxes holding every sphere of their link in the
-    // world (not widened here: the caller's margin covers its roundings), and the groups near
-    // each box are collected; near(link) says whether there are any.
-    // check_bounded(spheres) then gives what check() would for spheres inside those boxes,
-    // reading only the spheres of links near a group, or every sphere when
-    // reads_every_sphere() (self-collision). Throws sphys::Error for sizes that do not match.
-    void bound(std::span<const Vec3> low, std::span<const Vec3> high);
+    // `boxes` holds, per link (links() of them), six rows `stride` floats apart, low x, y, z then
+    // high x, y, z (m, world frame): boxes[(6 link + row) stride]. Each box must hold every sphere
+    // of its link (it is not widened here: the caller's margin covers its roundings). The groups
+    // near each box are collected; near(link) says whether there are any. check_bounded(spheres)
+    // then gives what check() would for spheres inside those boxes, reading only the spheres of
+    // links near a group, or every sphere when reads_every_sphere() (self-collision).
+    void bound(const float* boxes, std::size_t stride);
     [[nodiscard]] bool near(std::size_t link) const;
     [[nodiscard]] ConfigurationResult check_bounded(const float* spheres);
     // After bound() with boxes that hold their links' spheres in every one of `configurations`

@@ -156,25 +156,61 @@ struct ConfigurationChecker::Scratch {
   static constexpr std::int32_t kTooMany = -2;
 
   Scratch(std::span<const std::int32_t> links, std::size_t link_count)
-      : low(link_count),
-        high(link_count),
+      : row_length((link_count + kLaneWidth - 1) / kLaneWidth * kLaneWidth),
+        box(6 * row_length, 0.0f),
         spheres(link_count),
         candidates(link_count * kMostCandidates),
         candidate_count(link_count) {
     for (const std::int32_t link : links) ++spheres[static_cast<std::size_t>(link)];
   }
 
-  // Each link's box: around its spheres.
+  // Row r of the links' boxes (0..2 low x, y, z, 3..5 high x, y, z), a link a column.
+  float* row(std::size_t r) { return box.data() + r * row_length; }
+  const float* row(std::size_t r) const { return box.data() + r * row_length; }
+
+  // Every link's box empty, for the min and max of what it holds.
+  void empty_links() {
+    for (std::size_t a = 0; a < 3; ++a) {
+      std::fill_n(row(a), spheres.size(), std::numeric_limits<float>::infinity());
+      std::fill_n(row(3 + a), spheres.size(), -std::numeric_limits<float>::infinity());
+    }
+  }
+
+  // Link l's box grown to hold the box [low, high] (x, y, z each).
+  void hold(std::size_t l, const float* low, const float* high) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      row(a)[l] = std::min(row(a)[l], low[a]);
+      row(3 + a)[l] = std::max(row(3 + a)[l], high[a]);
+    }
+  }
+
+  // Each link's box: around its spheres, a run of one link's spheres bounded in registers
+  // before its box holds them.
   void bound_links(const float* posed, std::span<const std::int32_t> links) {
-    std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
-    std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
-    for (std::size_t i = 0; i < links.size(); ++i) {
-      const float* s = posed + i * kFloatsPerSphere;
-      const Vec3 at(s[0], s[1], s[2]);
-      const Vec3 reach = Vec3::Constant(s[3]);
-      const auto l = static_cast<std::size_t>(links[i]);
-      low[l] = low[l].cwiseMin(at - reach);
-      high[l] = high[l].cwiseMax(at + reach);
+    empty_links();
+    // A sphere's x, y, z, radius in one register: lanes x, y, z of c - r and c + r (the last
+    // lane, r -+ r, is not read); even and odd spheres kept apart, so that two chains of
+    // dependent minima and maxima overlap.
+    static_assert(kFloatsPerSphere == kLaneWidth);
+    const Lanes none = Lanes::splat(std::numeric_limits<float>::infinity());
+    for (std::size_t first = 0; first < links.size();) {
+      const std::int32_t link = links[first];
+      std::array<Lanes, 2> low = {none, none};
+      std::array<Lanes, 2> high = {Lanes::splat(0.0f) - none, Lanes::splat(0.0f) - none};
+      std::size_t i = first;
+      for (; i < links.size() && links[i] == link; ++i) {
+        const float* s = posed + i * kFloatsPerSphere;
+        const Lanes sphere = Lanes::load_unaligned(s);
+        const Lanes radius = Lanes::splat(s[3]);
+        low[i & 1] = min(low[i & 1], sphere - radius);
+        high[i & 1] = max(high[i & 1], sphere + radius);
+      }
+      alignas(32) std::array<float, kLaneWidth> lowest;
+      alignas(32) std::array<float, kLaneWidth> highest;
+      min(low[0], low[1]).store(lowest.data());
+      max(high[0], high[1]).store(highest.data());
+      hold(static_cast<std::size_t>(link), lowest.data(), highest.data());
+      first = i;
     }
     widen_links();
   }
@@ -234,15 +270,13 @@ struct ConfigurationChecker::Scratch {
   // Each link's box around its spheres' boxes (bound_spheres, every sphere) grown by their
   // radii.
   void box_links_from_spheres(std::span<const std::int32_t> links) {
-    std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
-    std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
+    empty_links();
     for (std::size_t i = 0; i < links.size(); ++i) {
       const float* lo = &least[i * kFloatsPerSphere];
       const float* hi = &greatest[i * kFloatsPerSphere];
-      const auto l = static_cast<std::size_t>(links[i]);
-      const Vec3 reach = Vec3::Constant(hi[3]);
-      low[l] = low[l].cwiseMin(Vec3(lo[0], lo[1], lo[2]) - reach);
-      high[l] = high[l].cwiseMax(Vec3(hi[0], hi[1], hi[2]) + reach);
+      const float low[3] = {lo[0] - hi[3], lo[1] - hi[3], lo[2] - hi[3]};
+      const float high[3] = {hi[0] + hi[3], hi[1] + hi[3], hi[2] + hi[3]};
+      hold(static_cast<std::size_t>(links[i]), low, high);
     }
     widen_links();
   }
@@ -251,16 +285,23 @@ struct ConfigurationChecker::Scratch {
   // box: each box is widened by a millionth of its size and distance from the origin, far more
   // than that.
   void widen_links() {
-    for (std::size_t l = 0; l < low.size(); ++l) {
-      const Vec3 far = low[l].cwiseAbs().cwiseMax(high[l].cwiseAbs());
-      const Vec3 margin = 1e-6f * (far + (high[l] - low[l]));
-      low[l] -= margin;
-      high[l] += margin;
+    for (std::size_t a = 0; a < 3; ++a) {
+      float* lows = row(a);
+      float* highs = row(3 + a);
+      for (std::size_t l = 0; l < spheres.size(); ++l) {
+        float& low = lows[l];
+        float& high = highs[l];
+        const float margin = 1e-6f * (std::max(std::abs(low), std::abs(high)) + (high - low));
+        low -= margin;
+        high += margin;
+      }
     }
   }
 
-  std::vector<Vec3> low;  // each link's box. unit: m
-  std::vector<Vec3> high;
+  // Whole lanes: collect_candidates loads the rows a register at a time. unit: links
+  std::size_t row_length;
+  // Each link's box: rows low x, y, z, high x, y, z (row()), a link a column. unit: m
+  query_detail::LaneFloats box;
   std::vector<std::uint32_t> spheres;  // each link's count
   std::vector<std::uint32_t> candidates;
   std::vector<std::int32_t> candidate_count;
@@ -284,27 +325,17 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
   const Snapshot& snapshot = query_->snapshot();
   // The links' boxes in lanes, link first + k in lane k; a link without spheres meets nothing
   // (its lanes, and those past the last link, are never among the links a test asks about).
-  alignas(32) std::array<float, kLinksPerWalk> low_x;
-  alignas(32) std::array<float, kLinksPerWalk> low_y;
-  alignas(32) std::array<float, kLinksPerWalk> low_z;
-  alignas(32) std::array<float, kLinksPerWalk> high_x;
-  alignas(32) std::array<float, kLinksPerWalk> high_y;
-  alignas(32) std::array<float, kLinksPerWalk> high_z;
+  const float* low_x = scratch.row(0) + first;
+  const float* low_y = scratch.row(1) + first;
+  const float* low_z = scratch.row(2) + first;
+  const float* high_x = scratch.row(3) + first;
+  const float* high_y = scratch.row(4) + first;
+  const float* high_z = scratch.row(5) + first;
   const std::size_t registers = (end - first + kLaneWidth - 1) / kLaneWidth;
   std::uint32_t walking = 0;  // bit k: link first + k is still collecting
-  for (std::size_t k = 0; k < registers * kLaneWidth; ++k) {
-    const std::size_t link = first + k;
-    low_x[k] = low_y[k] = low_z[k] = high_x[k] = high_y[k] = high_z[k] = 0.0f;
-    if (link >= end) continue;
-    scratch.candidate_count[link] = 0;
-    if (scratch.spheres[link] == 0) continue;
-    low_x[k] = scratch.low[link].x();
-    low_y[k] = scratch.low[link].y();
-    low_z[k] = scratch.low[link].z();
-    high_x[k] = scratch.high[link].x();
-    high_y[k] = scratch.high[link].y();
-    high_z[k] = scratch.high[link].z();
-    walking |= 1u << k;
+  for (std::size_t k = 0; k < end - first; ++k) {
+    scratch.candidate_count[first + k] = 0;
+    if (scratch.spheres[first + k] != 0) walking |= 1u << k;
   }
   if (walking == 0 || snapshot.bvh.empty()) return;
   // Bit k: link first + k, among `among`, has a box that meets this one (touching counts).
@@ -313,9 +344,7 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
     for (std::size_t r = 0; r < registers; ++r) {
       const std::size_t lane = r * kLaneWidth;
       if (((among >> lane) & ((1u << kLaneWidth) - 1)) == 0) continue;
-      const auto meets = [&](const std::array<float, kLinksPerWalk>& lows,
-                             const std::array<float, kLinksPerWalk>& highs, float box_low,
-                             float box_high) {
+      const auto meets = [&](const float* lows, const float* highs, float box_low, float box_high) {
         return (Lanes::load(&lows[lane]) <= Lanes::splat(box_high)) &
                (Lanes::splat(box_low) <= Lanes::load(&highs[lane]));
       };
@@ -347,8 +376,7 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
     std::uint32_t inside = 0;
     for (std::size_t r = 0; r < registers; ++r) {
       const std::size_t lane = r * kLaneWidth;
-      const auto within = [&](const std::array<float, kLinksPerWalk>& lows,
-                              const std::array<float, kLinksPerWalk>& highs, float box_low,
+      const auto within = [&](const float* lows, const float* highs, float box_low,
                               float box_high) {
         return (Lanes::splat(box_low) <= Lanes::load(&lows[lane])) &
                (Lanes::load(&highs[lane]) <= Lanes::splat(box_high));
@@ -619,15 +647,11 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
   return result;
 }
 
-void ConfigurationChecker::Run::bound(std::span<const Vec3> low, std::span<const Vec3> high) {
-  const std::size_t links = checker_->link_count_;
-  if (low.size() != links || high.size() != links) {
-    throw Error("bound: " + std::to_string(low.size()) + " and " + std::to_string(high.size()) +
-                " boxes' corners for " + std::to_string(links) + " links");
-  }
+void ConfigurationChecker::Run::bound(const float* boxes, std::size_t stride) {
   gathered_count_ = 0;  // the scratch is this configuration's now
-  std::ranges::copy(low, scratch_->low.begin());
-  std::ranges::copy(high, scratch_->high.begin());
+  for (std::size_t l = 0; l < checker_->link_count_; ++l) {
+    for (std::size_t r = 0; r < 6; ++r) scratch_->row(r)[l] = boxes[(6 * l + r) * stride];
+  }
   checker_->collect_candidates(*scratch_);
 }
 

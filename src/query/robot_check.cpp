@@ -260,17 +260,7 @@ void RobotChecker::place_near_spheres(const float* links, std::size_t lane,
 }
 
 ConfigurationResult RobotChecker::check_from_links(std::size_t lane, Workspace& workspace) const {
-  // Links past the checker's have no spheres.
-  const std::size_t links = checker_.links();
-  for (std::size_t l = 0; l < links; ++l) {
-    for (std::size_t r = 0; r < 3; ++r) {
-      const auto axis = static_cast<Eigen::Index>(r);
-      workspace.low[l][axis] = workspace.pose.boxes[6 * l + r].v[lane];
-      workspace.high[l][axis] = workspace.pose.boxes[6 * l + 3 + r].v[lane];
-    }
-  }
-  workspace.checks.bound(std::span(workspace.low).first(links),
-                         std::span(workspace.high).first(links));
+  workspace.checks.bound(workspace.pose.boxes.front().v + lane, kPoseLanes);
   float* spheres = workspace.pose.posed.data();
   place_near_spheres(workspace.pose.links.front().v, lane, workspace.checks, spheres);
   return workspace.checks.check_bounded(spheres);

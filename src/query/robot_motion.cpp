@@ -110,10 +110,13 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
     const std::size_t block_floats = scratch.links.size() * kPoseLanes;
     std::vector<float>& link_poses = workspace->link_poses;  // every block's, as posed
     link_poses.resize((result.states + kPoseLanes - 1) / kPoseLanes * block_floats);
-    const std::span<Vec3> low = std::span(workspace->low).first(links);
-    const std::span<Vec3> high = std::span(workspace->high).first(links);
-    std::ranges::fill(low, Vec3::Constant(std::numeric_limits<float>::infinity()));
-    std::ranges::fill(high, Vec3::Constant(-std::numeric_limits<float>::infinity()));
+    // Each link's box over all the states: rows low x, y, z, high x, y, z (Run::bound's).
+    std::vector<float>& boxes = workspace->boxes;
+    boxes.resize(6 * links);
+    for (std::size_t l = 0; l < links; ++l) {
+      std::fill_n(boxes.begin() + 6 * l, 3, std::numeric_limits<float>::infinity());
+      std::fill_n(boxes.begin() + 6 * l + 3, 3, -std::numeric_limits<float>::infinity());
+    }
     for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
       const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
       for (std::size_t i = 0; i < n; ++i) {
@@ -124,17 +127,16 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
       std::copy_n(scratch.links.front().v, block_floats, block);
       for (std::size_t l = 0; l < links; ++l) {
         for (std::size_t r = 0; r < 3; ++r) {
-          const auto axis = static_cast<Eigen::Index>(r);
           const float* lane_low = scratch.boxes[6 * l + r].v;
           const float* lane_high = scratch.boxes[6 * l + 3 + r].v;
           for (std::size_t i = 0; i < n; ++i) {
-            low[l][axis] = std::min(low[l][axis], lane_low[i]);
-            high[l][axis] = std::max(high[l][axis], lane_high[i]);
+            boxes[6 * l + r] = std::min(boxes[6 * l + r], lane_low[i]);
+            boxes[6 * l + 3 + r] = std::max(boxes[6 * l + 3 + r], lane_high[i]);
           }
         }
       }
     }
-    checks.bound(low, high);
+    checks.bound(boxes.data(), 1);
     bool near = false;
     for (std::size_t l = 0; l < links; ++l) near = near || checks.near(l);
     if (!near) {  // every link far from every body in every state

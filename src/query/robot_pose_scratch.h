@@ -28,17 +28,13 @@ struct RobotChecker::PoseScratch {
 
 struct RobotChecker::Workspace {
   explicit Workspace(const RobotChecker& checker)
-      : pose(checker.model_),
-        checks(checker.checker_),
-        low(checker.model_.links.size()),
-        high(checker.model_.links.size()) {}
+      : pose(checker.model_), checks(checker.checker_) {}
   PoseScratch pose;
   ConfigurationChecker::Run checks;
-  std::vector<Vec3> low;  // each link's box in the world, one configuration's. unit: m
-  std::vector<Vec3> high;
-  std::vector<Vec3> state_low;   // a motion's: one state's link boxes, and every block's link
-  std::vector<Vec3> state_high;  // poses as the kernel wrote them
+  // A motion's: every block's link poses as the kernel wrote them, and each link's box over
+  // every state (Run::bound's rows). unit: m
   std::vector<float> link_poses;
+  std::vector<float> boxes;
   // A motion's (robot_motion.cpp): a block of states' joint values, the states posed, the order
   // they are checked in and its spans, and the states before a collision.
   std::vector<double> values;
