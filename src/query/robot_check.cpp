@@ -242,17 +242,18 @@ void RobotChecker::place_near_spheres(const float* links, std::size_t lane,
                                       float* spheres) const {
   const Compiled& k = *compiled_;
   constexpr auto W = static_cast<std::size_t>(kPoseLanes);
-  const auto at = [&](std::size_t l, std::size_t i) { return links[(12 * l + i) * W + lane]; };
   // As the kernel places them: the same products added in the same order, so the same bits.
   for (std::size_t l = 0; l < checker_.links(); ++l) {
     if (!checks.near(l)) continue;
+    // The link's pose in this lane, read once (the spheres written could alias the poses).
+    std::array<float, 12> p;
+    for (std::size_t i = 0; i < 12; ++i) p[i] = links[(12 * l + i) * W + lane];
     for (std::uint32_t i = k.link_first[l]; i < k.link_first[l + 1]; ++i) {
       const std::uint32_t s = k.link_spheres[i];
       const float* local = &k.sphere[4 * s];
       float* out = spheres + kFloatsPerSphere * s;
       for (std::size_t r = 0; r < 3; ++r) {
-        out[r] = at(l, 3 * r) * local[0] + at(l, 3 * r + 1) * local[1] +
-                 at(l, 3 * r + 2) * local[2] + at(l, 9 + r);
+        out[r] = p[3 * r] * local[0] + p[3 * r + 1] * local[1] + p[3 * r + 2] * local[2] + p[9 + r];
       }
       out[3] = local[3];
     }

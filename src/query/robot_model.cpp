@@ -99,8 +99,9 @@ void check_joint_values(const RobotModel& model, std::span<const double> values,
                 " values is no whole number of configurations of " + std::to_string(joints) +
                 " joints");
   }
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const RobotModel::Joint& joint = model.joints[i % joints];
+  // Configuration by configuration, joint by joint: no division per value.
+  for (std::size_t i = 0, j = 0; i < values.size(); ++i, j = j + 1 == joints ? 0 : j + 1) {
+    const RobotModel::Joint& joint = model.joints[j];
     const double value = values[i];
     if (!std::isfinite(value) || value < joint.lower || value > joint.upper) {
       throw Error(std::string(what) + ": configuration " + std::to_string(i / joints) +
