@@ -1,9 +1,9 @@
-// Batched configuration checks. Per configuration, each link's spheres are bounded by one sphere,
-// and one walk of the snapshot's hierarchy, the links' bounds in lanes, collects the groups near
-// each link; then sphere after
-// sphere is tested against its link's groups only (kLaneWidth leaves at a time), stopping at the
-// first sphere that touches; then, if asked, the pairs of spheres of links that may collide.
-// Configurations run in runs on the threads.
+// Batched configuration checks. Per configuration, each link's spheres are bounded by one box,
+// and one walk of the snapshot's hierarchy (or, inside a known reach, a scan of the groups within
+// it), the links' boxes in lanes, collects the groups near each link; then sphere after sphere of
+// the links near any is tested against its link's groups only (kLaneWidth leaves at a time),
+// stopping at the first sphere that touches; then, if asked, the pairs of spheres of links that
+// may collide. Configurations run in runs on the threads.
 
 #include "sphys/configuration_check.h"
 

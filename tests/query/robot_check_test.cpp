@@ -142,6 +142,16 @@ TEST(RobotCheck, EveryKernelGivesTheSameBits) {
   }
 }
 
+// What a RobotChecker's answers are checked against: a ConfigurationChecker of the model's
+// spheres, posed, with the same self-collision and allowed link pairs.
+ConfigurationChecker checker_of_spheres(const WorldQuery& query, const RobotModel& model,
+                                        bool self_collision) {
+  ConfigurationCheckSettings settings;
+  settings.self_collision = self_collision;
+  settings.allowed_link_pairs = model.allowed_link_pairs;
+  return ConfigurationChecker(query, model.sphere_links, settings);
+}
+
 TEST(RobotCheck, ChecksAsTheConfigurationCheckerDoesOnThePosedSpheres) {
   QueryRng rng(3);
   const World world = world_around_arm(rng);
@@ -151,10 +161,7 @@ TEST(RobotCheck, ChecksAsTheConfigurationCheckerDoesOnThePosedSpheres) {
     RobotCheckSettings settings;
     settings.self_collision = self;
     const RobotChecker checker(query, model, settings);
-    ConfigurationCheckSettings plain;
-    plain.self_collision = self;
-    plain.allowed_link_pairs = model.allowed_link_pairs;
-    const ConfigurationChecker spheres_checker(query, model.sphere_links, plain);
+    const ConfigurationChecker spheres_checker = checker_of_spheres(query, model, self);
     const std::size_t count = 500;
     const std::vector<double> values = random_values(rng, model, count);
     std::vector<float> spheres(count * model.spheres.size() * 4);
@@ -191,10 +198,7 @@ TEST(RobotCheck, MotionsFindTheFirstStateThatTheConfigurationCheckerFindsCollidi
     RobotCheckSettings settings;
     settings.self_collision = self;
     const RobotChecker checker(query, model, settings);
-    ConfigurationCheckSettings plain;
-    plain.self_collision = self;
-    plain.allowed_link_pairs = model.allowed_link_pairs;
-    const ConfigurationChecker spheres_checker(query, model.sphere_links, plain);
+    const ConfigurationChecker spheres_checker = checker_of_spheres(query, model, self);
     constexpr std::size_t kMotions = 200;
     const std::vector<double> ends = random_values(rng, model, 2 * kMotions);
     std::size_t free = 0;
