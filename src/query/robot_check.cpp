@@ -83,27 +83,10 @@ ConfigurationCheckSettings configuration_settings(const RobotModel& model,
 
 }  // namespace
 
-struct RobotChecker::Compiled {
-  std::vector<std::int32_t> parent;
-  std::vector<std::int32_t> joint;
-  std::vector<LinkMotion> motion;
-  std::vector<float> a, b, c, t, d;
-  std::vector<std::int32_t> sphere_link;
-  std::vector<float> sphere;
-  // Per link, the box around its spheres in its own frame: centre and half extents (3 floats
-  // each a link; a link without spheres has none), and its spheres (link_spheres from
-  // link_first[l] to link_first[l + 1]).
-  std::vector<float> link_centre, link_centre_size, link_half;
-  std::vector<std::uint32_t> link_first, link_spheres;
-  KinematicsTables tables;
-  PoseBlock kernel = nullptr;
-  const char* lanes = "portable";
-};
-
 RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheckSettings settings)
     : model_(std::move(model)),
       checker_(query, sphere_links_of(model_), configuration_settings(model_, settings)),
-      compiled_(std::make_unique<Compiled>()) {
+      compiled_(std::make_unique<Compiled>(model_)) {
   Compiled& k = *compiled_;
   for (std::size_t l = 0; l < model_.links.size(); ++l) {
     const RobotModel::Link& link = model_.links[l];
@@ -172,23 +155,25 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
               .box_centre = k.link_centre.data(),
               .box_centre_size = k.link_centre_size.data(),
               .box_half = k.link_half.data()};
+  const Sphere reach = robot_reach(model_);
+  k.sweep_margin = 1e-4f * (reach.center.norm() + reach.radius);
   // The solver's choice of lanes (SPHYS_SIMD, else the widest the processor has): every kernel
   // gives the same bits, so it changes the speed only.
   switch (resolve_solver_lanes(SolverLanes::kAuto)) {
     case SolverLanes::kAvx2:
-      k.kernel = avx2_pose_block();
+      k.kernel = avx2_kernel();
       k.lanes = "avx2";
       break;
     case SolverLanes::kSse2:
-      k.kernel = sse2_pose_block();
+      k.kernel = sse2_kernel();
       k.lanes = "sse2";
       break;
     case SolverLanes::kAuto:
     case SolverLanes::kPortable:
       break;
   }
-  if (k.kernel == nullptr) {
-    k.kernel = portable_pose_block();
+  if (k.kernel.pose == nullptr) {
+    k.kernel = portable_kernel();
     k.lanes = "portable";
   }
 }
@@ -231,9 +216,9 @@ const float* RobotChecker::pose(const double* values, std::size_t count, PoseScr
     }
   }
   // The links' boxes where the spheres are not all placed: those of links near a body are.
-  compiled_->kernel(compiled_->tables, scratch.values.front().v, scratch.links.front().v,
-                    with_spheres ? nullptr : scratch.boxes.front().v,
-                    with_spheres ? scratch.posed.data() : nullptr);
+  compiled_->kernel.pose(compiled_->tables, scratch.values.front().v, scratch.links.front().v,
+                         with_spheres ? nullptr : scratch.boxes.front().v,
+                         with_spheres ? scratch.posed.data() : nullptr);
   return scratch.posed.data();
 }
 

@@ -12,13 +12,15 @@ namespace {
 
 }  // namespace
 
-PoseBlock portable_pose_block() { return &pose_block_of<PortableLanes<kPoseLanes>>; }
+KinematicsKernel portable_kernel() {
+  return {&pose_block_of<PortableLanes<kPoseLanes>>, &place_block_of<PortableLanes<kPoseLanes>>};
+}
 
-PoseBlock sse2_pose_block() {
+KinematicsKernel sse2_kernel() {
 #if defined(__SSE2__)
-  return &pose_block_of<Sse2PairLanes>;
+  return {&pose_block_of<Sse2PairLanes>, &place_block_of<Sse2PairLanes>};
 #else
-  return nullptr;
+  return {};
 #endif
 }
 

@@ -6,6 +6,7 @@
 // arrays and no Eigen: the AVX2 kernel's file must not share an inline function with the rest of
 // the library (robot_kinematics_avx2.cpp).
 
+#include <cstddef>
 #include <cstdint>
 
 namespace sphys {
@@ -50,12 +51,22 @@ struct KinematicsTables {
 // translation: 12 × kPoseLanes floats a link); `boxes`, unless null, each boxed link's box in the
 // world (low x, y, z, then high x, y, z: 6 × kPoseLanes floats a link), the box of its spheres
 // in its frame turned and moved, with a margin against rounding; `out` gets, per configuration,
-// spheres × (x, y, z, radius) in the world, or is null for the links alone. Every kernel gives
-// the same bits.
+// spheres × (x, y, z, radius) in the world, or is null for the links alone.
 using PoseBlock = void (*)(const KinematicsTables& tables, const float* values, float* links,
                            float* boxes, float* out);
-[[nodiscard]] PoseBlock portable_pose_block();
-[[nodiscard]] PoseBlock sse2_pose_block();  // nullptr where SSE2 is not compiled in
-[[nodiscard]] PoseBlock avx2_pose_block();  // nullptr where the AVX2 file is not compiled for it
+// Places the `count` spheres listed in `spheres` for the kPoseLanes configurations whose links'
+// poses `links` holds (as PoseBlock wrote them): lane i's (x, y, z, radius) of sphere s at
+// out[i] + 4 s, the others left as they are.
+using PlaceBlock = void (*)(const KinematicsTables& tables, const float* links,
+                            const std::uint32_t* spheres, std::size_t count, float* const* out);
+// A kernel's two calls, in one width of lanes. Every kernel gives the same bits, and a sphere
+// placed by either call the same bits.
+struct KinematicsKernel {
+  PoseBlock pose = nullptr;
+  PlaceBlock place = nullptr;
+};
+[[nodiscard]] KinematicsKernel portable_kernel();
+[[nodiscard]] KinematicsKernel sse2_kernel();  // empty where SSE2 is not compiled in
+[[nodiscard]] KinematicsKernel avx2_kernel();  // empty where the AVX2 file is not compiled for it
 
 }  // namespace sphys

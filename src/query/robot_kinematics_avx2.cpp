@@ -15,9 +15,9 @@ namespace {
 
 }  // namespace
 
-PoseBlock avx2_pose_block() { return &pose_block_of<Avx2Lanes>; }
+KinematicsKernel avx2_kernel() { return {&pose_block_of<Avx2Lanes>, &place_block_of<Avx2Lanes>}; }
 #else
-PoseBlock avx2_pose_block() { return nullptr; }
+KinematicsKernel avx2_kernel() { return {}; }
 #endif
 
 }  // namespace sphys

@@ -32,6 +32,38 @@ void sin_and_versine(L q, L& sine, L& versine) {
   versine = two * s * s;
 }
 
+// Sphere s's centre in every lane into `xyz` (rows x, y, z) and radius, at `out[lane] + 4 s`:
+// its link's rotation times the centre in the link, plus the translation, added in that order.
+template <class L>
+void place_sphere(const sphys::KinematicsTables& k, const float* links, int s, float* const* out) {
+  constexpr int W = sphys::kPoseLanes;
+  const float* pose = links + static_cast<std::ptrdiff_t>(12 * W) * k.sphere_link[s];
+  const float* local = k.sphere + 4 * s;
+  const L x = L::splat(local[0]);
+  const L y = L::splat(local[1]);
+  const L z = L::splat(local[2]);
+  alignas(32) float xyz[3][W];
+  for (int r = 0; r < 3; ++r) {
+    const L v = L::load(pose + W * (3 * r)) * x + L::load(pose + W * (3 * r + 1)) * y +
+                L::load(pose + W * (3 * r + 2)) * z + L::load(pose + W * (9 + r));
+    v.store(xyz[r]);
+  }
+  for (int i = 0; i < W; ++i) {
+    float* sphere = out[i] + 4 * s;
+    sphere[0] = xyz[0][i];
+    sphere[1] = xyz[1][i];
+    sphere[2] = xyz[2][i];
+    sphere[3] = local[3];
+  }
+}
+
+template <class L>
+void place_block_of(const sphys::KinematicsTables& k, const float* links,
+                    const std::uint32_t* spheres, std::size_t count, float* const* out) {
+  for (std::size_t n = 0; n < count; ++n)
+    place_sphere<L>(k, links, static_cast<int>(spheres[n]), out);
+}
+
 template <class L>
 void pose_block_of(const sphys::KinematicsTables& k, const float* values, float* links,
                    float* boxes, float* out) {
@@ -105,27 +137,7 @@ void pose_block_of(const sphys::KinematicsTables& k, const float* values, float*
     }
   }
   if (out == nullptr) return;  // the links' poses alone
-  // Each sphere's centre: its link's rotation times the centre in the link, plus the translation
-  // (posed_sphere in robot_check.cpp adds in the same order, for one configuration).
-  alignas(32) float xyz[3][W];
-  const std::size_t per_configuration = 4 * static_cast<std::size_t>(k.spheres);
-  for (int s = 0; s < k.spheres; ++s) {
-    const float* pose = links + static_cast<std::ptrdiff_t>(12 * W) * k.sphere_link[s];
-    const float* local = k.sphere + 4 * s;
-    const L x = L::splat(local[0]);
-    const L y = L::splat(local[1]);
-    const L z = L::splat(local[2]);
-    for (int r = 0; r < 3; ++r) {
-      const L v = lane(pose + W * (3 * r)) * x + lane(pose + W * (3 * r + 1)) * y +
-                  lane(pose + W * (3 * r + 2)) * z + lane(pose + W * (9 + r));
-      v.store(xyz[r]);
-    }
-    for (int i = 0; i < W; ++i) {
-      float* sphere = out + per_configuration * static_cast<std::size_t>(i) + 4 * s;
-      sphere[0] = xyz[0][i];
-      sphere[1] = xyz[1][i];
-      sphere[2] = xyz[2][i];
-      sphere[3] = local[3];
-    }
-  }
+  float* lanes_out[W];
+  for (int i = 0; i < W; ++i) lanes_out[i] = out + 4 * static_cast<std::ptrdiff_t>(k.spheres) * i;
+  for (int s = 0; s < k.spheres; ++s) place_sphere<L>(k, links, s, lanes_out);
 }

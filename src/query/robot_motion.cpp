@@ -21,6 +21,33 @@ namespace {
 constexpr double kMostMotionStates = 1e7;
 // Motions of up to this many states are posed whole and checked together. unit: states
 constexpr std::uint32_t kStatesCheckedTogether = 256;
+constexpr std::uint32_t kNotPosed = std::numeric_limits<std::uint32_t>::max();
+
+// Each link's box, kernel lanes' rows low x, y, z, high x, y, z (PoseScratch::boxes), grown to
+// hold `boxes`' lane by lane.
+void unite_lanes(const PoseLane* boxes, std::size_t links, PoseLane* united) {
+  for (std::size_t row = 0; row < 6 * links; ++row) {
+    const float* in = boxes[row].v;
+    float* out = united[row].v;
+    if (row % 6 < 3) {
+      for (int i = 0; i < kPoseLanes; ++i) out[i] = std::min(out[i], in[i]);
+    } else {
+      for (int i = 0; i < kPoseLanes; ++i) out[i] = std::max(out[i], in[i]);
+    }
+  }
+}
+
+// Each link's box over the lanes of `united` into `boxes`: six floats a link, Run::bound's rows.
+void fold_lanes(const PoseLane* united, std::size_t links, float* boxes) {
+  for (std::size_t row = 0; row < 6 * links; ++row) {
+    const float* in = united[row].v;
+    float folded = in[0];
+    for (int i = 1; i < kPoseLanes; ++i) {
+      folded = row % 6 < 3 ? std::min(folded, in[i]) : std::max(folded, in[i]);
+    }
+    boxes[row] = folded;
+  }
+}
 
 // The order in which a motion's `states` states are checked, into `order`: both ends, then the
 // midpoints of ever finer halves, breadth first, so that a collision anywhere along it is met
@@ -84,7 +111,10 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
   PoseScratch& scratch = workspace->pose;
   ConfigurationChecker::Run& checks = workspace->checks;
   std::vector<std::uint32_t>& order = workspace->order;
-  coarse_to_fine(result.states, order, workspace->spans, workspace->finer);
+  if (workspace->order_states != result.states) {  // the last motion's order is kept
+    coarse_to_fine(result.states, order, workspace->spans, workspace->finer);
+    workspace->order_states = result.states;
+  }
   std::vector<double>& values = workspace->values;
   values.resize(kPoseLanes * joints);
   // A motion of few states is posed whole and its states checked together (each link's groups
@@ -108,45 +138,107 @@ MotionResult RobotChecker::check_motion(std::span<const double> from, std::span<
   } else if (together) {
     const std::size_t links = checker_.links();
     const std::size_t block_floats = scratch.links.size() * kPoseLanes;
-    std::vector<float>& link_poses = workspace->link_poses;  // every block's, as posed
-    link_poses.resize((result.states + kPoseLanes - 1) / kPoseLanes * block_floats);
-    // Each link's box over all the states: rows low x, y, z, high x, y, z (Run::bound's).
-    std::vector<float>& boxes = workspace->boxes;
-    boxes.resize(6 * links);
-    for (std::size_t l = 0; l < links; ++l) {
-      std::fill_n(boxes.begin() + 6 * l, 3, std::numeric_limits<float>::infinity());
-      std::fill_n(boxes.begin() + 6 * l + 3, 3, -std::numeric_limits<float>::infinity());
+    const std::size_t blocks = (result.states + kPoseLanes - 1) / kPoseLanes;
+    // The order the states are posed in: first a kernel call's worth spread evenly along the
+    // motion, both ends among them, then the others in order.
+    std::vector<std::uint32_t>& posed_states = workspace->posed_states;
+    std::vector<std::uint32_t>& state_slots = workspace->state_slots;
+    const std::uint32_t spread = std::min<std::uint32_t>(result.states, kPoseLanes);
+    posed_states.clear();
+    state_slots.assign(result.states, kNotPosed);
+    std::uint32_t widest_gap = 0;  // between neighbouring spread states. unit: states
+    for (std::uint32_t i = 0; i < spread; ++i) {
+      const auto k =
+          static_cast<std::uint32_t>((std::uint64_t{i} * last + (spread - 1) / 2) / (spread - 1));
+      if (i > 0) widest_gap = std::max(widest_gap, k - posed_states.back());
+      state_slots[k] = i;
+      posed_states.push_back(k);
     }
-    for (std::uint32_t first = 0; first < result.states; first += kPoseLanes) {
-      const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - first);
+    for (std::uint32_t k = 0; k < result.states; ++k) {
+      if (state_slots[k] != kNotPosed) continue;
+      state_slots[k] = static_cast<std::uint32_t>(posed_states.size());
+      posed_states.push_back(k);
+    }
+    // Poses the states of block b (kernel lanes) into `scratch`: the links' poses and boxes.
+    const auto pose_block = [&](std::size_t b) {
+      const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - b * kPoseLanes);
       for (std::size_t i = 0; i < n; ++i) {
-        state(first + static_cast<std::uint32_t>(i), values.data() + i * joints);
+        state(posed_states[b * kPoseLanes + i], values.data() + i * joints);
       }
       (void)pose(values.data(), n, scratch, false);
-      float* block = link_poses.data() + first / kPoseLanes * block_floats;
-      std::copy_n(scratch.links.front().v, block_floats, block);
+    };
+    const auto any_near = [&] {
       for (std::size_t l = 0; l < links; ++l) {
+        if (checks.near(l)) return true;
+      }
+      return false;
+    };
+    // Each link's box over the spread states, a kernel call's lanes, exactly as posed.
+    std::vector<PoseLane>& united = workspace->united;
+    pose_block(0);
+    united.assign(scratch.boxes.begin(), scratch.boxes.begin() + 6 * links);
+    std::vector<float>& boxes = workspace->boxes;
+    boxes.resize(6 * links);
+    fold_lanes(united.data(), links, boxes.data());
+    if (spread < result.states) {
+      // Every state lies within half the widest gap of a spread one: each link's box over the
+      // spread states, widened by how far its spheres can move in that part of the motion,
+      // holds them all. Everything far from that, the motion is free without posing the rest.
+      std::vector<double>& changes = workspace->changes;
+      changes.resize(joints);
+      const double part = static_cast<double>(widest_gap / 2) / last;
+      for (std::size_t j = 0; j < joints; ++j) changes[j] = std::abs(to[j] - from[j]) * part;
+      std::vector<float>& widened = workspace->widened;
+      widened = boxes;
+      for (std::size_t l = 0; l < links; ++l) {
+        const float reach = static_cast<float>(compiled_->sweep.along(l, changes) * (1.0 + 1e-6)) +
+                            compiled_->sweep_margin;
         for (std::size_t r = 0; r < 3; ++r) {
-          const float* lane_low = scratch.boxes[6 * l + r].v;
-          const float* lane_high = scratch.boxes[6 * l + 3 + r].v;
-          for (std::size_t i = 0; i < n; ++i) {
-            boxes[6 * l + r] = std::min(boxes[6 * l + r], lane_low[i]);
-            boxes[6 * l + 3 + r] = std::max(boxes[6 * l + 3 + r], lane_high[i]);
-          }
+          widened[6 * l + r] -= reach;
+          widened[6 * l + 3 + r] += reach;
         }
       }
+      checks.bound(widened.data(), 1);
+      if (!any_near()) {
+        keep_workspace(std::move(workspace));
+        return result;
+      }
     }
+    // Then every state posed: each link's box over them all, and only the spheres of links near a
+    // body placed, state by state from the poses kept.
+    std::vector<float>& link_poses = workspace->link_poses;  // every block's, as posed
+    link_poses.resize(blocks * block_floats);
+    std::copy_n(scratch.links.front().v, block_floats, link_poses.data());
+    for (std::size_t b = 1; b < blocks; ++b) {
+      pose_block(b);
+      std::copy_n(scratch.links.front().v, block_floats, link_poses.data() + b * block_floats);
+      unite_lanes(scratch.boxes.data(), links, united.data());
+    }
+    fold_lanes(united.data(), links, boxes.data());
     checks.bound(boxes.data(), 1);
-    bool near = false;
-    for (std::size_t l = 0; l < links; ++l) near = near || checks.near(l);
-    if (!near) {  // every link far from every body in every state
+    if (!any_near()) {  // every link far from every body in every state
       keep_workspace(std::move(workspace));
       return result;
     }
+    std::vector<std::uint32_t>& near_spheres = workspace->near_spheres;
+    near_spheres.clear();
+    for (std::size_t l = 0; l < links; ++l) {
+      if (!checks.near(l)) continue;
+      near_spheres.insert(near_spheres.end(),
+                          compiled_->link_spheres.begin() + compiled_->link_first[l],
+                          compiled_->link_spheres.begin() + compiled_->link_first[l + 1]);
+    }
     posed.resize(result.states * per);
-    for (std::uint32_t k = 0; k < result.states; ++k) {
-      place_near_spheres(link_poses.data() + k / kPoseLanes * block_floats, k % kPoseLanes, checks,
-                         posed.data() + k * per);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      // Lanes past the motion's last state pose the block's first again: the same bits, written
+      // to the same place.
+      const std::size_t n = std::min<std::size_t>(kPoseLanes, result.states - b * kPoseLanes);
+      std::array<float*, kPoseLanes> out;
+      for (std::size_t i = 0; i < kPoseLanes; ++i) {
+        out[i] = posed.data() + posed_states[b * kPoseLanes + (i < n ? i : 0)] * per;
+      }
+      compiled_->kernel.place(compiled_->tables, link_poses.data() + b * block_floats,
+                              near_spheres.data(), near_spheres.size(), out.data());
     }
     checks.gather_bounded(posed.data(), result.states);
   }

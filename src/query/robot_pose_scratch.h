@@ -1,8 +1,9 @@
 #pragma once
 
-// What a RobotChecker poses configurations with, one per run of them (robot_check.cpp,
-// robot_motion.cpp): the kernel's blocks of joint values and link poses, and the posed spheres;
-// and the workspace a call keeps them in with the rest it needs.
+// What a RobotChecker poses configurations with (robot_check.cpp, robot_motion.cpp): the
+// kinematics compiled once; per run of configurations, the kernel's blocks of joint values and
+// link poses, and the posed spheres; and the workspace a call keeps them in with the rest it
+// needs.
 
 #include <array>
 #include <cstdint>
@@ -10,9 +11,33 @@
 
 #include "query/configuration_layout.h"
 #include "query/robot_kinematics.h"
+#include "query/robot_sweep.h"
 #include "sphys/robot_check.h"
 
 namespace sphys {
+
+struct RobotChecker::Compiled {
+  explicit Compiled(const RobotModel& model) : sweep(model) {}
+  std::vector<std::int32_t> parent;
+  std::vector<std::int32_t> joint;
+  std::vector<LinkMotion> motion;
+  std::vector<float> a, b, c, t, d;
+  std::vector<std::int32_t> sphere_link;
+  std::vector<float> sphere;
+  // Per link, the box around its spheres in its own frame: centre and half extents (3 floats
+  // each a link; a link without spheres has none), and its spheres (link_spheres from
+  // link_first[l] to link_first[l + 1]).
+  std::vector<float> link_centre, link_centre_size, link_half;
+  std::vector<std::uint32_t> link_first, link_spheres;
+  KinematicsTables tables;
+  KinematicsKernel kernel;
+  const char* lanes = "portable";
+  // How far each link's spheres move with the joints, and what a bound from it is widened by
+  // against the float kinematics' rounding of the posed states it starts from: a
+  // ten-thousandth of the largest coordinate a sphere can have, thousands of roundings. unit: m
+  LinkSweep sweep;
+  float sweep_margin = 0.0f;
+};
 
 struct RobotChecker::PoseScratch {
   explicit PoseScratch(const RobotModel& model)
@@ -35,11 +60,22 @@ struct RobotChecker::Workspace {
   // every state (Run::bound's rows). unit: m
   std::vector<float> link_poses;
   std::vector<float> boxes;
+  // A motion's states in the order they are posed (kPoseLanes to a kernel call), and each
+  // state's place in that order.
+  std::vector<std::uint32_t> posed_states;
+  std::vector<std::uint32_t> state_slots;
+  // Each link's box over the states posed so far, lane by lane (PoseScratch::boxes' rows), and
+  // over the spread states widened by how far the spheres can move between them. unit: m
+  std::vector<PoseLane> united;
+  std::vector<float> widened;
+  std::vector<double> changes;  // per joint: its change over half the widest gap. unit: rad, m
+  std::vector<std::uint32_t> near_spheres;  // the spheres of links near a body
   // A motion's (robot_motion.cpp): a block of states' joint values, the states posed, the order
   // they are checked in and its spans, and the states before a collision.
   std::vector<double> values;
   std::vector<float> posed;
-  std::vector<std::uint32_t> order;
+  std::vector<std::uint32_t> order;  // for order_states states
+  std::uint32_t order_states = 0;
   std::vector<std::array<std::uint32_t, 2>> spans;
   std::vector<std::array<std::uint32_t, 2>> finer;
   std::vector<std::uint8_t> checked;

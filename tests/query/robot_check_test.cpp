@@ -187,7 +187,44 @@ TEST(RobotCheck, ChecksAsTheConfigurationCheckerDoesOnThePosedSpheres) {
   }
 }
 
-TEST(RobotCheck, MotionsFindTheFirstStateThatTheConfigurationCheckerFindsColliding) {
+// The states of a motion of `count` states from `from` to `to`, as check_motion makes them.
+std::vector<double> motion_states(const RobotModel& model, std::span<const double> from,
+                                  std::span<const double> to, std::uint32_t count) {
+  const std::size_t joints = model.joints.size();
+  std::vector<double> states(count * joints);
+  for (std::uint32_t k = 0; k < count; ++k) {
+    for (std::size_t j = 0; j < joints; ++j) {
+      const double along = static_cast<double>(k) / (count - 1);
+      states[k * joints + j] = k + 1 == count
+                                   ? to[j]
+                                   : std::clamp(from[j] + (to[j] - from[j]) * along,
+                                                model.joints[j].lower, model.joints[j].upper);
+    }
+  }
+  return states;
+}
+
+// Expects motion `m`'s answer to be that of its first colliding state in `each` (its states'
+// answers, in order); whether it is free.
+bool expect_as_its_states(const MotionResult& motion, std::span<const ConfigurationResult> each,
+                          std::size_t m) {
+  const auto first = std::ranges::find_if(each, [](const auto& r) { return !r.free; });
+  if (first == each.end()) {
+    EXPECT_TRUE(motion.free) << m;
+    return true;
+  }
+  EXPECT_FALSE(motion.free) << m;
+  EXPECT_EQ(motion.first_collision, first - each.begin()) << m;
+  EXPECT_EQ(motion.collision.sphere, first->sphere) << m;
+  EXPECT_EQ(motion.collision.body, first->body) << m;
+  EXPECT_EQ(motion.collision.other_sphere, first->other_sphere) << m;
+  return false;
+}
+
+// Motions from random configurations, `share` of the way to others, states `resolution` apart,
+// with and without self-collision: each against every state posed and checked in order by the
+// ConfigurationChecker. Some are free, some not.
+void expect_motions_as_their_states(double share, double resolution) {
   QueryRng rng(5);
   const World world = world_around_arm(rng);
   const WorldQuery query(world);
@@ -204,44 +241,32 @@ TEST(RobotCheck, MotionsFindTheFirstStateThatTheConfigurationCheckerFindsCollidi
     std::size_t free = 0;
     for (std::size_t m = 0; m < kMotions; ++m) {
       const std::span<const double> from = std::span(ends).subspan(2 * m * joints, joints);
-      // Short motions (a tenth of the way to another random configuration): some free, some
-      // not, some far from every body.
       std::vector<double> to(joints);
       for (std::size_t j = 0; j < joints; ++j) {
-        to[j] = from[j] + 0.1 * (ends[(2 * m + 1) * joints + j] - from[j]);
+        to[j] = from[j] + share * (ends[(2 * m + 1) * joints + j] - from[j]);
       }
-      const MotionResult motion = checker.check_motion(from, to, 0.01);
-      // Every state posed and checked in order by the ConfigurationChecker.
-      std::vector<double> states(motion.states * joints);
-      for (std::uint32_t k = 0; k < motion.states; ++k) {
-        for (std::size_t j = 0; j < joints; ++j) {
-          const double along = static_cast<double>(k) / (motion.states - 1);
-          states[k * joints + j] = k + 1 == motion.states
-                                       ? to[j]
-                                       : std::clamp(from[j] + (to[j] - from[j]) * along,
-                                                    model.joints[j].lower, model.joints[j].upper);
-        }
-      }
+      const MotionResult motion = checker.check_motion(from, to, resolution);
       std::vector<float> spheres(motion.states * per);
-      checker.pose_spheres(states, spheres);
+      checker.pose_spheres(motion_states(model, from, to, motion.states), spheres);
       std::vector<ConfigurationResult> each(motion.states);
       spheres_checker.check(spheres, each);
-      const auto first = std::ranges::find_if(each, [](const auto& r) { return !r.free; });
-      if (first == each.end()) {
-        EXPECT_TRUE(motion.free) << m;
-        ++free;
-        continue;
-      }
-      ASSERT_FALSE(motion.free) << m;
-      EXPECT_EQ(motion.first_collision, first - each.begin()) << m;
-      EXPECT_EQ(motion.collision.sphere, first->sphere) << m;
-      EXPECT_EQ(motion.collision.body, first->body) << m;
-      EXPECT_EQ(motion.collision.other_sphere, first->other_sphere) << m;
+      free += expect_as_its_states(motion, each, m) ? 1 : 0;
     }
     // Both answers occur.
     EXPECT_GT(free, kMotions / 10);
     EXPECT_LT(free, kMotions - kMotions / 10);
   }
+}
+
+TEST(RobotCheck, MotionsFindTheFirstStateThatTheConfigurationCheckerFindsColliding) {
+  // Short motions (a tenth of the way to another random configuration): some far from every
+  // body.
+  expect_motions_as_their_states(0.1, 0.01);
+}
+
+TEST(RobotCheck, LongerMotionsFindTheFirstStateThatTheConfigurationCheckerFindsColliding) {
+  // A quarter of the way, tens to a couple of hundred states.
+  expect_motions_as_their_states(0.25, 0.03);
 }
 
 // One link turning about y at the origin, a sphere of 0.1 m at x = 1 on it; a ball of 0.1 m at
@@ -317,6 +342,39 @@ TEST(RobotCheck, AMotionSweepingThroughABallCollidesWhereItsStatesDo) {
     EXPECT_EQ(batch[m].first_collision, alone.first_collision) << m;
     EXPECT_EQ(batch[m].last_free, alone.last_free) << m;
   }
+}
+
+TEST(RobotCheck, MotionsCollideWhereOnlyStatesBetweenThoseSpreadAlongThemDo) {
+  // The ball moved down and grown (centre 1.25 m below, radius 0.16 m): the sphere touches it
+  // only within 0.064 rad of pi/2, where it dips below the box of states 0.14 rad or more
+  // away. Long motions from below -2 rad to 0.5 rad or beyond, up to 210 states: the states
+  // spread along a motion that are posed first (a kernel call's) are about 0.8 rad apart, so
+  // that often none of them comes near the ball while some between them touch it.
+  Sweep s = sweep();
+  s.world = World();
+  std::vector<SphereTreeNode> nodes{{{Vec3::Zero(), 0.16f}, -1}};
+  BodyDesc ball;
+  ball.tree = std::make_shared<const SphereTree>(SphereTree::from_nodes(nodes, 2));
+  ball.is_static = true;
+  ball.pose.translation = Vec3(0.0f, 0.0f, -1.25f);
+  s.world.add_body(ball);
+  const WorldQuery query(s.world);
+  const RobotChecker checker(query, s.model);
+  QueryRng rng(8);
+  const double resolution = 0.03;
+  std::size_t free = 0;
+  for (std::size_t m = 0; m < 200; ++m) {
+    std::vector<double> from = {std::uniform_real_distribution<double>(-kPi, -2.0)(rng)};
+    std::vector<double> to = {std::uniform_real_distribution<double>(0.5, kPi)(rng)};
+    if (m % 2 == 1) std::swap(from, to);
+    const MotionResult motion = checker.check_motion(from, to, resolution);
+    std::vector<ConfigurationResult> each(motion.states);
+    checker.check(motion_states(s.model, from, to, motion.states), each);
+    free += expect_as_its_states(motion, each, m) ? 1 : 0;
+  }
+  // Those ending before pi/2 are free; most others are not.
+  EXPECT_GT(free, 40u);
+  EXPECT_LT(free, 120u);
 }
 
 TEST(RobotCheck, BadJointValuesAreRefusedNamingTheJoint) {

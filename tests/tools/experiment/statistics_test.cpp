@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sphys/tools/experiment.h"
+#include "sphys/tools/median.h"
 
 namespace sphys::tools {
 namespace {
@@ -18,6 +19,17 @@ RowSummary summary(double contacts, double fps, double frame_sd, double detectio
   row.detection_share = detection;
   row.response_share = response;
   return row;
+}
+
+TEST(Quantile, GivesTheValueAtTheNearestRank) {
+  const std::vector<double> values = {5, 1, 4, 2, 3, 9, 7, 6, 8, 10, 0};  // 0 to 10, shuffled
+  EXPECT_EQ(quantile(values, 0.0), 0.0);
+  EXPECT_EQ(quantile(values, 1.0), 10.0);
+  EXPECT_EQ(quantile(values, 0.9), 9.0);
+  EXPECT_EQ(quantile(values, 0.5), median(values));
+  EXPECT_EQ(quantile(values, 0.34), 3.0);  // rank 3.4
+  EXPECT_EQ(quantile(values, 0.36), 4.0);  // rank 3.6
+  EXPECT_EQ(quantile({}, 0.9), 0.0);
 }
 
 TEST(ExperimentPearson, PerfectlyCorrelatedSequencesGivePlusOrMinusOne) {
