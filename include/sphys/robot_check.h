@@ -58,9 +58,10 @@ class RobotChecker {
   [[nodiscard]] const char* lanes() const;
 
   // `values`: N configurations of joints() joint values each (rad, m); `results`: N entries.
-  // Throws sphys::Error naming the configuration and joint for a value that is NaN, infinite or
-  // outside its limits, and for sizes that do not match. Configurations are checked on
-  // `parallel`'s threads when given.
+  // Throws sphys::Error naming the configuration and joint of the first value that is NaN,
+  // infinite or outside its limits (`results` then holds some configurations' answers and not
+  // others'), and for sizes that do not match. Configurations are checked on `parallel`'s
+  // threads when given.
   void check(std::span<const double> values, std::span<ConfigurationResult> results,
              const Parallel* parallel = nullptr) const;
 
@@ -86,6 +87,10 @@ class RobotChecker {
   struct Workspace;
   [[nodiscard]] std::unique_ptr<Workspace> take_workspace() const;
   void keep_workspace(std::unique_ptr<Workspace> workspace) const;
+  // Whether each of `count` configurations' values is finite and within its joint's limits, as
+  // check_joint_values checks them, without naming what is wrong: cheap enough for every call,
+  // on each thread's own configurations.
+  [[nodiscard]] bool within_limits(const double* values, std::size_t count) const;
   // Poses `count` (at most one kernel call's) configurations: their links' poses in `scratch`
   // and, with_spheres, their spheres, returned, else the boxes of the links with spheres.
   [[nodiscard]] const float* pose(const double* values, std::size_t count, PoseScratch& scratch,

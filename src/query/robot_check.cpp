@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -116,6 +117,10 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
     put(b, k.b);
     put(c, k.c);
     put(d, k.d);
+  }
+  for (const RobotModel::Joint& joint : model_.joints) {
+    k.lower.push_back(joint.lower);
+    k.upper.push_back(joint.upper);
   }
   for (std::size_t s = 0; s < model_.spheres.size(); ++s) {
     k.sphere_link.push_back(model_.sphere_links[s]);
@@ -270,17 +275,44 @@ void RobotChecker::pose_spheres(std::span<const double> values, std::span<float>
   }
 }
 
+bool RobotChecker::within_limits(const double* values, std::size_t count) const {
+  const std::size_t joints = model_.joints.size();
+  const double* lower = compiled_->lower.data();
+  const double* upper = compiled_->upper.data();
+  // No branch per value: v - v is 0 for a finite v alone, and NaN fails every comparison.
+  bool inside = true;
+  for (std::size_t c = 0; c < count; ++c) {
+    const double* configuration = values + c * joints;
+    for (std::size_t j = 0; j < joints; ++j) {
+      const double v = configuration[j];
+      inside &= (v >= lower[j]) & (v <= upper[j]) & (v - v == 0.0);
+    }
+  }
+  return inside;
+}
+
 void RobotChecker::check(std::span<const double> values, std::span<ConfigurationResult> results,
                          const Parallel* parallel) const {
-  check_joint_values(model_, values, "values");
   const std::size_t joints = model_.joints.size();
+  if (joints == 0 ? !values.empty() : values.size() % joints != 0) {
+    check_joint_values(model_, values, "values");  // names the sizes
+  }
   const std::size_t count = joints == 0 ? 0 : values.size() / joints;
   if (results.size() != count) {
     throw Error("results: " + std::to_string(results.size()) + " entries for " +
                 std::to_string(count) + " configurations");
   }
   const std::size_t per = model_.spheres.size() * kFloatsPerSphere;
+  // The first run of configurations with a value outside its limits, if any: each run checks its
+  // own values, so that the check runs on the threads too.
+  std::atomic<std::size_t> first_refused{count};
   const auto run = [&](std::size_t begin, std::size_t end) {
+    if (!within_limits(values.data() + begin * joints, end - begin)) {
+      std::size_t first = first_refused.load();
+      while (begin < first && !first_refused.compare_exchange_weak(first, begin)) {
+      }
+      return;
+    }
     std::unique_ptr<Workspace> workspace = take_workspace();
     // Self-collision reads every sphere: each configuration posed whole. Else the links' poses
     // alone, each link bounded from its pose and only the spheres of links near a body placed.
@@ -299,6 +331,12 @@ void RobotChecker::check(std::span<const double> values, std::span<Configuration
   for_each_on(parallel, runs, [&](std::size_t r) {
     run(r * kConfigurationsPerRun, std::min(count, (r + 1) * kConfigurationsPerRun));
   });
+  const std::size_t refused = first_refused.load();
+  if (refused < count) {
+    // Every configuration before that run's is within its limits: this names its first refused.
+    check_joint_values(
+        model_, values.first(std::min(count, refused + kConfigurationsPerRun) * joints), "values");
+  }
 }
 
 }  // namespace sphys

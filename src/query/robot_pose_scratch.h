@@ -28,6 +28,8 @@ struct RobotChecker::Compiled {
   // each a link; a link without spheres has none), and its spheres (link_spheres from
   // link_first[l] to link_first[l + 1]).
   std::vector<float> link_centre, link_centre_size, link_half;
+  // Each joint's limits (infinite for a continuous joint's). unit: rad or m
+  std::vector<double> lower, upper;
   std::vector<std::uint32_t> link_first, link_spheres;
   KinematicsTables tables;
   KinematicsKernel kernel;

@@ -392,6 +392,25 @@ TEST(RobotCheck, BadJointValuesAreRefusedNamingTheJoint) {
               AllOf(HasSubstr("configuration 0"), HasSubstr("not finite")));
   EXPECT_THAT(error_message([&] { checker.check(std::vector{0.0}, results); }),
               HasSubstr("results"));
+  // In a batch checked on threads, whichever thread meets which first: the first is named.
+  std::vector<double> many(1000, 0.5);
+  many[900] = std::numeric_limits<double>::infinity();
+  many[700] = -3.5;
+  many[701] = std::numeric_limits<double>::quiet_NaN();
+  std::vector<ConfigurationResult> answers(many.size());
+  const Parallel two(2);
+  for (const Parallel* parallel : {static_cast<const Parallel*>(nullptr), &two}) {
+    EXPECT_THAT(error_message([&] { checker.check(many, answers, parallel); }),
+                AllOf(HasSubstr("configuration 700,"), HasSubstr("outside")));
+  }
+  EXPECT_THAT(
+      error_message([&] { (void)checker.check_motion(std::vector{0.0}, std::vector{-4.0}, 0.1); }),
+      AllOf(HasSubstr("to:"), HasSubstr("'turn'"), HasSubstr("outside")));
+  EXPECT_THAT(error_message([&] {
+                (void)checker.check_motion(std::vector{std::numeric_limits<double>::quiet_NaN()},
+                                           std::vector{0.0}, 0.1);
+              }),
+              AllOf(HasSubstr("from:"), HasSubstr("not finite")));
   EXPECT_THAT(
       error_message([&] { (void)checker.check_motion(std::vector{0.0}, std::vector{1.0}, 0.0); }),
       HasSubstr("resolution"));
