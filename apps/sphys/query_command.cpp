@@ -1,5 +1,6 @@
 // `sphys query`: one question asked of a scene's world (its bodies where the scene puts them, or
-// after --frames steps): a ray cast, an overlap, or a distance, answered as JSON.
+// after --frames steps): a ray cast, an overlap, a distance, or a robot's configuration or
+// motion (robot_query.cpp), answered as JSON.
 
 #include <cmath>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "robot_query.h"
 #include "sphys/error.h"
 #include "sphys/tools/build_world.h"
 #include "sphys/tools/scenarios.h"
@@ -37,6 +39,7 @@ struct QueryOptions {
   std::vector<std::int64_t> skip;
   bool skip_sleeping = false;
   bool no_cache = false;
+  RobotQueryOptions robot;
 };
 
 Vec3 vec3_at(const std::vector<double>& values, std::size_t first) {
@@ -101,16 +104,18 @@ void run(const QueryOptions& options) {
   const int questions = (options.ray.empty() ? 0 : 1) + (options.sphere.empty() ? 0 : 1) +
                         (options.aabb.empty() ? 0 : 1) + (options.box.empty() ? 0 : 1) +
                         (options.distance.empty() ? 0 : 1) +
-                        (options.point_distance.empty() ? 0 : 1);
+                        (options.point_distance.empty() ? 0 : 1) +
+                        (options.robot.urdf.empty() ? 0 : 1);
   if (questions != 1) {
     throw Error(
         "give exactly one of --ray, --sphere, --aabb, --box, --distance, "
-        "--point-distance (got " +
+        "--point-distance, --robot (got " +
         std::to_string(questions) + ")");
   }
   if (!options.orientation.empty() && options.box.empty()) {
     throw Error("--orientation: only with --box");
   }
+  if (options.robot.urdf.empty()) check_robot_options_unused(options.robot);
   tools::Scene scene = tools::load_scene(options.scene);
   tools::BuildWorldOptions build;
   if (!options.no_cache) build.cache_dir = tools::default_cache_dir();
@@ -131,7 +136,11 @@ void run(const QueryOptions& options) {
     for (const BodyId id : ids) list.push_back(bodies.index(id));
     return list;
   };
-  if (!options.ray.empty()) {
+  if (!options.robot.urdf.empty()) {
+    out.update(robot_query(options.robot, query, filter, [&](std::int32_t slot) {
+      return bodies.index(world.id_of(static_cast<std::uint32_t>(slot)));
+    }));
+  } else if (!options.ray.empty()) {
     const Ray ray{vec3_at(options.ray, 0), vec3_at(options.ray, 3),
                   static_cast<float>(options.max_distance)};
     out["query"] = "ray";
@@ -194,7 +203,8 @@ void add_query_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "query",
       "Ask a scene's world one question without stepping it (or after --frames steps): a ray "
-      "cast, an overlap or a distance, from the bodies' leaf spheres; JSON out. Bodies are "
+      "cast, an overlap, a distance, or whether a robot at joint values (or moving between two "
+      "sets of them) is free, from the bodies' leaf spheres; JSON out. Bodies are "
       "numbered as the scene lists them, the octree ground is \"ground\", and the exact ground "
       "plane is no body");
   cmd->add_option("scene", options->scene, "A scene file (.json, see docs/scenes.md) or a preset")
@@ -225,6 +235,7 @@ void add_query_command(CLI::App& app) {
   cmd->add_option("--skip", options->skip, "Bodies the query leaves out")->expected(1, -1);
   cmd->add_flag("--skip-sleeping", options->skip_sleeping, "Leave sleeping bodies out");
   cmd->add_flag("--no-cache", options->no_cache, "Build sphere-trees even if they are cached");
+  add_robot_query_options(*cmd, options->robot);
   cmd->callback([options] { run(*options); });
 }
 

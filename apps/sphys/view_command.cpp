@@ -1,12 +1,12 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "commands.h"
+#include "joint_option.h"
 #include "sphys/tools/robot.h"
 #include "sphys/tools/scene.h"
 #include "viewer/robot_view.h"
@@ -34,22 +34,6 @@ bool is_urdf(const std::string& path) {
   return extension == ".urdf" || extension == ".URDF";
 }
 
-// "NAME=VALUE" of --joint, the value in rad or m.
-std::pair<std::string, double> parse_joint(const std::string& text) {
-  const std::size_t equals = text.find('=');
-  if (equals == std::string::npos || equals == 0) {
-    throw Error("--joint: expected NAME=VALUE, got \"" + text + "\"");
-  }
-  try {
-    std::size_t used = 0;
-    const double value = std::stod(text.substr(equals + 1), &used);
-    if (used != text.size() - equals - 1) throw std::invalid_argument(text);
-    return {text.substr(0, equals), value};
-  } catch (const std::logic_error&) {
-    throw Error("--joint: \"" + text.substr(equals + 1) + "\" is not a number");
-  }
-}
-
 // `sphys view ROBOT.urdf`: the robot's links and their spheres.
 void view_robot(const viewer::ViewerOptions& options, const ViewArguments& args) {
   viewer::RobotViewOptions robot;
@@ -58,7 +42,7 @@ void view_robot(const viewer::ViewerOptions& options, const ViewArguments& args)
     robot.packages.push_back(tools::parse_robot_package(package));
   }
   if (args.spheres_from) robot.spheres_from = *args.spheres_from;
-  for (const std::string& joint : args.joints) robot.joints.insert(parse_joint(joint));
+  for (const std::string& joint : args.joints) robot.joints.insert(parse_joint("--joint", joint));
   robot.screenshot = options.screenshot;
   robot.width = options.width;
   robot.height = options.height;
