@@ -187,6 +187,7 @@ struct ConfigurationChecker::Scratch {
   // Each link's box: around its spheres, a run of one link's spheres bounded in registers
   // before its box holds them.
   void bound_links(const float* posed, std::span<const std::int32_t> links) {
+    around_known = false;
     empty_links();
     // A sphere's x, y, z, radius in one register: lanes x, y, z of c - r and c + r (the last
     // lane, r -+ r, is not read); even and odd spheres kept apart, so that two chains of
@@ -270,6 +271,7 @@ struct ConfigurationChecker::Scratch {
   // Each link's box around its spheres' boxes (bound_spheres, every sphere) grown by their
   // radii.
   void box_links_from_spheres(std::span<const std::int32_t> links) {
+    around_known = false;
     empty_links();
     for (std::size_t i = 0; i < links.size(); ++i) {
       const float* lo = &least[i * kFloatsPerSphere];
@@ -312,6 +314,10 @@ struct ConfigurationChecker::Scratch {
   std::vector<std::uint32_t> bounded;  // the spheres bound_spheres bounded
   std::vector<std::uint32_t> near;
   bool near_known = false;
+  // The box around every link's, where the caller bounded the links (Run::bound): a group
+  // outside it meets none of them. unit: m
+  Aabb around;
+  bool around_known = false;
 };
 
 void ConfigurationChecker::collect_candidates(Scratch& scratch) const {
@@ -390,7 +396,10 @@ void ConfigurationChecker::collect_candidates(std::size_t first, std::size_t end
     if ((inside & walking) == walking) {
       for (const std::uint32_t g : reachable_groups_) {
         if (walking == 0) return;
-        take(g, reached(snapshot.groups[g].bounds, walking));
+        const Aabb& bounds = snapshot.groups[g].bounds;
+        // Most groups miss the box around every link: one test spares each link's.
+        if (scratch.around_known && !scratch.around.overlaps(bounds)) continue;
+        take(g, reached(bounds, walking));
       }
       return;
     }
@@ -649,10 +658,24 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
 
 void ConfigurationChecker::Run::bound(const float* boxes, std::size_t stride) {
   gathered_count_ = 0;  // the scratch is this configuration's now
+  Scratch& scratch = *scratch_;
+  // A NaN is left out of the box around them (std::min and max keep the first operand against
+  // it), as it leaves its link meeting nothing.
+  Vec3 low = Vec3::Constant(std::numeric_limits<float>::infinity());
+  Vec3 high = -low;
   for (std::size_t l = 0; l < checker_->link_count_; ++l) {
-    for (std::size_t r = 0; r < 6; ++r) scratch_->row(r)[l] = boxes[(6 * l + r) * stride];
+    for (std::size_t a = 0; a < 3; ++a) {
+      const float link_low = boxes[(6 * l + a) * stride];
+      const float link_high = boxes[(6 * l + 3 + a) * stride];
+      scratch.row(a)[l] = link_low;
+      scratch.row(3 + a)[l] = link_high;
+      low[a] = std::min(low[a], link_low);
+      high[a] = std::max(high[a], link_high);
+    }
   }
-  checker_->collect_candidates(*scratch_);
+  scratch.around = {low, high};
+  scratch.around_known = true;
+  checker_->collect_candidates(scratch);
 }
 
 bool ConfigurationChecker::Run::near(std::size_t link) const {
