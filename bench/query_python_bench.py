@@ -3,7 +3,7 @@
 sphys-query-bench --python-reference DIR writes the batched checks' world (100 bunnies at rest,
 the test robot's 60 spheres beside them, 100,000 random configurations) and times the C++ loop
 over them; this script then builds the same world in Python from those files and times the same
-call, one thread, five runs each, medians; then the same from joint values
+call, one thread, 21 runs each (as many as the C++ loops), medians; then the same from joint values
 (world.check_joint_values against RobotChecker::check, the robot's model loaded from its URDF and
 spheres). Run from the repository root:
 
@@ -21,7 +21,7 @@ import numpy as np
 import sphys
 
 
-def median_ms(call, runs=5):
+def median_ms(call, runs=21):
     """The median of `runs` timings of call() in ms, and its last result."""
     times = []
     for _ in range(runs):
