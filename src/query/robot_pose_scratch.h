@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 #include "query/configuration_layout.h"
@@ -58,6 +59,7 @@ struct RobotChecker::Workspace {
       : pose(checker.model_), checks(checker.checker_) {}
   PoseScratch pose;
   ConfigurationChecker::Run checks;
+  std::thread::id thread;  // the thread that used it last
   // A motion's: every block's link poses as the kernel wrote them, and each link's box over
   // every state (Run::bound's rows). unit: m
   std::vector<float> link_poses;
