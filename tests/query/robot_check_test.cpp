@@ -111,6 +111,52 @@ TEST(RobotCheck, FloatKinematicsAgreeWithTheDoubleReference) {
   EXPECT_LT(worst, 1e-5) << "metres";
 }
 
+// A planar arm worked out by hand: `shoulder` turns about z at the base, the upper arm 1 m long
+// along x; `elbow` turns about z at its end, a sphere 0.5 m out along the forearm. Its centre is
+// the base's pose applied to (cos a + 0.5 cos(a + b), sin a + 0.5 sin(a + b), 0).
+TEST(RobotCheck, ATwoLinkArmIsPosedWhereWorkedOutByHand) {
+  RobotModel arm;
+  arm.name = "planar";
+  Eigen::Isometry3d elbow_origin = Eigen::Isometry3d::Identity();
+  elbow_origin.translate(Eigen::Vector3d(1, 0, 0));
+  arm.links = {{"base", -1, Eigen::Isometry3d::Identity(), -1},
+               {"upper", 0, Eigen::Isometry3d::Identity(), 0},
+               {"fore", 1, elbow_origin, 1}};
+  arm.joints = {{"shoulder", RobotJointType::kRevolute, Eigen::Vector3d::UnitZ(), -kPi, kPi},
+                {"elbow", RobotJointType::kRevolute, Eigen::Vector3d::UnitZ(), -kPi, kPi}};
+  arm.sphere_links = {2};
+  arm.spheres = {{Vec3(0.5f, 0.0f, 0.0f), 0.1f}};
+  // The base 0.5 m along x and 0.25 m up, turned a quarter about z: (x, y, z) goes to
+  // (0.5 - y, x, z + 0.25).
+  arm.base = Eigen::Isometry3d::Identity();
+  arm.base.translate(Eigen::Vector3d(0.5, 0, 0.25));
+  arm.base.rotate(Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()));
+  const World empty;
+  const WorldQuery query(empty);
+  const RobotChecker checker(query, arm);
+  const std::vector<double> values = {0.0,      0.0,  kPi / 2, 0.0, kPi / 2,
+                                      -kPi / 2, -0.7, 2.1,     3.0, -3.0};
+  std::vector<float> spheres(values.size() / 2 * 4);
+  checker.pose_spheres(values, spheres);
+  for (std::size_t n = 0; n < values.size() / 2; ++n) {
+    const double a = values[2 * n];
+    const double b = values[2 * n + 1];
+    const double x = std::cos(a) + 0.5 * std::cos(a + b);
+    const double y = std::sin(a) + 0.5 * std::sin(a + b);
+    const Eigen::Vector3d expected(0.5 - y, x, 0.25);
+    // The double reference: the link poses, the sphere on its link.
+    const std::vector<Eigen::Isometry3d> poses =
+        robot_link_poses(arm, std::span(values).subspan(2 * n, 2));
+    const Eigen::Vector3d reference = poses[2] * Eigen::Vector3d(0.5, 0, 0);
+    EXPECT_LT((reference - expected).norm(), 1e-12) << n;
+    EXPECT_LT((poses[1].translation() - Eigen::Vector3d(0.5, 0, 0.25)).norm(), 1e-12) << n;
+    // The float kernel, within 1e-5 m.
+    const float* got = spheres.data() + 4 * n;
+    EXPECT_LT((Eigen::Vector3d(got[0], got[1], got[2]) - expected).norm(), 1e-5) << n;
+    EXPECT_EQ(got[3], 0.1f);
+  }
+}
+
 TEST(RobotCheck, EveryKernelGivesTheSameBits) {
   QueryRng rng(2);
   const World world = world_around_arm(rng);
