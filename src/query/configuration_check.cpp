@@ -285,12 +285,14 @@ struct ConfigurationChecker::Scratch {
 
   // Rounding c ± r to float may leave a sphere's surface up to half an ulp outside its link's
   // box: each box is widened by a millionth of its size and distance from the origin, far more
-  // than that.
+  // than that. A link without spheres keeps its empty box (infinities, which the margin would
+  // turn into NaN).
   void widen_links() {
     for (std::size_t a = 0; a < 3; ++a) {
       float* lows = row(a);
       float* highs = row(3 + a);
       for (std::size_t l = 0; l < spheres.size(); ++l) {
+        if (spheres[l] == 0) continue;
         float& low = lows[l];
         float& high = highs[l];
         const float margin = 1e-6f * (std::max(std::abs(low), std::abs(high)) + (high - low));
@@ -659,8 +661,8 @@ ConfigurationResult ConfigurationChecker::Run::check_gathered(std::size_t config
 void ConfigurationChecker::Run::bound(const float* boxes, std::size_t stride) {
   gathered_count_ = 0;  // the scratch is this configuration's now
   Scratch& scratch = *scratch_;
-  // A NaN is left out of the box around them (std::min and max keep the first operand against
-  // it), as it leaves its link meeting nothing.
+  // The box around the links that have spheres (no other is walked). A NaN is left out of it
+  // (std::min and max keep the first operand against it), as it leaves its link meeting nothing.
   Vec3 low = Vec3::Constant(std::numeric_limits<float>::infinity());
   Vec3 high = -low;
   for (std::size_t l = 0; l < checker_->link_count_; ++l) {
@@ -669,6 +671,7 @@ void ConfigurationChecker::Run::bound(const float* boxes, std::size_t stride) {
       const float link_high = boxes[(6 * l + 3 + a) * stride];
       scratch.row(a)[l] = link_low;
       scratch.row(3 + a)[l] = link_high;
+      if (scratch.spheres[l] == 0) continue;
       low[a] = std::min(low[a], link_low);
       high[a] = std::max(high[a], link_high);
     }

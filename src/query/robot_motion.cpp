@@ -1,5 +1,7 @@
 // Straight motions of a robot: their states along the segment in joint space, posed and checked
-// coarse to fine, those of a short motion together (ConfigurationChecker::Run::gather).
+// coarse to fine, those of a short motion together (ConfigurationChecker::Run::gather). Without
+// self-collision, a kernel call's states spread along a short motion are posed first, and the
+// others bounded from them (LinkSweep) before any more is posed.
 
 #include <algorithm>
 #include <array>
@@ -21,6 +23,7 @@ namespace {
 constexpr double kMostMotionStates = 1e7;
 // Motions of up to this many states are posed whole and checked together. unit: states
 constexpr std::uint32_t kStatesCheckedTogether = 256;
+// A state's place in the order of posing, before it has one.
 constexpr std::uint32_t kNotPosed = std::numeric_limits<std::uint32_t>::max();
 
 // Each link's box, kernel lanes' rows low x, y, z, high x, y, z (PoseScratch::boxes), grown to
