@@ -26,6 +26,10 @@ constexpr std::size_t kContextPoints = 400;
 // times finer): fewer, and the count of a ball's points moves in steps too coarse to steer by.
 constexpr std::size_t kLatticePoints = 80000;
 constexpr double kLatticeMargin = 0.15;
+// The margin is also at least kMarginOverProtrusion times as wide as the first level's start
+// reaches out, read at kMarginDirections points of each of its balls' boundaries.
+constexpr double kMarginOverProtrusion = 1.1;
+constexpr std::size_t kMarginDirections = 96;
 constexpr double kLatticeSpacingsPerRadius = 12.0;
 constexpr int kMaxRefinement = 4;
 
@@ -78,7 +82,13 @@ class PointSetReducer final : public Reducer {
         return combined(samples, region, max_balls);
       case BuildMethod::Tight: {
         Cover start = finish(samples, region, merged(region, axis(region, true), max_balls));
-        const ExteriorLattice lattice = node_lattice(samples, start);
+        const ExteriorLattice lattice = node_lattice(samples, start, Resolution::Fine);
+        // The first level is one node, and which part of the surface each of its balls answers
+        // for shapes every level below: it alone gets the search of other starts.
+        if (samples.size() == context_.samples.points.size()) {
+          const ExteriorLattice coarse = node_lattice(samples, start, Resolution::Mesh);
+          return shrink_outside_volume(context_, lattice, samples, std::move(start), &coarse);
+        }
         return shrink_outside_volume(context_, lattice, samples, std::move(start));
       }
       case BuildMethod::Octree:
@@ -87,15 +97,30 @@ class PointSetReducer final : public Reducer {
     throw Error("the Octree method has no point-set reducer");
   }
 
-  // A lattice over the node fine enough to count the volume of its cover's balls, over the box of
-  // the node's samples grown by the largest diameter (a ball outside it counts as poking out too
-  // far). The lattice of the whole mesh is built on first use (only the Tight method counts
-  // volume); the nodes' are interpolated from it.
-  ExteriorLattice node_lattice(std::span<const std::uint32_t> samples, const Cover& cover) const {
+  // Fine: refined until the balls' mean radius spans kLatticeSpacingsPerRadius spacings. Mesh:
+  // the whole mesh's lattice's own points, for comparing many covers quickly.
+  enum class Resolution { Fine, Mesh };
+
+  // A lattice over the node to count the volume of its cover's balls, over the box of the node's
+  // samples grown by the largest diameter (a ball outside it counts as poking out too far). The
+  // lattice of the whole mesh is built on first use (only the Tight method counts volume); the
+  // nodes' are interpolated from it.
+  ExteriorLattice node_lattice(std::span<const std::uint32_t> samples, const Cover& cover,
+                               Resolution resolution) const {
     if (!mesh_lattice_) {
       const double diagonal = context_.mesh.bounds().diagonal().norm();
-      mesh_lattice_ = std::make_unique<ExteriorLattice>(context_.query, kLatticePoints,
-                                                        kLatticeMargin * diagonal);
+      // The first cover asked for is the first level's; the lattice must hold every ball of it
+      // whole, or the volume beyond would go uncounted (a thin plate's balls reach out by
+      // more than their share of the diagonal).
+      static const std::vector<Vec3d> kDirections = evenly_spread_directions(kMarginDirections);
+      double margin = kLatticeMargin * diagonal;
+      for (const Ball& ball : cover.balls) {
+        for (const Vec3d& u : kDirections) {
+          margin = std::max(margin, kMarginOverProtrusion * context_.query.signed_distance(
+                                                                ball.center + ball.radius * u));
+        }
+      }
+      mesh_lattice_ = std::make_unique<ExteriorLattice>(context_.query, kLatticePoints, margin);
     }
     double mean_radius = 0.0;
     double max_radius = 0.0;
@@ -105,7 +130,9 @@ class PointSetReducer final : public Reducer {
     }
     mean_radius /= static_cast<double>(std::max<std::size_t>(cover.balls.size(), 1));
     const double wanted = kLatticeSpacingsPerRadius * mesh_lattice_->spacing() / mean_radius;
-    const double factor = std::clamp(std::ceil(wanted), 1.0, double{kMaxRefinement});
+    const double factor = resolution == Resolution::Mesh
+                              ? 1.0
+                              : std::clamp(std::ceil(wanted), 1.0, double{kMaxRefinement});
     Box3d region;
     for (const std::uint32_t s : samples) region.extend(context_.samples.points[s]);
     const Vec3d grow = Vec3d::Constant(2.0 * max_radius);

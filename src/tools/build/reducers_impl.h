@@ -86,9 +86,12 @@ struct Cluster {
 // volume outside the mesh (as the lattice counts it), every sample of the node staying inside
 // some ball and no ball reaching lattice points farther out than the start's did; then hands each
 // sample to the ball that holds it most centrally. Returns the start when it finds nothing better.
+// With a `search_lattice` (a coarser lattice over the node), starts of other structure
+// (cover_starts.h) are descended on it too, and the best of them competes with the start's.
 [[nodiscard]] Cover shrink_outside_volume(const BuildContext& context,
                                           const ExteriorLattice& lattice,
-                                          std::span<const std::uint32_t> samples, Cover start);
+                                          std::span<const std::uint32_t> samples, Cover start,
+                                          const ExteriorLattice* search_lattice = nullptr);
 
 // The largest error of a cover's balls.
 [[nodiscard]] double worst_error(const Cover& cover, const ErrorMeasure& measure);

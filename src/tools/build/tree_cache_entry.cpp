@@ -11,7 +11,7 @@ namespace sphys::tools {
 namespace {
 
 // Bumped whenever a builder changes what it produces, so old cache entries are not reused.
-constexpr int kBuilderVersion = 2;
+constexpr int kBuilderVersion = 3;
 constexpr std::string_view kMagic = "sphys-tree-cache";
 constexpr int kFormatVersion = 1;
 constexpr std::string_view kExtension = ".sphcache";
