@@ -63,6 +63,10 @@ struct BodyArrays {
   std::vector<std::uint8_t> moving_;
   std::vector<std::uint32_t> generation_;  // from 1, moved on when the slot's body leaves
   std::vector<std::uint32_t> free_;        // freed slots, the last freed last
+  // Forces and torques applied for the next step (world frame), and the slots that have one.
+  std::vector<Vec3> force_;   // unit: N
+  std::vector<Vec3> torque_;  // unit: N·m
+  std::vector<std::uint32_t> forced_;
   std::uint32_t dynamic_bodies_ = 0;
   std::vector<std::uint32_t> awake_;
 };
@@ -146,6 +150,16 @@ class BodyStore : private detail::BodyArrays {
   [[nodiscard]] std::span<const float> extents() const { return extent_; }
   [[nodiscard]] std::span<const float> restitutions() const { return restitution_; }
   [[nodiscard]] std::span<const float> frictions() const { return friction_; }
+
+  // Adds a force through the centre of mass (unit: N) and a torque (unit: N·m), world frame, to
+  // what acts on the body through the next step (as gravity does, in every substep).
+  void add_force(std::uint32_t slot, const Vec3& force, const Vec3& torque);
+  [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
+  [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
+  // The slots given a force or torque since the last clear_forces().
+  [[nodiscard]] std::span<const std::uint32_t> forced() const { return forced_; }
+  // The forces end with the step they acted through.
+  void clear_forces();
 
   // ½ m v² + ½ ωᵀ I ω of a slot's body (0 for a static one). unit: J
   [[nodiscard]] double kinetic_energy(std::uint32_t slot) const;

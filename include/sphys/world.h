@@ -146,6 +146,13 @@ class World {
   void set_velocity(BodyId body, const Vec3& linear, const Vec3& angular);
   // Applies an impulse (unit: N·s, world frame) at a world point (unit: m) and wakes the body.
   void apply_impulse(BodyId body, const Vec3& impulse, const Vec3& point);
+  // Applies a force (unit: N, world frame) at a world point (unit: m) through the next step, in
+  // each of its substeps as gravity acts, and wakes the body; forces add up until the step, which
+  // ends them (apply it before every step for a lasting push). Non-finite values throw; a static
+  // body takes none.
+  void apply_force(BodyId body, const Vec3& force, const Vec3& point);
+  // A torque (unit: N·m, world frame) through the next step, as apply_force.
+  void apply_torque(BodyId body, const Vec3& torque);
   // The friction and restitution of contacts between these two bodies, instead of the mix of
   // their own (see sphys/material.h). Checked like a body's material.
   void set_pair_material(BodyId a, BodyId b, const PairMaterial& material);

@@ -115,6 +115,18 @@ py::object figure_value(const StepFigure& figure, const StepStats& stats) {
   return py::float_(value);
 }
 
+// A world call that applies a vector (`what`: "impulse", "force") at a world point to a body, as
+// Python calls it: the vectors read and checked, then the call on its turn.
+template <void (World::*Apply)(BodyId, const Vec3&, const Vec3&)>
+auto applied_at_point(const char* what) {
+  return [what](SharedWorld& w, BodyId body, const py::object& vector, const py::object& point) {
+    const Vec3 applied = vec3_from(vector, what);
+    const Vec3 at = vec3_from(point, "point");
+    const Turn::Held turn = take_turn(*w.turn);
+    (w.world.get()->*Apply)(body, applied, at);
+  };
+}
+
 py::dict stats_dict(const StepStats& s) {
   py::dict d;
   for (const StepFigure& figure : step_figures()) d[py::str(figure.name)] = figure_value(figure, s);
@@ -386,16 +398,22 @@ void bind_world(py::module_& m) {
           },
           py::arg("body"), py::arg("linear"), py::arg("angular") = py::make_tuple(0, 0, 0),
           "Sets a body's velocities (m/s, rad/s, world frame) and wakes it.")
+      .def("apply_impulse", applied_at_point<&World::apply_impulse>("impulse"), py::arg("body"),
+           py::arg("impulse"), py::arg("point"),
+           "An impulse (N·s, world frame) at a world point (m); wakes the body.")
+      .def("apply_force", applied_at_point<&World::apply_force>("force"), py::arg("body"),
+           py::arg("force"), py::arg("point"),
+           "A force (N, world frame) at a world point (m) through the next step, as gravity acts; "
+           "forces add up until the step, which ends them. Wakes the body.")
       .def(
-          "apply_impulse",
-          [](SharedWorld& w, BodyId body, const py::object& impulse, const py::object& point) {
-            const Vec3 j = vec3_from(impulse, "impulse");
-            const Vec3 at = vec3_from(point, "point");
+          "apply_torque",
+          [](SharedWorld& w, BodyId body, const py::object& torque) {
+            const Vec3 t = vec3_from(torque, "torque");
             const Turn::Held turn = take_turn(*w.turn);
-            w.world->apply_impulse(body, j, at);
+            w.world->apply_torque(body, t);
           },
-          py::arg("body"), py::arg("impulse"), py::arg("point"),
-          "An impulse (N·s, world frame) at a world point (m); wakes the body.")
+          py::arg("body"), py::arg("torque"),
+          "A torque (N·m, world frame) through the next step, as apply_force.")
       .def(
           "set_pair_material",
           [](SharedWorld& w, BodyId a, BodyId b, float friction, float restitution) {

@@ -19,6 +19,8 @@ std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
     extent_.emplace_back();
     restitution_.emplace_back();
     friction_.emplace_back();
+    force_.emplace_back(Vec3::Zero());
+    torque_.emplace_back(Vec3::Zero());
     alive_.emplace_back();
     dynamic_.emplace_back();
     moving_.emplace_back();
@@ -54,6 +56,8 @@ void BodyStore::remove(std::uint32_t slot) {
   linear_velocity_[slot].setZero();
   angular_velocity_[slot].setZero();
   inverse_mass_[slot] = 0.0f;
+  force_[slot].setZero();
+  torque_[slot].setZero();
   alive_[slot] = 0;
   if (dynamic_[slot] != 0) --dynamic_bodies_;
   dynamic_[slot] = 0;
@@ -121,6 +125,20 @@ void BodyStore::set_asleep(std::span<const std::uint32_t> slots, bool asleep) {
   for (std::uint32_t i = 0; i < this->slots(); ++i) {
     if (moving_[i] != 0) awake_.push_back(i);
   }
+}
+
+void BodyStore::add_force(std::uint32_t slot, const Vec3& force, const Vec3& torque) {
+  if (force_[slot].isZero(0.0f) && torque_[slot].isZero(0.0f)) forced_.push_back(slot);
+  force_[slot] += force;
+  torque_[slot] += torque;
+}
+
+void BodyStore::clear_forces() {
+  for (const std::uint32_t slot : forced_) {
+    force_[slot].setZero();
+    torque_[slot].setZero();
+  }
+  forced_.clear();
 }
 
 void BodyStore::update_world_inertia(std::uint32_t slot) {

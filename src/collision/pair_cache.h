@@ -28,7 +28,12 @@ struct ContactMemory {
   // next solve sums the shares of the contacts it still has.
   Vec3 friction_impulse = Vec3::Zero();  // unit: N·s
   float twist_impulse = 0.0f;            // unit: N·m·s
-  bool solved = false;                   // false for a contact the last solve did not have
+  // Static friction's anchor, shared by a manifold's contacts like its friction: whether the
+  // manifold's bodies stuck at the end of the last solve (its friction within the bound), and
+  // how far its centre had crept along the surface since they stuck (world frame). unit: m
+  Vec3 creep = Vec3::Zero();
+  bool stuck = false;
+  bool solved = false;  // false for a contact the last solve did not have
 };
 
 class PairCache {

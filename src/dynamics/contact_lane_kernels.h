@@ -196,6 +196,55 @@ F clamp_scale(const F& length_squared, const F& limit) {
   return select(outside, limit / sqrt(length_squared), F::splat(1.0f));
 }
 
+// Static friction's pull back to the anchor, in the lanes where it is active: a bias speed along
+// each tangent (unit: m/s) and the anchor spring's share of the rigid impulse and of the
+// accumulated one.
+template <class F>
+struct Anchor {
+  F bias1, bias2;
+  F mass_scale, impulse_scale;
+  typename F::Mask active;
+};
+
+// Friction at the manifold's centre, Coulomb's: the two tangent rows solved together (the 2 × 2
+// effective mass's inverse), the tangential impulse kept inside the disc of radius `bound` (μ Σ
+// λn). With an anchor, the lanes where it is active also pull the centre back; the others keep
+// their impulse.
+template <class F>
+void solve_friction(ManifoldBlock<F::kWidth>& m, LanePair<F>& pair, const V3<F>& tangent1,
+                    const V3<F>& tangent2, const F& bound, const Anchor<F>* anchor = nullptr) {
+  const V3<F> ca = load3<F>(m.centre_a);
+  const V3<F> cb = load3<F>(m.centre_b);
+  const V3<F> slip = pair.relative_velocity(ca, cb);
+  F slip1 = dot(tangent1, slip);
+  F slip2 = dot(tangent2, slip);
+  F mass_scale = F::splat(1.0f);
+  F impulse_scale = F::splat(0.0f);
+  if (anchor != nullptr) {
+    slip1 = slip1 + anchor->bias1;
+    slip2 = slip2 + anchor->bias2;
+    mass_scale = anchor->mass_scale;
+    impulse_scale = anchor->impulse_scale;
+  }
+  const F old1 = F::load(m.friction_impulse[0]);
+  const F old2 = F::load(m.friction_impulse[1]);
+  const F k11 = F::load(m.tangent_mass[0]);
+  const F k12 = F::load(m.tangent_mass[1]);
+  const F k22 = F::load(m.tangent_mass[2]);
+  F t1 = old1 - mass_scale * (k11 * slip1 + k12 * slip2) - impulse_scale * old1;
+  F t2 = old2 - mass_scale * (k12 * slip1 + k22 * slip2) - impulse_scale * old2;
+  const F scale = clamp_scale(t1 * t1 + t2 * t2, bound);
+  t1 = scale * t1;
+  t2 = scale * t2;
+  if (anchor != nullptr) {
+    t1 = select(anchor->active, t1, old1);
+    t2 = select(anchor->active, t2, old2);
+  }
+  t1.store(m.friction_impulse[0]);
+  t2.store(m.friction_impulse[1]);
+  pair.push(ca, cb, (t1 - old1) * tangent1 + (t2 - old2) * tangent2);
+}
+
 // One pass. With the bias (the solve) a penetrating contact is pushed apart by its spring-damper;
 // without it (the relax) contacts only stop approaching and sliding, so that the push leaves no
 // speed behind. A gap may close within the substep and no more, either way.
@@ -213,6 +262,40 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
     const LaneMotion<F> motion_a = LaneMotion<F>::gather(bodies, m.body_a);
     const LaneMotion<F> motion_b = LaneMotion<F>::gather(bodies, m.body_b);
     const F bias_rate = F::load(m.bias_rate);
+    const F friction = F::load(m.friction);
+    const FrictionFrame<F> frame(m);
+    // Static friction: in the solve pass, where the bodies stuck at the last step's end, the
+    // centre is pulled back to where they stuck by the anchor's spring. Before the points' push,
+    // which then has the last word: solved after it, static friction held a resting pile's
+    // overlaps where they were, along whatever part of each point's normal is tangent to the
+    // manifold's, and a heap of 10,000 bunnies slept 1.2 mm deep, against 0.85 mm without it.
+    // Elsewhere friction stays out of the solve pass: beside the push out of penetration it took
+    // part of that impulse along the surface, and a bunny shot at 100 m/s into another went 5.9%
+    // of a bunny deep.
+    if (use_bias) {
+      const auto stuck = F::load(m.stuck) > zero;
+      if (any(stuck)) {
+        F kept = zero;
+        for (std::uint32_t i = 0; i < m.point_count; ++i)
+          kept = kept + F::load(m.points[i].impulse);
+        const V3<F> ca = load3<F>(m.centre_a);
+        const V3<F> cb = load3<F>(m.centre_b);
+        // The creep now: the kept creep less the centres' offsets at the step's start, plus
+        // their offsets now.
+        const V3<F> offsets = motion_b.moved - motion_a.moved + times<F>(motion_b.turned, cb) -
+                              times<F>(motion_a.turned, ca);
+        const F creep1 = F::load(m.base_creep[0]) + dot(frame.tangent1, offsets);
+        const F creep2 = F::load(m.base_creep[1]) + dot(frame.tangent2, offsets);
+        const F most = F::splat(settings.max_anchor_speed);
+        const F least = zero - most;
+        const Anchor<F> anchor{.bias1 = max(min(bias_rate * creep1, most), least),
+                               .bias2 = max(min(bias_rate * creep2, most), least),
+                               .mass_scale = F::load(m.anchor_mass_scale),
+                               .impulse_scale = F::load(m.anchor_impulse_scale),
+                               .active = stuck};
+        solve_friction(m, pair, frame.tangent1, frame.tangent2, friction * kept, &anchor);
+      }
+    }
     F pushed = zero;       // the points' normal impulses summed: friction's bound
     F twist_bound = zero;  // each times its lever: the twist's bound
     for (std::uint32_t i = 0; i < m.point_count; ++i) {
@@ -252,8 +335,6 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       pushed = pushed + normal_impulse;
       twist_bound = twist_bound + F::load(p.lever) * normal_impulse;
     }
-    const F friction = F::load(m.friction);
-    const FrictionFrame<F> frame(m);
     {
       // Twist: the bodies' relative spin about the normal, within μ Σ lever λn; in both passes,
       // as the push out of penetration does not turn bodies about the normal (in the relax pass
@@ -266,30 +347,8 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
       twist.store(m.twist_impulse);
       pair.turn((twist - old_twist) * frame.normal);
     }
-    // Friction in the relax pass only (as Box3D): solved beside the solve pass's push out of
-    // penetration, it took part of that impulse along the surface, and a bunny shot at 100 m/s
-    // into another went 5.9% of a bunny deep.
-    if (!use_bias) {
-      // Coulomb at the centre: the tangential impulse stays inside the disc of radius μ Σ λn.
-      const V3<F> ca = load3<F>(m.centre_a);
-      const V3<F> cb = load3<F>(m.centre_b);
-      const V3<F> slip = pair.relative_velocity(ca, cb);
-      const F slip1 = dot(frame.tangent1, slip);
-      const F slip2 = dot(frame.tangent2, slip);
-      const F old1 = F::load(m.friction_impulse[0]);
-      const F old2 = F::load(m.friction_impulse[1]);
-      const F k11 = F::load(m.tangent_mass[0]);
-      const F k12 = F::load(m.tangent_mass[1]);
-      const F k22 = F::load(m.tangent_mass[2]);
-      F t1 = old1 - (k11 * slip1 + k12 * slip2);
-      F t2 = old2 - (k12 * slip1 + k22 * slip2);
-      const F scale = clamp_scale(t1 * t1 + t2 * t2, friction * pushed);
-      t1 = scale * t1;
-      t2 = scale * t2;
-      t1.store(m.friction_impulse[0]);
-      t2.store(m.friction_impulse[1]);
-      pair.push(ca, cb, (t1 - old1) * frame.tangent1 + (t2 - old2) * frame.tangent2);
-    }
+    // The relax pass's friction comes after the points' push, within its bound.
+    if (!use_bias) solve_friction(m, pair, frame.tangent1, frame.tangent2, friction * pushed);
     // In the relax pass only (as Box2D v3): resisting the turns that the solve pass's push out of
     // penetration gives kept piles rocking.
     if (settings.rolling_resistance > 0.0f && !use_bias) {

@@ -31,7 +31,8 @@ inline constexpr int kLaneWidth = 8;
 // each point's normal row is solved in turn, then friction once for the manifold, at the centre
 // of its points: two tangent rows solved together (a 2 × 2 effective mass) bounded by μ times the
 // points' normal impulses summed, and a twist row about the normal bounded by μ times each
-// point's normal impulse times its lever arm from the centre.
+// point's normal impulse times its lever arm from the centre. Where the bodies stuck, the tangent
+// rows also pull the centre back to its anchor in the solve passes (static friction).
 template <int W>
 struct alignas(32) ManifoldBlock {
   // What a point keeps is little, so that a pass streams little memory: the Jacobians' angular
@@ -73,6 +74,14 @@ struct alignas(32) ManifoldBlock {
   float twist_mass[W];
   float friction_impulse[2][W];  // accumulated along tangent1 and tangent2. unit: N s
   float twist_impulse[W];        // accumulated about the normal, on body b. unit: N m s
+  // Static friction's anchor: 1 where the bodies stuck at the end of the last step, else 0; how
+  // far the centre had crept along tangent1 and tangent2 since, less the centre's offsets
+  // (centre_b - centre_a), so that adding the centres' current offset gives the creep now (unit:
+  // m); and the anchor spring's share of the rigid impulse and of the accumulated one.
+  float stuck[W];
+  float base_creep[2][W];
+  float anchor_mass_scale[W];
+  float anchor_impulse_scale[W];
   // Rolling resistance: the inverse of the two inverse inertias' sum (column-major; unit: kg m²)
   // and the accumulated angular impulse on body b (unit: N m s).
   float rolling_mass[9][W];
@@ -103,6 +112,7 @@ struct LaneSettings {
   float gravity[3] = {0.0f, 0.0f, 0.0f};  // unit: m/s²
   float linear_slop = 0.0f;               // unit: m
   float max_correction_speed = 0.0f;      // unit: m/s
+  float max_anchor_speed = 0.0f;          // static friction's pull back to its anchor. unit: m/s
   float rolling_resistance = 0.0f;        // the arm; 0 is off. unit: m
   float restitution_threshold = 0.0f;     // unit: m/s
 };

@@ -23,6 +23,18 @@ constexpr double kLeastTangentConditioning = 1e-6;
 // opposite faces): friction takes the first point's normal. unit: dimensionless
 constexpr float kSmallestNormalSum = 1e-3f;
 
+// A manifold whose friction impulse ends a step below this share of μ times its normal impulses
+// stuck: friction held it. At the bound it slid. unit: dimensionless
+constexpr float kStuckShareOfBound = 0.99f;
+
+// Bodies that stuck hold to their anchor while they stay at rest relative to each other (their
+// centres slip slower than SoftStepSolver::kAtRestSpeed), and while they turn against each other
+// slower than this: a body rocking or rolling on its rounded underside moves its contact over its
+// surface, and the anchor, a point of each body, held it rolling without a slip to lose its speed
+// in (a bunny on the 1,000-bunny heap's floor rocked for two seconds and the heap had not slept
+// by frame 880, in one of six seeds). unit: rad/s
+constexpr float kMostStuckSpin = 0.1f;
+
 void put(const Vec3& v, int lane, auto& lanes) {
   for (int k = 0; k < 3; ++k) lanes[k][lane] = v[k];
 }
@@ -70,6 +82,8 @@ void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material
   Vec3 centre_b = Vec3::Zero();
   Vec3 friction = Vec3::Zero();
   float twist = 0.0f;
+  // The anchor of the first point that kept one: a manifold's points share it.
+  const Constraint* anchored = nullptr;
   // The points in an order that alternates sides: the first, the one farthest from it, then the
   // rest. A pass solves them one after another, each pushing until it alone stops approaching;
   // when a flat face lands on four, solving neighbours in turn tipped the body onto the last and
@@ -107,6 +121,7 @@ void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material
     centre_b += c.rb;
     friction += c.friction_impulse;
     twist += c.twist_impulse;
+    if (anchored == nullptr && c.stuck) anchored = &c;
   }
   block.point_count = std::max(block.point_count, manifold.count);
   const float share_of_one = 1.0f / static_cast<float>(manifold.count);
@@ -153,6 +168,30 @@ void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material
   block.friction_impulse[0][lane] = friction.dot(tangent1);
   block.friction_impulse[1][lane] = friction.dot(tangent2);
   block.twist_impulse[lane] = twist;
+
+  // Static friction's anchor: the creep kept, in the new tangents, less the centres' offsets.
+  // Static friction holds bodies that stuck and are still at rest relative to each other; a pair
+  // struck or tumbling since slides, as Coulomb's friction has it, until it sticks again.
+  if (pushed_out_[first.a] != 0 || pushed_out_[first.b] != 0) anchored = nullptr;
+  if (anchored != nullptr) {
+    const SolverVelocity& va = velocity_[first.a];
+    const SolverVelocity& vb = velocity_[first.b];
+    const Vec3 slip =
+        vb.linear + vb.angular.cross(centre_b) - va.linear - va.angular.cross(centre_a);
+    const Vec3 spin = vb.angular - va.angular;
+    if (slip.squaredNorm() > kAtRestSpeed * kAtRestSpeed ||
+        spin.squaredNorm() > kMostStuckSpin * kMostStuckSpin) {
+      anchored = nullptr;
+    }
+  }
+  const Vec3 creep = anchored != nullptr ? anchored->creep : Vec3::Zero();
+  const Vec3 base_creep = creep - (centre_b - centre_a);
+  block.stuck[lane] = anchored != nullptr ? 1.0f : 0.0f;
+  block.base_creep[0][lane] = base_creep.dot(tangent1);
+  block.base_creep[1][lane] = base_creep.dot(tangent2);
+  const float spring = against_immovable ? context.spring_immovable : context.spring_moving;
+  block.anchor_mass_scale[lane] = spring / (1.0f + spring);
+  block.anchor_impulse_scale[lane] = 1.0f / (1.0f + spring);
 }
 
 void SoftStepSolver::colour_manifolds() {
@@ -243,8 +282,29 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory,
     const Vec3 normal(block.friction_normal[0][lane], block.friction_normal[1][lane],
                       block.friction_normal[2][lane]);
     const Vec3 tangent1(block.tangent1[0][lane], block.tangent1[1][lane], block.tangent1[2][lane]);
-    const Vec3 friction = block.friction_impulse[0][lane] * tangent1 +
-                          block.friction_impulse[1][lane] * normal.cross(tangent1);
+    const Vec3 tangent2 = normal.cross(tangent1);
+    const float t1 = block.friction_impulse[0][lane];
+    const float t2 = block.friction_impulse[1][lane];
+    const Vec3 friction = t1 * tangent1 + t2 * tangent2;
+    // The bodies stick while friction stays inside its bound; at the bound they slide, and the
+    // anchor goes (Coulomb's sliding friction, nothing pulling back).
+    float pushed = 0.0f;
+    for (std::uint32_t i = 0; i < count; ++i) pushed += block.points[i].impulse[lane];
+    const float bound = kStuckShareOfBound * block.friction[lane] * pushed;
+    const bool stuck = t1 * t1 + t2 * t2 < bound * bound;
+    // The creep since the anchor was set; a manifold that only now sticks anchors where it is.
+    Vec3 creep = Vec3::Zero();
+    if (stuck && block.stuck[lane] > 0.0f) {
+      const auto lane_vector = [&](const auto& v) {
+        return Vec3(v[0][lane], v[1][lane], v[2][lane]);
+      };
+      const SolverMotion& a = motion_[block.body_a[lane]];
+      const SolverMotion& b = motion_[block.body_b[lane]];
+      const Vec3 offsets = b.moved - a.moved + b.turned * lane_vector(block.centre_b) -
+                           a.turned * lane_vector(block.centre_a);
+      creep = (block.base_creep[0][lane] + tangent1.dot(offsets)) * tangent1 +
+              (block.base_creep[1][lane] + tangent2.dot(offsets)) * tangent2;
+    }
     const float share = 1.0f / static_cast<float>(count);
     for (std::uint32_t i = 0; i < count; ++i) {
       ContactMemory& kept = memory[block.contact[i][lane]];
@@ -252,6 +312,8 @@ void SoftStepSolver::keep_impulses(std::span<ContactMemory> memory,
       kept.solved = true;
       kept.friction_impulse = share * friction;
       kept.twist_impulse = share * block.twist_impulse[lane];
+      kept.creep = creep;
+      kept.stuck = stuck;
     }
   };
   // Each contact is in one lane of one block: the blocks keep theirs on the threads.

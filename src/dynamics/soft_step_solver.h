@@ -51,6 +51,12 @@ class SoftStepSolver {
   // Contacts per item of the threaded loops that prepare constraints and keep their impulses.
   // unit: contacts
   static constexpr std::size_t kConstraintsPerRun = 128;
+  // Two bodies whose centres (of their manifold) slip against each other slower than this at the
+  // step's start are at rest together, and static friction holds them (pack_lane()). A pair struck
+  // or tumbling faster is left to Coulomb's friction: held to their anchors, the bunnies of a
+  // falling stack landing on a heap went 6.1% of a bunny into each other, against 1.1% to 2.9%
+  // over five seeds with this. unit: m/s
+  static constexpr float kAtRestSpeed = 0.2f;
 
   // A spring-damper's effect on an impulse in one substep (Catto, "Soft Constraints", GDC 2011):
   // how much of the rigid impulse and of the accumulated one the soft impulse takes.
@@ -84,6 +90,9 @@ class SoftStepSolver {
     float normal_impulse = 0.0f;
     Vec3 friction_impulse = Vec3::Zero();
     float twist_impulse = 0.0f;
+    // Static friction's anchor, as the contact kept it (ContactMemory::creep and stuck).
+    Vec3 creep = Vec3::Zero();  // unit: m
+    bool stuck = false;
     std::uint32_t contact = 0;  // its index in the contacts given to solve()
   };
   // A manifold: constraints_[first, first + count) of one body pair, count <= kManifoldPoints.
@@ -178,8 +187,15 @@ class SoftStepSolver {
   std::vector<Quat> rotation_;  // at the step's start
   std::vector<float> inverse_mass_;
   std::vector<Mat3> inverse_inertia_;  // world frame, at the step's start
+  // Per slot, 1 for a body with a contact deeper than a resting one's give (prepare()): static
+  // friction does not hold it while it is pushed out of the overlap.
+  std::vector<std::uint8_t> pushed_out_;
   // The motion since the step's start, for the contacts' separations.
   std::vector<SolverMotion> motion_;
+  // The forces applied for the step as the velocities they add per second (unit: m/s² and
+  // rad/s²), per slot; sized and filled only in a step where some body has one.
+  std::vector<SolverVelocity> acceleration_;
+  bool forced_ = false;
   // The substep length the kept impulses were solved with: they are rescaled to a new one, as an
   // impulse per substep grows with its length. unit: s
   float kept_substep_ = 0.0f;

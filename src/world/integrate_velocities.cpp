@@ -1,6 +1,7 @@
-// Stage 1 of a substep. Paper mode: the velocities under gravity (the first half of semi-implicit
-// Euler). Plausible mode: each moving body's reach in the substep for speculative contacts, with
-// gravity's speed at its end; the soft step integrates in its own substeps (stage 4).
+// Stage 1 of a substep. Paper mode: the velocities under gravity and the forces applied for the
+// step (the first half of semi-implicit Euler). Plausible mode: each moving body's reach in the
+// substep for speculative contacts, with gravity's speed at its end; the soft step integrates in
+// its own substeps (stage 4).
 
 #include <cmath>
 
@@ -26,11 +27,16 @@ void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
 
 bool World::integrate_velocity(std::uint32_t body, float dt, bool plausible) {
   Vec3& linear = store_->linear_velocities()[body];
+  // Gravity and the force applied for this step.
+  const Vec3 acceleration =
+      settings_.gravity + store_->inverse_masses()[body] * store_->forces()[body];
   if (!plausible) {
-    linear += settings_.gravity * dt;  // the first half of semi-implicit Euler
+    linear += acceleration * dt;  // the first half of semi-implicit Euler
+    store_->angular_velocities()[body] +=
+        store_->inverse_inertias_world()[body] * store_->torques()[body] * dt;
     return true;
   }
-  const Vec3 displacement = (linear + settings_.gravity * dt) * dt;
+  const Vec3 displacement = (linear + acceleration * dt) * dt;
   const float turn_reach = store_->angular_velocities()[body].norm() * dt * store_->extents()[body];
   // Speeds whose squares overflow single precision leave no bound on the motion to detect
   // with: the simulation has gone non-finite in all but name.

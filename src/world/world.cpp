@@ -281,6 +281,24 @@ void World::apply_impulse(BodyId id, const Vec3& impulse, const Vec3& point) {
                                        (point - store.poses()[index].translation).cross(impulse);
 }
 
+void World::apply_force(BodyId id, const Vec3& force, const Vec3& point) {
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "apply_force");
+  const std::uint32_t index = checked_slot(id);
+  if (!force.allFinite() || !point.allFinite()) throw Error("a force and its point must be finite");
+  if (store_->is_static(index)) return;
+  wake(index);
+  store_->add_force(index, force, (point - store_->poses()[index].translation).cross(force));
+}
+
+void World::apply_torque(BodyId id, const Vec3& torque) {
+  const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "apply_torque");
+  const std::uint32_t index = checked_slot(id);
+  if (!torque.allFinite()) throw Error("a torque must be finite");
+  if (store_->is_static(index)) return;
+  wake(index);
+  store_->add_force(index, Vec3::Zero(), torque);
+}
+
 void World::set_pair_material(BodyId a, BodyId b, const PairMaterial& material) {
   const WorldAccess::Alone turn(*access_, WorldAccess::Holder::kChange, "set_pair_material");
   const std::uint32_t ia = checked_slot(a);
@@ -333,6 +351,7 @@ const StepStats& World::step(float dt) {
     stats.sleep_ms += elapsed_ms(split_start);
   }
   for (std::uint32_t i = 0; i < substeps && !stopped_; ++i) substep(substep_dt, stats);
+  store_->clear_forces();
   stats.movable_bodies = store_->dynamic_bodies();
   stats.bodies_asleep = stats.movable_bodies - static_cast<std::uint32_t>(store_->awake().size());
   if (settings_.plausibility_figures) measure_rest(stats);

@@ -194,6 +194,32 @@ def test_set_velocity_and_apply_impulse(sphere_tree):
     assert not np.allclose(expected_w, np.linalg.solve(inertia, np.cross(r, impulse)))
 
 
+def test_apply_force_and_torque_act_through_the_next_step_only(sphere_tree):
+    world = sphys.World(gravity=(0, 0, 0))
+    mass = 2.0
+    inertia = np.diag([2.0, 4.0, 8.0])
+    body = world.add_body(sphere_tree(), position=(0.0, 5.0, 0.0), mass=mass, inertia=inertia)
+    force = np.array([4.0, 0.0, -2.0])
+    torque = np.array([0.0, 0.0, 1.6])  # about a principal axis: no precession
+    for _ in range(60):
+        world.apply_force(body, force, world.poses([body])[0][:3])  # through the centre
+        world.apply_torque(body, torque)
+        world.step(DT)
+    # One second of each: Δv = F t / m, Δω = I⁻¹ τ t.
+    v = world.velocities([body])[0]
+    np.testing.assert_allclose(v[:3], force / mass, rtol=1e-4)
+    np.testing.assert_allclose(v[3:], [0.0, 0.0, 1.6 / 8.0], rtol=1e-4, atol=1e-6)
+    # Off the centre, a force turns the body too; a step without a new force changes nothing.
+    world.apply_force(body, (0.0, 1.0, 0.0), world.poses([body])[0][:3] + np.array([1.0, 0.0, 0.0]))
+    world.step(DT)
+    after = world.velocities([body])[0]
+    assert after[5] > v[5]
+    world.step(DT)
+    np.testing.assert_allclose(world.velocities([body])[0], after, rtol=1e-6, atol=1e-9)
+    with pytest.raises(sphys.Error):
+        world.apply_force(body, (float("nan"), 0, 0), (0, 0, 0))
+
+
 def test_static_body_does_not_move(sphere_tree):
     world = sphys.World()
     wall = world.add_body(sphere_tree(), position=(0, 1, 0), static=True)

@@ -109,9 +109,7 @@ void expect_column_stands(int count) {
 
 TEST(SoftStepColumns, TenBoxesStandForTenSecondsAndSleep) { expect_column_stands(10); }
 
-// Not met yet (docs/dynamics.md, Known limits): with six substeps the column rocks, a box 11 cm
-// off; with eight it stands, 2.3 mm off.
-TEST(SoftStepColumns, DISABLED_TwentyBoxesStandForTenSecondsAndSleep) { expect_column_stands(20); }
+TEST(SoftStepColumns, TwentyBoxesStandForTenSecondsAndSleep) { expect_column_stands(20); }
 
 // 3. A box 100 times heavier resting on a light one on the plane.
 

@@ -44,16 +44,7 @@ Transform flat_resting_pose(const test::TempDir& cache) {
   return setup.world->body(setup.bodies[0]).pose;
 }
 
-// That pose turned a quarter about the vertical, so that the slope runs along the bunny's length
-// (it stands across a 30° slope too): where it is placed on the slopes.
-Transform resting_pose(const test::TempDir& cache) {
-  Transform pose = flat_resting_pose(cache);
-  pose.rotation =
-      Quat(Eigen::AngleAxisf(std::numbers::pi_v<float> / 2.0f, Vec3::UnitY())) * pose.rotation;
-  return pose;
-}
-
-// The slope of angle θ as tilted gravity (down the slope is +x), the bunny placed at rest.
+// The slope of angle θ as tilted gravity (down the slope is +x), the bunny placed in `pose`.
 SimulationSetup on_slope(float angle, float friction, const Transform& pose,
                          const test::TempDir& cache) {
   Scene scene = one_bunny(friction);
@@ -63,25 +54,55 @@ SimulationSetup on_slope(float angle, float friction, const Transform& pose,
   return build(scene, cache);
 }
 
-// Not met yet (docs/dynamics.md, Known limits): μ = 0.6 is 4% above tan 30°, and the bunny tips
-// over on its sphere-tree's rounded underside.
-TEST(BunnyOnASlope, DISABLED_AtRestOnThirtyDegreesWithMu06ItMovesUnderAMillimetreInFiveSeconds) {
+// A pose in which the bunny stands on a 30° slope with its centre of mass inside its support:
+// dropped on the flat plane turned a quarter about x, it lands on its feet with its longest
+// stance (from 0.14 m behind its centre of mass to 0.29 m ahead, the centre 0.39 m up) along x,
+// then turned a quarter about the vertical so that the stance runs down the slope; the line of
+// gravity meets the slope 0.22 m ahead. Held there by friction of μ = 3 for a second, it is at
+// rest on the slope. (Standing as it lands from the flat plane without the quarter turn about x,
+// its stance reaches 0.27 m ahead, on a rounded sphere that rolls: it tips over whatever μ is.)
+Transform slope_resting_pose(float angle, const test::TempDir& cache) {
+  Scene flat = one_bunny(0.6f);
+  flat.bodies[0].orientation =
+      Quat(Eigen::AngleAxisf(std::numbers::pi_v<float> / 2.0f, Vec3::UnitX())) *
+      flat.bodies[0].orientation;
+  flat.bodies[0].position.y() += 0.3f;
+  const SimulationSetup landed = build(flat, cache);
+  for (int frame = 0; frame < 300; ++frame) landed.world->step(kDt);
+  EXPECT_TRUE(landed.world->asleep(landed.bodies[0]));
+  Transform pose = landed.world->body(landed.bodies[0]).pose;
+  pose.rotation =
+      Quat(Eigen::AngleAxisf(std::numbers::pi_v<float> / 2.0f, Vec3::UnitY())) * pose.rotation;
+  // Tilted a third of the way at a time, so that it shifts onto its downhill foot gently.
+  for (int third = 1; third <= 3; ++third) {
+    const SimulationSetup held =
+        on_slope(angle * static_cast<float>(third) / 3.0f, 3.0f, pose, cache);
+    for (int frame = 0; frame < 60; ++frame) held.world->step(kDt);
+    EXPECT_LT(held.world->body(held.bodies[0]).linear_velocity.norm(), 1e-3f) << third;
+    pose = held.world->body(held.bodies[0]).pose;
+  }
+  return pose;
+}
+
+TEST(BunnyOnASlope, AtRestOnThirtyDegreesWithMu06ItMovesUnderAMillimetreInFiveSecondsAndSleeps) {
   const test::TempDir cache;
-  const Transform pose = resting_pose(cache);
-  const SimulationSetup setup = on_slope(std::numbers::pi_v<float> / 6.0f, 0.6f, pose, cache);
-  float worst = 0.0f;  // along the slope, from where it was placed, the first second included
+  const float angle = std::numbers::pi_v<float> / 6.0f;
+  const Transform pose = slope_resting_pose(angle, cache);
+  const SimulationSetup setup = on_slope(angle, 0.6f, pose, cache);
+  float worst = 0.0f;  // along the slope, from where it was placed
   for (int frame = 0; frame < 300; ++frame) {
     ASSERT_FALSE(setup.world->step(kDt).non_finite_body);
     const Vec3 moved = setup.world->body(setup.bodies[0]).pose.translation - pose.translation;
     worst = std::max(worst, std::hypot(moved.x(), moved.z()));
   }
   EXPECT_LT(worst, 0.001f);
+  EXPECT_TRUE(setup.world->asleep(setup.bodies[0]));
 }
 
 TEST(BunnyOnASlope, OnThirtyDegreesWithMu03ItSlidesAtGTimesSinMinusMuCos) {
   const test::TempDir cache;
-  const Transform pose = resting_pose(cache);
   const float angle = std::numbers::pi_v<float> / 6.0f;
+  const Transform pose = slope_resting_pose(angle, cache);
   const float mu = 0.3f;
   const SimulationSetup setup = on_slope(angle, mu, pose, cache);
   World& world = *setup.world;
@@ -96,18 +117,25 @@ TEST(BunnyOnASlope, OnThirtyDegreesWithMu03ItSlidesAtGTimesSinMinusMuCos) {
   EXPECT_LT(world.body(bunny).angular_velocity.norm(), 0.05f);
 }
 
+// A bunny of 100 tonnes in its flat resting pose, raised by `lift` (unit: m) above where it rests
+// on the plane: over a light body lying there.
+SimulationSetup heavy_bunny_above(float lift, const test::TempDir& cache) {
+  const Transform rest = flat_resting_pose(cache);
+  Scene scene = one_bunny(0.5f);
+  scene.bodies[0].position = rest.translation + Vec3(0.0f, lift, 0.0f);
+  scene.bodies[0].orientation = rest.rotation;
+  scene.bodies[0].mass = 100.0 * 1000.0;
+  return build(scene, cache);
+}
+
 // A bunny of 100 times the mass of the box it rests on, the box on the plane. (Not a bunny on a
 // bunny: one bunny does not rest on another's rounded back; at equal masses the upper one slid off
 // at each of the eight yaws tried.)
 TEST(BunnyMassRatio, ABunnyAHundredTimesHeavierRestsOnALightBoxWithoutSinkingIn) {
   const test::TempDir cache;
-  const Transform rest = flat_resting_pose(cache);
   const float box_half = test::cube_half_height();
-  Scene scene = one_bunny(0.5f);
-  scene.bodies[0].position = rest.translation + Vec3(0.0f, 2.0f * box_half + 0.005f, 0.0f);
-  scene.bodies[0].orientation = rest.rotation;
-  scene.bodies[0].mass = 100.0 * 1000.0;
-  const SimulationSetup setup = build(scene, cache);
+  const SimulationSetup setup = heavy_bunny_above(2.0f * box_half + 0.005f, cache);
+  const Vec3 start = setup.world->body(setup.bodies[0]).pose.translation;
   World& world = *setup.world;
   const BodyId box = world.add_body(test::cube(Vec3(0.0f, box_half, 0.0f), 0.5f, 1000.0f));
   const BodyId bunny = setup.bodies[0];
@@ -119,10 +147,54 @@ TEST(BunnyMassRatio, ABunnyAHundredTimesHeavierRestsOnALightBoxWithoutSinkingIn)
   }
   EXPECT_LT(deepest, 0.01f);
   // Still on the box: settled by less than 5 cm onto the box's bumps.
-  const Vec3 moved = world.body(bunny).pose.translation - scene.bodies[0].position;
+  const Vec3 moved = world.body(bunny).pose.translation - start;
   EXPECT_LT(std::hypot(moved.x(), moved.z()), 0.05f);
   EXPECT_GT(moved.y(), -0.015f);
   EXPECT_TRUE(world.asleep(box));
+  EXPECT_TRUE(world.asleep(bunny));
+}
+
+// A bunny of 100 times the mass of a 2 × 0.4 × 2 m slab lying on the plane, dropped 0.3 m onto
+// it: once settled it stays where it settled, and both sleep.
+TEST(BunnyMassRatio, ABunnyAHundredTimesHeavierDroppedOnALightSlabStaysWhereItSettled) {
+  const test::TempDir cache;
+  tools::BuildOptions octree;
+  octree.method = tools::BuildMethod::Octree;
+  octree.depth = 3;
+  const auto slab_tree = std::make_shared<const SphereTree>(
+      tools::build_sphere_tree(tools::make_box(tools::Vec3d(2.0, 0.4, 2.0)), octree));
+  float slab_half = 0.0f;  // how far its spheres reach below and above its centre. unit: m
+  for (std::uint32_t node = 0; node < slab_tree->size(); ++node) {
+    if (!slab_tree->is_leaf(node)) continue;
+    const Sphere& sphere = slab_tree->sphere(node);
+    slab_half = std::max(slab_half, sphere.radius - sphere.center.y());
+  }
+  const SimulationSetup setup = heavy_bunny_above(2.0f * slab_half + 0.3f, cache);
+  World& world = *setup.world;
+  BodyDesc slab;
+  slab.tree = slab_tree;
+  slab.pose.translation = Vec3(0.0f, slab_half, 0.0f);
+  slab.mass = 1000.0f;
+  slab.inertia = Vec3(0.4f * 0.4f + 4.0f, 8.0f, 4.0f + 0.4f * 0.4f).asDiagonal();
+  slab.inertia *= slab.mass / 12.0f;  // a box's m (b² + c²) / 12 about each axis
+  slab.friction = 0.5f;
+  slab.restitution = 0.0f;
+  const BodyId slab_id = world.add_body(slab);
+  const BodyId bunny = setup.bodies[0];
+  // Falling 0.3 m takes 0.25 s; landing on its rounded underside on the slab's bumps, it rocks
+  // (up to 2 rad/s, its centre of mass swinging 4 cm) and has settled by 1 s. From then on it
+  // stays where it settled.
+  Vec3 settled = Vec3::Zero();
+  float drift = 0.0f;
+  for (int frame = 1; frame <= 600; ++frame) {
+    ASSERT_FALSE(world.step(kDt).non_finite_body);
+    const Vec3 at = world.body(bunny).pose.translation;
+    if (frame == 60) settled = at;
+    if (frame > 60) drift = std::max(drift, (at - settled).norm());
+  }
+  EXPECT_LT(drift, 0.01f);
+  EXPECT_GT(world.body(bunny).pose.translation.y(), slab_half) << "it sank through the slab";
+  EXPECT_TRUE(world.asleep(slab_id));
   EXPECT_TRUE(world.asleep(bunny));
 }
 
