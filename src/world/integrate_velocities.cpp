@@ -27,17 +27,22 @@ void World::integrate_velocities(float dt, bool plausible, StepStats& stats) {
 
 bool World::integrate_velocity(std::uint32_t body, float dt, bool plausible) {
   Vec3& linear = store_->linear_velocities()[body];
-  // Gravity and the force applied for this step.
-  const Vec3 acceleration =
-      settings_.gravity + store_->inverse_masses()[body] * store_->forces()[body];
+  Vec3& angular = store_->angular_velocities()[body];
+  // Gravity, and the force and torque applied for this step where some body has one (most steps
+  // have none, and skip the body's inverse inertia).
+  Vec3 acceleration = settings_.gravity;
+  Vec3 spin_gained = Vec3::Zero();  // unit: rad/s
+  if (!store_->forced().empty()) {
+    acceleration += store_->inverse_masses()[body] * store_->forces()[body];
+    spin_gained = store_->inverse_inertias_world()[body] * store_->torques()[body] * dt;
+  }
   if (!plausible) {
     linear += acceleration * dt;  // the first half of semi-implicit Euler
-    store_->angular_velocities()[body] +=
-        store_->inverse_inertias_world()[body] * store_->torques()[body] * dt;
+    angular += spin_gained;
     return true;
   }
   const Vec3 displacement = (linear + acceleration * dt) * dt;
-  const float turn_reach = store_->angular_velocities()[body].norm() * dt * store_->extents()[body];
+  const float turn_reach = (angular + spin_gained).norm() * dt * store_->extents()[body];
   // Speeds whose squares overflow single precision leave no bound on the motion to detect
   // with: the simulation has gone non-finite in all but name.
   if (!std::isfinite(displacement.norm()) || !std::isfinite(turn_reach)) return false;
