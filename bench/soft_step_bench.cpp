@@ -87,7 +87,7 @@ void soft_step_solver(benchmark::State& state) {
   const Parallel parallel(static_cast<std::uint32_t>(state.range(1)));
   BodyStore bodies = pile.bodies;
   std::vector<ContactMemory> memory = pile.memory;
-  ContactSolverStats stats;
+  SoftStepStats stats;
   for (auto _ : state) {
     state.PauseTiming();
     bodies = pile.bodies;
@@ -98,10 +98,10 @@ void soft_step_solver(benchmark::State& state) {
                                          kSubsteps, parallel));
     benchmark::ClobberMemory();
   }
-  state.counters["contact_points"] = stats.constraints;
+  state.counters["contact_points"] = stats.contacts_solved;
   // Seconds per contact point per pass (shown with an SI prefix, "n" for ns).
   state.counters["time_per_point_pass"] = benchmark::Counter(
-      static_cast<double>(stats.constraints) * kPassesPerStep,
+      static_cast<double>(stats.contacts_solved) * kPassesPerStep,
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(soft_step_solver)

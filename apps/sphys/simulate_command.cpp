@@ -41,7 +41,8 @@ struct SimulateOptions {
   std::optional<std::string> mode;
   std::optional<std::string> ground;
   std::optional<std::string> contacts;
-  std::optional<int> substeps;
+  std::optional<int> collision_passes;
+  std::optional<std::string> substeps;  // the old name of --collision-passes, refused
   std::optional<int> passes;
   std::vector<std::string> settings;  // --set FIELD=VALUE, in order
   std::optional<std::string> out;
@@ -117,7 +118,13 @@ void apply_options(const SimulateOptions& options, tools::Scene& scene) {
     scene.solver.contacts = parse_option("--contacts", *options.contacts, tools::parse_contact_set);
   }
   if (options.substeps) {
-    scene.substeps = checked_count("--substeps", *options.substeps, setting_of("substeps"));
+    throw Error(
+        "--substeps was renamed --collision-passes (whole collision passes a frame; the "
+        "solver's own substeps are --set solver.soft_substeps=N)");
+  }
+  if (options.collision_passes) {
+    scene.collision_passes = checked_count("--collision-passes", *options.collision_passes,
+                                           setting_of("collision_passes"));
   }
   if (!options.settings.empty()) {
     WorldSettings settings = tools::world_settings(scene);
@@ -154,7 +161,7 @@ std::string metres_text(const nlohmann::ordered_json& value) {
   return text;
 }
 
-// "plausible, reduced contacts, avx2 lanes, 1 substep per frame"
+// "plausible, reduced contacts, avx2 lanes, 1 collision pass per frame"
 std::string response_text(const nlohmann::ordered_json& s) {
   std::string text = s["response"].get<std::string>();
   if (text == tools::response_mode_name(ResponseMode::kPlausible)) {
@@ -164,19 +171,19 @@ std::string response_text(const nlohmann::ordered_json& s) {
     text += s["solver_lanes"].get<std::string>();
     text += " lanes";
   }
-  const int fewest = s["substeps"].get<int>();
-  const int most = std::max(fewest, s["max_substeps"].get<int>());
+  const int fewest = s["collision_passes"].get<int>();
+  const int most = std::max(fewest, s["max_collision_passes"].get<int>());
   const bool adaptive =
       s["response"] == tools::response_mode_name(ResponseMode::kPlausible) && most > fewest;
   char counts[96];
   if (adaptive) {
     std::snprintf(counts, sizeof counts,
-                  ", %d to %d substeps per frame (%.2f on average, %u at most)", fewest, most,
-                  s["substeps_per_frame"]["mean"].get<double>(),
-                  s["substeps_per_frame"]["max"].get<unsigned>());
+                  ", %d to %d collision passes per frame (%.2f on average, %u at most)", fewest,
+                  most, s["collision_passes_per_frame"]["mean"].get<double>(),
+                  s["collision_passes_per_frame"]["max"].get<unsigned>());
   } else {
-    std::snprintf(counts, sizeof counts, ", %d substep%s per frame", fewest,
-                  fewest == 1 ? "" : "s");
+    std::snprintf(counts, sizeof counts, ", %d collision pass%s per frame", fewest,
+                  fewest == 1 ? "" : "es");
   }
   return text + counts;
 }
@@ -336,8 +343,9 @@ void add_simulate_command(CLI::App& app) {
   };
   cmd->add_option("--mode", options->mode, instead("response"));
   cmd->add_option("--contacts", options->contacts, instead("solver.contacts"));
-  cmd->add_option("--substeps", options->substeps, instead("substeps"));
+  cmd->add_option("--collision-passes", options->collision_passes, instead("collision_passes"));
   cmd->add_option("--passes", options->passes, instead("paper_passes"));
+  cmd->add_option("--substeps", options->substeps)->group("");  // refused, naming the new name
   cmd->add_option("--set", options->settings,
                   "A setting of the world by its field, FIELD=VALUE: solver.soft_substeps=8, "
                   "sleep.time=0.5, ground_friction=0.8 (docs/scenes.md's keys, with their object "

@@ -56,6 +56,8 @@ struct BodyArrays {
   std::vector<Mat3> inverse_inertia_body_;
   std::vector<Mat3> inverse_inertia_world_;
   std::vector<float> extent_;
+  // |v| + |ω| · extent as of the body's last finalize or change of velocity. unit: m/s
+  std::vector<float> fastest_point_speed_;
   std::vector<float> restitution_;
   std::vector<float> friction_;
   std::vector<std::uint8_t> alive_;
@@ -152,7 +154,7 @@ class BodyStore : private detail::BodyArrays {
   [[nodiscard]] std::span<const float> frictions() const { return friction_; }
 
   // Adds a force through the centre of mass (unit: N) and a torque (unit: N·m), world frame, to
-  // what acts on the body through the next step (as gravity does, in every substep).
+  // what acts on the body through the next step (as gravity does, in every collision pass).
   void add_force(std::uint32_t slot, const Vec3& force, const Vec3& torque);
   [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
   [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
@@ -167,9 +169,16 @@ class BodyStore : private detail::BodyArrays {
   // (within kUnitQuaternionTolerance): a quaternion with huge coefficients normalises to zero
   // (its norm overflows), finite but no rotation, the same failure.
   [[nodiscard]] bool finite(std::uint32_t slot) const;
-  // The speed of the body's fastest point, |v| + |ω| · extent. unit: m/s
-  [[nodiscard]] float fastest_point_speed(std::uint32_t slot) const {
-    return linear_velocity_[slot].norm() + angular_velocity_[slot].norm() * extent_[slot];
+  // The speed of each body's fastest point, |v| + |ω| · extent, as measured when the body was
+  // last finished (once a collision pass, with its pose and inertia) or its velocity was set: the
+  // one place it is kept, read by the collision passes' count, sleep and the rest figures.
+  // unit: m/s
+  [[nodiscard]] std::span<const float> fastest_point_speeds() const { return fastest_point_speed_; }
+  // Measures the slot's fastest point speed from its velocities now and keeps it.
+  float measure_fastest_point_speed(std::uint32_t slot) {
+    fastest_point_speed_[slot] =
+        linear_velocity_[slot].norm() + angular_velocity_[slot].norm() * extent_[slot];
+    return fastest_point_speed_[slot];
   }
 
  private:

@@ -53,13 +53,6 @@ struct RigidBody {
 // conserves it instead of keeping ω fixed while its inertia turns. Paper mode's integrator.
 void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angular_velocity,
                         const Mat3& inertia_body, const Mat3& inverse_inertia_body, float dt);
-// The same motion with the angular momentum following Euler's equations in the body frame by the
-// implicit midpoint rule, in double: a torque-free body keeps |L| and its kinetic energy to float
-// rounding (2e-5 over 2,400 steps of an asymmetric body tumbling). The plausible mode's
-// integrator. A body turning more than half a radian in the step goes by integrate_position.
-void integrate_position_keeping_spin(Transform& pose, const Vec3& linear_velocity,
-                                     Vec3& angular_velocity, const Mat3& inertia_body,
-                                     const Mat3& inverse_inertia_body, float dt);
 // A body as integrate_positions_keeping_spin moves it: its pose and angular velocity (updated),
 // its linear velocity and its inertia in its own frame.
 struct SpinningBody {
@@ -69,8 +62,12 @@ struct SpinningBody {
   const Mat3* inertia_body;
   const Mat3* inverse_inertia_body;
 };
-// integrate_position_keeping_spin for many bodies, each with the result it has alone: a few at a
-// time side by side, so that their long chains of dependent double operations overlap.
+// The motion of integrate_position with the angular momentum following Euler's equations in the
+// body frame by the implicit midpoint rule, in double: a torque-free body keeps |L| and its
+// kinetic energy to float rounding (2e-5 over 2,400 steps of an asymmetric body tumbling). The
+// plausible mode's integrator. A body turning more than half a radian in the step goes by
+// integrate_position. For many bodies, each with the result it has alone: a few at a time side by
+// side, so that their long chains of dependent double operations overlap.
 void integrate_positions_keeping_spin(std::span<const SpinningBody> bodies, float dt);
 // The same for a RigidBody; static bodies are left alone.
 void integrate_position(RigidBody& body, float dt);

@@ -10,9 +10,11 @@ namespace sphys {
 
 // Largest manifold a body pair may be reduced to (SolverSettings::manifold_points). unit: contacts
 inline constexpr std::uint32_t kMaxManifoldPoints = 8;
-// Most substeps a step may run (WorldSettings::substeps and max_substeps): a step of 1/60 s cut
-// 64 ways is 0.26 ms, finer than any scene sphys runs needs.
-inline constexpr std::uint32_t kMaxSubsteps = 64;
+// Most collision passes a step may run (WorldSettings::collision_passes and max_collision_passes),
+// and most solver substeps a collision pass may run (SolverSettings::soft_substeps): a step of
+// 1/60 s cut 64 ways is 0.26 ms, finer than any scene sphys runs needs.
+inline constexpr std::uint32_t kMaxCollisionPasses = 64;
+inline constexpr std::uint32_t kMaxSoftSubsteps = 64;
 // Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
 inline constexpr std::uint32_t kMaxPaperPasses = 1000;
 // Largest magnitude of each component of gravity (WorldSettings::gravity), about 100 g: beyond

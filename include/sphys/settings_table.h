@@ -80,7 +80,7 @@ struct RemovedSetting {
 // "solver", "sleep", "ground", then those scene files do not carry.
 [[nodiscard]] std::span<const Setting> settings_table();
 
-// The setting of this WorldSettings field ("substeps", "solver.contacts"). Throws
+// The setting of this WorldSettings field ("collision_passes", "solver.contacts"). Throws
 // std::out_of_range when there is none: a caller's mistake, not bad input.
 [[nodiscard]] const Setting& setting_of(std::string_view field);
 

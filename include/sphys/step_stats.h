@@ -1,7 +1,8 @@
 #pragma once
 
 // Figures of one World::step: every figure the experiment reports, each measured once. With
-// substeps, times and counts are summed over them and the deepest penetration is their largest.
+// several collision passes, times and counts are summed over them and the deepest penetration is
+// their largest.
 // Times and counts are always measured; the plausibility figures (marked below) only with
 // WorldSettings::plausibility_figures, as each costs a pass over every leaf pair or body.
 
@@ -61,19 +62,20 @@ struct StepStats : DetectionCounters {
 
   // The detection counters are summed over the step's detections (DetectionCounters).
   std::uint32_t bodies = 0;
-  std::uint32_t contacts = 0;  // the response's contacts (after reduction, when reduced)
-  // Paper mode: impulses applied, over all passes. Plausible mode: contacts solved.
-  std::uint32_t impulses = 0;
-  // Paper mode: passes over the contacts. Plausible mode: velocity iterations.
+  std::uint32_t contacts = 0;         // the response's contacts (after reduction, when reduced)
+  std::uint32_t impulses = 0;         // paper mode: eq. 4's impulses applied, over all passes
+  std::uint32_t contacts_solved = 0;  // plausible mode: contacts with a moving body solved
+  // Paper mode: passes over the contacts. Plausible mode: the soft step's solve and relax passes.
   std::uint32_t response_passes = 0;
-  std::uint32_t substeps = 1;      // pipeline runs in this step (WorldSettings::max_substeps)
+  // Collision passes in this step (WorldSettings::collision_passes, max_collision_passes).
+  std::uint32_t collision_passes = 1;
   std::uint32_t warm_started = 0;  // contacts whose impulses came from the previous step
   std::uint32_t bounces = 0;       // contacts given restitution (plausible mode)
   // Groups of touching dynamic bodies (plausible mode), persistent: a group whose bodies parted
   // counts as one until the next step splits it.
   std::uint32_t islands = 0;
   // Crowds (CollisionSettings::crowd_pairs_per_body): the moving bodies in a crowd (their largest
-  // count over the substeps).
+  // count over the collision passes).
   std::uint32_t crowded_bodies = 0;
   std::uint32_t movable_bodies = 0;  // bodies that are not static
   std::uint32_t bodies_asleep = 0;

@@ -1,12 +1,11 @@
 #pragma once
 
-// A world of rigid bodies with sphere-trees, stepped by the pipeline of docs/architecture.md:
-// velocities, bounds and broad phase, narrow phase, contacts, response, positions.
+// A world of rigid bodies with sphere-trees, stepped by the pipeline of its response mode
+// (docs/architecture.md): collision passes of detection and response.
 
 #include <memory>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "sphys/body_id.h"
@@ -14,7 +13,6 @@
 #include "sphys/collision_settings.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
-#include "sphys/parallel.h"
 #include "sphys/rigid_body.h"
 #include "sphys/solver_settings.h"
 #include "sphys/sphere_tree.h"
@@ -52,15 +50,16 @@ struct WorldSettings {
   std::uint32_t paper_passes = 1;
   SolverSettings solver;
   SleepSettings sleep;
-  // Each step(dt) runs the whole pipeline at least this many times with dt / substeps. 1..64
-  std::uint32_t substeps = 1;
-  // Plausible mode: more substeps in a step where bodies move fast, up to this many, so that no
-  // moving body's fastest point (|v| + |ω| · its bounding radius) travels more than
-  // `substep_travel` of its bounding radius in one. Speculative contacts see straight motion
-  // only; a body spinning through a pile meets contacts they did not foresee. 1..64; at most
-  // `substeps` turns it off.
-  std::uint32_t max_substeps = 8;
-  float substep_travel = 0.3f;  // unit: bounding radii per substep, > 0
+  // Collision passes: each step(dt) runs detection and response at least this many times, each
+  // pass over dt / collision_passes (the solver's own substeps are solver.soft_substeps). 1..64
+  std::uint32_t collision_passes = 1;
+  // Plausible mode: more collision passes in a step where bodies move fast, up to this many, so
+  // that no moving body's fastest point (|v| + |ω| · its bounding radius) travels more than
+  // `collision_pass_travel` of its bounding radius in one. Speculative contacts see straight
+  // motion only; a body spinning through a pile meets contacts they did not foresee. 1..64; at
+  // most `collision_passes` turns it off.
+  std::uint32_t max_collision_passes = 8;
+  float collision_pass_travel = 0.3f;  // unit: bounding radii per collision pass, > 0
   // What detection uses of the trees, its budgets and the ground plane. Which contacts it makes
   // is the solver's (`solver`: margin, speculative contacts, manifolds); paper mode makes them
   // from overlaps only, as the paper does.
@@ -96,11 +95,8 @@ struct BodyDesc {
   bool is_static = false;
 };
 
-class CollisionDetector;
-struct CollisionStats;
-class SoftStepSolver;
-class SleepTracker;
 class WorldAccess;
+struct WorldState;
 
 // One world may be called from any thread, one call at a time: calls that overlap throw
 // sphys::Error ("... the world is being stepped on another thread ...") rather than race, whatever
@@ -147,9 +143,9 @@ class World {
   // Applies an impulse (unit: N·s, world frame) at a world point (unit: m) and wakes the body.
   void apply_impulse(BodyId body, const Vec3& impulse, const Vec3& point);
   // Applies a force (unit: N, world frame) at a world point (unit: m) through the next step, in
-  // each of its substeps as gravity acts, and wakes the body; forces add up until the step, which
-  // ends them (apply it before every step for a lasting push). Non-finite values throw; a static
-  // body takes none.
+  // each of its collision passes as gravity acts, and wakes the body; forces add up until the step,
+  // which ends them (apply it before every step for a lasting push). Non-finite values throw; a
+  // static body takes none.
   void apply_force(BodyId body, const Vec3& force, const Vec3& point);
   // A torque (unit: N·m, world frame) through the next step, as apply_force.
   void apply_torque(BodyId body, const Vec3& torque);
@@ -173,7 +169,8 @@ class World {
   // (later steps do nothing).
   const StepStats& step(float dt);
   [[nodiscard]] const StepStats& stats() const;
-  // The contacts the last step (its last substep) responded to: after reduction, when reduced.
+  // The contacts the last step (its last collision pass) responded to: after reduction, when
+  // reduced.
   [[nodiscard]] std::span<const Contact> contacts() const;
   [[nodiscard]] bool stopped() const;
 
@@ -194,49 +191,10 @@ class World {
   [[nodiscard]] std::shared_ptr<const SphereTree> shared_tree(BodyId body) const;
 
  private:
-  // slot_of without taking a turn, for the calls that hold one.
-  [[nodiscard]] std::uint32_t checked_slot(BodyId body) const;
-  [[nodiscard]] std::uint32_t substeps_for(float dt) const;
-  // The stages of a substep, in order, each in the file named for it (docs/architecture.md).
-  void substep(float dt, StepStats& stats);
-  void integrate_velocities(float dt, bool plausible, StepStats& stats);
-  // One awake body's gravity and reach; false when its motion is no longer finite.
-  [[nodiscard]] bool integrate_velocity(std::uint32_t body, float dt, bool plausible);
-  void detect_contacts(StepStats& stats);
-  void add_detection(const CollisionStats& detection, StepStats& stats) const;
-  void wake_touched(float dt, StepStats& stats);
-  void mix_materials();
-  void respond(float dt, bool plausible, StepStats& stats);
-  void integrate_positions(float dt, bool plausible, StepStats& stats);
-  void update_sleep(float dt, StepStats& stats);
-  void measure_rest(StepStats& stats);
-  void wake(std::uint32_t body);
-  // The key of a body pair in pair_materials_, the same in either order.
-  [[nodiscard]] static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b);
-
-  WorldSettings settings_;
-  SolverLanes solver_lanes_ = SolverLanes::kPortable;
-  // The one store of the bodies' state and the owner of every per-slot array. The store, the
-  // detector and the sleep tracker hold each other's addresses, so each is on the heap, where
-  // moving the world leaves them; the store is declared first, to outlive what is attached to
-  // it.
-  std::unique_ptr<BodyStore> store_;
-  std::unique_ptr<CollisionDetector> detector_;
-  std::vector<PairMaterial> materials_;  // per contact
-  std::vector<std::uint8_t> touching_;
-  std::vector<std::uint32_t> sleep_changes_;       // bodies woken or fallen asleep, scratch
-  std::vector<std::uint32_t> non_finite_in_run_;   // the integrations' scratch, per run
-  std::vector<std::uint32_t> removed_neighbours_;  // remove_body's scratch
-  std::unordered_map<std::uint64_t, PairMaterial> pair_materials_;
-  // Plausible mode's machinery, private to the library.
-  std::unique_ptr<SoftStepSolver> solver_;
-  std::unique_ptr<SleepTracker> sleep_;
-  // On the heap so that the detector's and solver's pointer to it survives moving the world.
-  std::unique_ptr<Parallel> parallel_;
-  StepStats stats_;
-  bool stopped_ = false;
-  // Turns of the calls (world/world_access.h); on the heap so that the world stays movable.
-  std::unique_ptr<WorldAccess> access_;
+  // The bodies, the detector, the solver, sleep and the pipeline of the world's mode, with the
+  // step's stages and their buffers: private to the library (src/world/world_state.h), and on the
+  // heap, so that a world moves whole and a change of a stage recompiles no user.
+  std::unique_ptr<WorldState> state_;
 };
 
 }  // namespace sphys

@@ -17,6 +17,7 @@ std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
     inverse_inertia_body_.emplace_back();
     inverse_inertia_world_.emplace_back();
     extent_.emplace_back();
+    fastest_point_speed_.emplace_back();
     restitution_.emplace_back();
     friction_.emplace_back();
     force_.emplace_back(Vec3::Zero());
@@ -48,6 +49,7 @@ std::uint32_t BodyStore::add(const RigidBody& body, float extent) {
     awake_.insert(std::lower_bound(awake_.begin(), awake_.end(), slot), slot);
   }
   update_world_inertia(slot);
+  measure_fastest_point_speed(slot);
   return slot;
 }
 
@@ -55,6 +57,7 @@ void BodyStore::remove(std::uint32_t slot) {
   if (moving_[slot] != 0) awake_.erase(std::lower_bound(awake_.begin(), awake_.end(), slot));
   linear_velocity_[slot].setZero();
   angular_velocity_[slot].setZero();
+  fastest_point_speed_[slot] = 0.0f;
   inverse_mass_[slot] = 0.0f;
   force_[slot].setZero();
   torque_[slot].setZero();
@@ -117,6 +120,7 @@ void BodyStore::set_asleep(std::span<const std::uint32_t> slots, bool asleep) {
     if (asleep) {
       linear_velocity_[slot].setZero();
       angular_velocity_[slot].setZero();
+      fastest_point_speed_[slot] = 0.0f;
     }
     changed = true;
   }

@@ -158,14 +158,6 @@ void integrate_positions_keeping_spin(std::span<const SpinningBody> bodies, floa
   }
 }
 
-void integrate_position_keeping_spin(Transform& pose, const Vec3& linear_velocity,
-                                     Vec3& angular_velocity, const Mat3& inertia_body,
-                                     const Mat3& inverse_inertia_body, float dt) {
-  const SpinningBody body{&pose, &linear_velocity, &angular_velocity, &inertia_body,
-                          &inverse_inertia_body};
-  integrate_positions_keeping_spin(std::span(&body, 1), dt);
-}
-
 void integrate_position(RigidBody& body, float dt) {
   if (body.is_static) return;
   integrate_position(body.pose, body.linear_velocity, body.angular_velocity, body.inertia_body,

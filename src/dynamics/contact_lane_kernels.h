@@ -9,153 +9,9 @@
 #include <span>
 
 #include "dynamics/contact_lanes.h"
+#include "dynamics/lane_pair.h"
 
 namespace sphys::lanes {
-
-template <class F>
-struct V3 {
-  F x, y, z;
-};
-
-template <class F>
-V3<F> operator+(const V3<F>& a, const V3<F>& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-template <class F>
-V3<F> operator-(const V3<F>& a, const V3<F>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class F>
-V3<F> operator*(const F& s, const V3<F>& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-template <class F>
-F dot(const V3<F>& a, const V3<F>& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-template <class F>
-V3<F> cross(const V3<F>& a, const V3<F>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-template <class F>
-V3<F> load3(const float (&p)[3][F::kWidth]) {
-  return {F::load(p[0]), F::load(p[1]), F::load(p[2])};
-}
-template <class F>
-void store3(const V3<F>& a, float (&p)[3][F::kWidth]) {
-  a.x.store(p[0]);
-  a.y.store(p[1]);
-  a.z.store(p[2]);
-}
-// A column-major 3 × 3 matrix (9 lanes) times a vector.
-template <class F>
-V3<F> times(const float (&m)[9][F::kWidth], const V3<F>& v) {
-  return {F::load(m[0]) * v.x + F::load(m[3]) * v.y + F::load(m[6]) * v.z,
-          F::load(m[1]) * v.x + F::load(m[4]) * v.y + F::load(m[7]) * v.z,
-          F::load(m[2]) * v.x + F::load(m[5]) * v.y + F::load(m[8]) * v.z};
-}
-template <class F>
-V3<F> times(const F (&m)[9], const V3<F>& v) {
-  return {m[0] * v.x + m[3] * v.y + m[6] * v.z, m[1] * v.x + m[4] * v.y + m[7] * v.z,
-          m[2] * v.x + m[5] * v.y + m[8] * v.z};
-}
-
-// One body of each lane, gathered from the solver's rows by slot and scattered back.
-template <class F>
-struct LaneBody {
-  static constexpr int W = F::kWidth;
-  V3<F> linear;
-  V3<F> angular;
-  F rest[2];  // the row's floats past the velocities, written back as they were
-
-  static LaneBody gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    F row[kRow];
-    F::load_rows(bodies.velocity, slot, kBodyRow, row);
-    return {{row[0], row[1], row[2]}, {row[3], row[4], row[5]}, {row[6], row[7]}};
-  }
-  // Written back only where the lane's body moves: immovable bodies are shared by lanes and by
-  // blocks on other threads, and keep their zero velocities.
-  void scatter(const LaneBodies& bodies, const std::uint32_t (&slot)[W],
-               const std::uint32_t (&moves)[W]) const {
-    const F row[kRow] = {linear.x,  linear.y,  linear.z, angular.x,
-                         angular.y, angular.z, rest[0],  rest[1]};
-    F::store_rows(row, bodies.velocity, slot, kBodyRow, moves);
-  }
-};
-
-// Each lane's body motion since the step's start: translation and rotation matrix.
-template <class F>
-struct LaneMotion {
-  static constexpr int W = F::kWidth;
-  V3<F> moved;
-  F turned[9];
-
-  static LaneMotion gather(const LaneBodies& bodies, const std::uint32_t (&slot)[W]) {
-    F first[kRow];
-    F second[kRow];
-    F::load_rows(bodies.motion, slot, kBodyRow, first);
-    F::load_rows(bodies.motion + kRow, slot, kBodyRow, second);
-    return {{first[0], first[1], first[2]},
-            {first[3], first[4], first[5], first[6], first[7], second[0], second[1], second[2],
-             second[3]}};
-  }
-};
-
-// A lane's two bodies as a contact sees them: velocities, inverse masses and world inverse
-// inertias (3 × 3, column-major, loaded once per block).
-template <class F>
-struct LanePair {
-  static constexpr int W = F::kWidth;
-  LaneBody<F> a;
-  LaneBody<F> b;
-  F inverse_mass_a;
-  F inverse_mass_b;
-  F inverse_inertia_a[9];
-  F inverse_inertia_b[9];
-
-  LanePair(const ManifoldBlock<W>& m, const LaneBodies& bodies)
-      : a(LaneBody<F>::gather(bodies, m.body_a)),
-        b(LaneBody<F>::gather(bodies, m.body_b)),
-        inverse_mass_a(F::load(m.inverse_mass_a)),
-        inverse_mass_b(F::load(m.inverse_mass_b)) {
-    for (int k = 0; k < 9; ++k) {
-      inverse_inertia_a[k] = F::load(m.inverse_inertia_a[k]);
-      inverse_inertia_b[k] = F::load(m.inverse_inertia_b[k]);
-    }
-  }
-  void scatter(const ManifoldBlock<W>& m, const LaneBodies& bodies) const {
-    a.scatter(bodies, m.body_a, m.a_moves);
-    b.scatter(bodies, m.body_b, m.b_moves);
-  }
-  // The velocity of b's point at rb relative to a's point at ra. unit: m/s
-  [[nodiscard]] V3<F> relative_velocity(const V3<F>& ra, const V3<F>& rb) const {
-    return b.linear + cross(b.angular, rb) - a.linear - cross(a.angular, ra);
-  }
-  // An impulse at the point (ra from a's centre, rb from b's): a takes minus, b plus.
-  void push(const V3<F>& ra, const V3<F>& rb, const V3<F>& impulse) {
-    a.linear = a.linear - inverse_mass_a * impulse;
-    b.linear = b.linear + inverse_mass_b * impulse;
-    a.angular = a.angular - times<F>(inverse_inertia_a, cross(ra, impulse));
-    b.angular = b.angular + times<F>(inverse_inertia_b, cross(rb, impulse));
-  }
-  // An angular impulse on b, its opposite on a.
-  void turn(const V3<F>& impulse) {
-    a.angular = a.angular - times<F>(inverse_inertia_a, impulse);
-    b.angular = b.angular + times<F>(inverse_inertia_b, impulse);
-  }
-};
-
-// The manifold's friction frame: its normal, tangent1 and tangent2 = normal × tangent1.
-template <class F>
-struct FrictionFrame {
-  V3<F> normal, tangent1, tangent2;
-
-  explicit FrictionFrame(const ManifoldBlock<F::kWidth>& m)
-      : normal(load3<F>(m.friction_normal)),
-        tangent1(load3<F>(m.tangent1)),
-        tangent2(cross(normal, tangent1)) {}
-};
 
 template <class F>
 void warm_start(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies) {
@@ -254,7 +110,7 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
   constexpr int W = F::kWidth;
   const F zero = F::splat(0.0f);
   const F one = F::splat(1.0f);
-  const F inverse_substep = F::splat(settings.inverse_substep);
+  const F inverse_substep_dt = F::splat(settings.inverse_substep_dt);
   const F slop = F::splat(settings.linear_slop);
   const F most_correction = F::splat(-settings.max_correction_speed);
   for (ManifoldBlock<W>& m : blocks) {
@@ -308,7 +164,7 @@ void solve(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBodies& bodies,
                           times<F>(motion_a.turned, ra);
       const F separation = F::load(p.base_separation) + dot(normal, moved);
       const auto apart = separation > zero;
-      F bias = select(apart, separation * inverse_substep, zero);
+      F bias = select(apart, separation * inverse_substep_dt, zero);
       F mass_scale = one;
       F impulse_scale = zero;
       if (use_bias) {
@@ -382,7 +238,7 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
   const F zero = F::splat(0.0f);
   const F one = F::splat(1.0f);
   const F threshold = F::splat(-settings.restitution_threshold);
-  const F half_substep = F::splat(0.5f * settings.substep);
+  const F half_substep_dt = F::splat(0.5f * settings.substep_dt);
   const V3<F> gravity{F::splat(settings.gravity[0]), F::splat(settings.gravity[1]),
                       F::splat(settings.gravity[2])};
   F bounces = zero;
@@ -410,7 +266,7 @@ std::uint32_t restitute(std::span<ManifoldBlock<F::kWidth>> blocks, const LaneBo
       const F closing_gravity =
           dot(load3<F>(p.normal), gravity_b - gravity_a);  // negative when closing
       target[i] =
-          zero - restitution * approach - (one + restitution) * half_substep * closing_gravity;
+          zero - restitution * approach - (one + restitution) * half_substep_dt * closing_gravity;
     }
     if (!any_bounce) continue;
     // The bouncing points together: one point's push turns the body and changes what the others

@@ -107,8 +107,8 @@ struct LaneBodies {
 };
 
 struct LaneSettings {
-  float substep = 0.0f;                   // unit: s
-  float inverse_substep = 0.0f;           // unit: 1/s
+  float substep_dt = 0.0f;                // unit: s
+  float inverse_substep_dt = 0.0f;        // unit: 1/s
   float gravity[3] = {0.0f, 0.0f, 0.0f};  // unit: m/s²
   float linear_slop = 0.0f;               // unit: m
   float max_correction_speed = 0.0f;      // unit: m/s

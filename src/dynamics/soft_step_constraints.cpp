@@ -129,15 +129,15 @@ void SoftStepSolver::load_bodies(const BodyStore& bodies, const Parallel& parall
 
 void SoftStepSolver::prepare(std::span<const Contact> contacts,
                              std::span<const ContactMemory> memory, const SoftStepContext& context,
-                             ContactSolverStats& stats) {
+                             SoftStepStats& stats) {
   const auto ground = static_cast<std::uint32_t>(velocity_.size() - 1);
   // Impulses were kept per substep of the last step's length; a substep of another length needs
   // them in proportion.
-  const float substep = context.substep;
+  const float substep_dt = context.substep_dt;
   const Parallel& parallel = context.parallel;
-  const float rescale = kept_substep_ > 0.0f ? substep / kept_substep_ : 1.0f;
+  const float rescale = kept_substep_dt_ > 0.0f ? substep_dt / kept_substep_dt_ : 1.0f;
   // The impulse that holds up a kilogram against gravity for a substep. unit: N s / kg
-  const float weight_per_substep = context.gravity.norm() * substep;
+  const float weight_per_substep = context.gravity.norm() * substep_dt;
   const bool warm = context.warm_starting;
   // The contacts with a moving body, in order, each named by a constraint that is then made on
   // the threads.
@@ -203,7 +203,7 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
                             set_masses(constraints_[j], context);
                           }
                         });
-  stats.constraints = static_cast<std::uint32_t>(constraints_.size());
+  stats.contacts_solved = static_cast<std::uint32_t>(constraints_.size());
 }
 
 }  // namespace sphys

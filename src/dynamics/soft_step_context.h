@@ -1,7 +1,8 @@
 #pragma once
 
-// What one step of the soft step works with, made once a step (as Box2D v3's b2StepContext): the
-// substeps, gravity, the contacts' springs, the lanes' settings and the threads.
+// What the soft step works with in one collision pass, made once a pass (as Box2D v3's
+// b2StepContext): its substeps, gravity, the contacts' springs, the lanes' settings and the
+// threads.
 
 #include <cstdint>
 
@@ -13,13 +14,13 @@
 namespace sphys {
 
 struct SoftStepContext {
-  // A step of `dt` (unit: s) in `step_substeps` equal substeps, under `settings` and
-  // `step_gravity` (unit: m/s²), solved on `threads`.
-  SoftStepContext(const SolverSettings& settings, const Vec3& step_gravity, float dt,
-                  std::uint32_t step_substeps, const Parallel& threads);
+  // A collision pass of `pass_dt` (unit: s) in `pass_substeps` equal substeps, under `settings`
+  // and `step_gravity` (unit: m/s²), solved on `threads`.
+  SoftStepContext(const SolverSettings& settings, const Vec3& step_gravity, float pass_dt,
+                  std::uint32_t pass_substeps, const Parallel& threads);
 
   std::uint32_t substeps = 1;
-  float substep = 0.0f;         // unit: s
+  float substep_dt = 0.0f;      // unit: s
   Vec3 gravity = Vec3::Zero();  // unit: m/s²
   bool warm_starting = true;
   // The springs' a2 = h ω (2ζ + h ω) (dimensionless) and bias speed per metre of penetration

@@ -129,12 +129,12 @@ void bound_spin(Vec3& angular, float most_spin) {
 
 void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake,
                                           const SoftStepContext& context) {
-  const Vec3 gained = context.gravity * context.substep;
+  const Vec3 gained = context.gravity * context.substep_dt;
   for (const std::uint32_t i : awake) velocity_[i].linear += gained;
   if (!forced_) return;
   for (const std::uint32_t i : awake) {
-    velocity_[i].linear += acceleration_[i].linear * context.substep;
-    velocity_[i].angular += acceleration_[i].angular * context.substep;
+    velocity_[i].linear += acceleration_[i].linear * context.substep_dt;
+    velocity_[i].angular += acceleration_[i].angular * context.substep_dt;
   }
 }
 
@@ -143,7 +143,7 @@ void SoftStepSolver::integrate_velocities(std::span<const std::uint32_t> awake,
 void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, BodyStore& bodies,
                                          const SoftStepContext& context) {
   const std::span<Transform> poses = bodies.poses();
-  const float most_spin = kMostTurnPerSubstep / context.substep;
+  const float most_spin = kMostTurnPerSubstep / context.substep_dt;
   // The angular velocity changes too: the angular momentum is kept as the inertia turns.
   std::array<SpinningBody, kBodiesPerItem> spinning;
   for (std::size_t k = 0; k < awake.size(); ++k) {
@@ -152,21 +152,22 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
     spinning[k] = {&poses[i], &velocity_[i].linear, &velocity_[i].angular,
                    &bodies.inertias_body()[i], &bodies.inverse_inertias_body()[i]};
   }
-  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), context.substep);
+  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), context.substep_dt);
   for (const std::uint32_t i : awake) {
     motion_[i] = {poses[i].translation - position_[i],
                   (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix()};
   }
 }
 
-SoftStepContext::SoftStepContext(const SolverSettings& settings, const Vec3& step_gravity, float dt,
-                                 std::uint32_t step_substeps, const Parallel& threads)
-    : substeps(step_substeps),
-      substep(dt / static_cast<float>(step_substeps)),
+SoftStepContext::SoftStepContext(const SolverSettings& settings, const Vec3& step_gravity,
+                                 float pass_dt, std::uint32_t pass_substeps,
+                                 const Parallel& threads)
+    : substeps(pass_substeps),
+      substep_dt(pass_dt / static_cast<float>(pass_substeps)),
       gravity(step_gravity),
       warm_starting(settings.warm_starting),
-      lanes{.substep = substep,
-            .inverse_substep = 1.0f / substep,
+      lanes{.substep_dt = substep_dt,
+            .inverse_substep_dt = 1.0f / substep_dt,
             .gravity = {step_gravity.x(), step_gravity.y(), step_gravity.z()},
             .linear_slop = settings.linear_slop,
             .max_correction_speed = settings.max_correction_speed,
@@ -174,10 +175,10 @@ SoftStepContext::SoftStepContext(const SolverSettings& settings, const Vec3& ste
             .rolling_resistance = settings.rolling_resistance,
             .restitution_threshold = settings.restitution_threshold},
       parallel(threads) {
-  const float hertz = std::min(settings.contact_hertz, kMostHertzPerSubstepRate / substep);
+  const float hertz = std::min(settings.contact_hertz, kMostHertzPerSubstepRate / substep_dt);
   const auto spring = [&](float omega, float& a2, float& bias_rate) {
-    const float a1 = 2.0f * settings.contact_damping_ratio + substep * omega;
-    a2 = substep * omega * a1;
+    const float a1 = 2.0f * settings.contact_damping_ratio + substep_dt * omega;
+    a2 = substep_dt * omega * a1;
     bias_rate = omega / a1;
   };
   const float omega = 2.0f * std::numbers::pi_v<float> * hertz;
@@ -185,11 +186,11 @@ SoftStepContext::SoftStepContext(const SolverSettings& settings, const Vec3& ste
   spring(kImmovableStiffness * omega, spring_immovable, bias_rate_immovable);
 }
 
-ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> contacts,
-                                         std::span<ContactMemory> memory,
-                                         std::span<const PairMaterial> materials,
-                                         const SoftStepContext& context) {
-  ContactSolverStats stats;
+SoftStepStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> contacts,
+                                    std::span<ContactMemory> memory,
+                                    std::span<const PairMaterial> materials,
+                                    const SoftStepContext& context) {
+  SoftStepStats stats;
   const Parallel& parallel = context.parallel;
   load_bodies(bodies, parallel);
   prepare(contacts, memory, context, stats);
@@ -203,14 +204,14 @@ ContactSolverStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Cont
   // The relax and restitution passes come after the last substep bounded the turns: the
   // velocities the step leaves keep the same bound (else a light body squeezed between two 10⁹
   // times heavier ones gained spin from step to step until its square overflowed).
-  const float most_spin = kMostTurnPerSubstep / context.substep;
+  const float most_spin = kMostTurnPerSubstep / context.substep_dt;
   const std::span<const std::uint32_t> awake = bodies.awake();
   parallel.for_each_run(awake.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) bound_spin(velocity_[awake[k]].angular, most_spin);
   });
   store_solver_velocities(velocity_, parallel, bodies);
   keep_impulses(memory, parallel);
-  kept_substep_ = context.substep;
+  kept_substep_dt_ = context.substep_dt;
   return stats;
 }
 

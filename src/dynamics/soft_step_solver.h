@@ -22,8 +22,8 @@
 #include "dynamics/contact_lanes.h"
 #include "dynamics/contact_levels.h"
 #include "dynamics/soft_step_context.h"
+#include "dynamics/soft_step_stats.h"
 #include "dynamics/solver_bodies.h"
-#include "dynamics/solver_stats.h"
 #include "sphys/body_store.h"
 #include "sphys/contact.h"
 #include "sphys/material.h"
@@ -40,9 +40,9 @@ class SoftStepSolver {
   // as static. `materials[k]` is contact k's material; `memory[k]` is its warm start on entry and
   // what it leaves for the next step on return. The colours' blocks are solved on the context's
   // threads, and the result does not depend on how many there are.
-  ContactSolverStats solve(BodyStore& bodies, std::span<const Contact> contacts,
-                           std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
-                           const SoftStepContext& context);
+  SoftStepStats solve(BodyStore& bodies, std::span<const Contact> contacts,
+                      std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
+                      const SoftStepContext& context);
 
   // The lanes the passes run in (resolved: resolve_solver_lanes()); the same bits whichever.
   void use_lanes(SolverLanes lanes);
@@ -126,7 +126,7 @@ class SoftStepSolver {
   // A constraint's effective masses and spring from its bodies, as scaled.
   void set_masses(Constraint& c, const SoftStepContext& context) const;
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
-               const SoftStepContext& context, ContactSolverStats& stats);
+               const SoftStepContext& context, SoftStepStats& stats);
   // The constraints cut into manifolds (a body pair's, kManifoldPoints at most), coloured and
   // listed by colour, and each colour's blocks counted.
   void colour_manifolds();
@@ -198,7 +198,7 @@ class SoftStepSolver {
   bool forced_ = false;
   // The substep length the kept impulses were solved with: they are rescaled to a new one, as an
   // impulse per substep grows with its length. unit: s
-  float kept_substep_ = 0.0f;
+  float kept_substep_dt_ = 0.0f;
 };
 
 }  // namespace sphys

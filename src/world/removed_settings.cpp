@@ -11,9 +11,13 @@
 namespace sphys {
 namespace {
 
-// The settings of the sequential-impulse solver, which the soft step replaced as the plausible
-// mode's only solver.
 constexpr auto kRemoved = std::to_array<RemovedSetting>({
+    // The world's outer loop is collision passes; "substeps" are the solver's own alone.
+    {"substeps", "renamed collision_passes"},
+    {"max_substeps", "renamed max_collision_passes"},
+    {"substep_travel", "renamed collision_pass_travel"},
+    // The settings of the sequential-impulse solver, which the soft step replaced as the
+    // plausible mode's only solver.
     {"solver.method", "the soft step is the only solver; delete the setting"},
     {"solver.velocity_iterations",
      "the soft step solves and relaxes each contact once per substep; set solver.soft_substeps"},

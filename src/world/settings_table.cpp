@@ -127,32 +127,33 @@ const auto kTable = std::to_array<Setting>({
                "pair, as the paper makes them. reduced: at most solver.manifold_points per body "
                "pair.",
     }),
-    scalar<Top<&W::substeps>>({
-        .key = "substeps",
-        .field = "substeps",
+    scalar<Top<&W::collision_passes>>({
+        .key = "collision_passes",
+        .field = "collision_passes",
         .kind = SettingKind::kInteger,
-        .unit = "substeps",
-        .range = between(1, kMaxSubsteps),
-        .doc = "Runs of the whole step per frame (at least), each over an equal share of the time "
-               "step.",
+        .unit = "collision passes",
+        .range = between(1, kMaxCollisionPasses),
+        .doc = "Collision passes per frame (at least): detection and response run again, each "
+               "pass over an equal share of the time step.",
     }),
-    scalar<Top<&W::max_substeps>>({
-        .key = "max_substeps",
-        .field = "max_substeps",
+    scalar<Top<&W::max_collision_passes>>({
+        .key = "max_collision_passes",
+        .field = "max_collision_passes",
         .kind = SettingKind::kInteger,
-        .unit = "substeps",
-        .range = between(1, kMaxSubsteps),
-        .doc = "Plausible mode: more substeps in a frame where bodies move fast, up to this many; "
-               "at most substeps turns it off.",
+        .unit = "collision passes",
+        .range = between(1, kMaxCollisionPasses),
+        .doc = "Plausible mode: more collision passes in a frame where bodies move fast, up to "
+               "this many; at most collision_passes turns it off.",
     }),
-    scalar<Top<&W::substep_travel>>({
-        .key = "substep_travel",
-        .field = "substep_travel",
+    scalar<Top<&W::collision_pass_travel>>({
+        .key = "collision_pass_travel",
+        .field = "collision_pass_travel",
         .kind = SettingKind::kNumber,
         .unit = "bounding radii",
         .range = above(0),
         .doc = "Plausible mode: a body's fastest point (|v| + |ω| · its bounding radius) travels "
-               "at most this much of its bounding radius per substep, within max_substeps.",
+               "at most this much of its bounding radius per collision pass, within "
+               "max_collision_passes.",
     }),
     scalar<Nested<&W::solver, &S::soft_substeps>>({
         .object = "solver",
@@ -160,7 +161,7 @@ const auto kTable = std::to_array<Setting>({
         .field = "solver.soft_substeps",
         .kind = SettingKind::kInteger,
         .unit = "substeps",
-        .range = between(1, kMaxSubsteps),
+        .range = between(1, kMaxSoftSubsteps),
         .doc = "Solver substeps per collision pass, each one solve and one relax pass.",
     }),
     scalar<Nested<&W::solver, &S::contact_hertz>>({
@@ -264,7 +265,7 @@ const auto kTable = std::to_array<Setting>({
         .range = at_least(0),
         .doc = "A body pair that moved relative to itself by at most this since its trees last "
                "descended keeps its manifold, recomputed at the new poses, instead of descending "
-               "again; 0 descends every pair every substep.",
+               "again; 0 descends every pair every collision pass.",
     }),
     scalar<Nested<&W::sleep, &Z::enabled>>({
         .object = "sleep",

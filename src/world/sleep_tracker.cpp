@@ -4,8 +4,6 @@
 #include <limits>
 #include <numeric>
 
-#include "world/awake_runs.h"
-
 namespace sphys {
 namespace {
 
@@ -17,7 +15,7 @@ constexpr float kPatience = 2.0f;
 // time (not restless once woken), a heap woke only where it moved but slept again pressed in:
 // 1,000 bunnies ended with one 1.4 mm into the plane, against 0.8 mm this way.
 constexpr float kWokenStillShare = 0.5f;
-// The speed of a body set moving from outside until update() measures it: moving. unit: m/s
+// The speed of a body set moving from outside until count_still_time() counts it: moving. unit: m/s
 constexpr float kUnmeasured = std::numeric_limits<float>::infinity();
 
 }  // namespace
@@ -94,8 +92,8 @@ std::span<const std::uint32_t> SleepTracker::islands() {
 void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                                   std::vector<std::uint32_t>& woken) {
   // The store wakes them together after the pass (one listing of the awake bodies). A body
-  // woken in the pass wakes no other in it: its speed is 0 until update() measures one, slower
-  // than any positive sleep.speed (with sleep.speed 0 it wakes its neighbours in the world's
+  // woken in the pass wakes no other in it: its speed is 0 until count_still_time() counts one,
+  // slower than any positive sleep.speed (with sleep.speed 0 it wakes its neighbours in the world's
   // next round of waking instead).
   const std::size_t first = woken.size();
   const auto wakes = [&](std::uint32_t sleeper, std::uint32_t other) {
@@ -116,17 +114,8 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
   store_->set_asleep(std::span(woken).subspan(first), false);
 }
 
-std::uint32_t SleepTracker::update(std::span<const Contact> contacts, float dt,
-                                   const SleepSettings& settings, const Parallel& parallel,
+std::uint32_t SleepTracker::update(std::span<const Contact> contacts, const SleepSettings& settings,
                                    std::vector<std::uint32_t>& fell_asleep) {
-  // Each awake body's speed and stillness, its own, on the threads.
-  const std::span<const std::uint32_t> awake = store_->awake();
-  parallel.for_each_run(awake.size(), kAwakeBodiesPerRun, [&](std::size_t begin, std::size_t end) {
-    for (const std::uint32_t i : awake.subspan(begin, end - begin)) {
-      speed_[i] = store_->fastest_point_speed(i);
-      still_time_[i] = speed_[i] < settings.speed ? still_time_[i] + dt : 0.0f;
-    }
-  });
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
   std::uint32_t islands = 0;
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {

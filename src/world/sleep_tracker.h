@@ -11,7 +11,6 @@
 
 #include "sphys/body_store.h"
 #include "sphys/contact.h"
-#include "sphys/parallel.h"
 #include "sphys/world.h"
 
 namespace sphys {
@@ -29,7 +28,7 @@ class SleepTracker final : public SlotArrays {
   // update()).
   void wake(std::uint32_t body, const SleepSettings& settings, std::vector<std::uint32_t>& woken);
   // The body was set moving from outside (a velocity, an impulse, a new body): restless until it
-  // has been still for the sleep time again, and moving until update() measures it.
+  // has been still for the sleep time again, and moving until count_still_time() counts it.
   void unsettle(std::uint32_t body);
 
   // Islands: dynamic bodies touching by a contact share one; a sleeping body is in one of its
@@ -47,15 +46,21 @@ class SleepTracker final : public SlotArrays {
   // call of any other member.
   [[nodiscard]] std::span<const std::uint32_t> islands();
   // Wakes every sleeping body that a contact joins to an awake body that moves (as fast as
-  // settings.speed at the last update()), appending them to `woken`.
+  // settings.speed at the last count_still_time()), appending them to `woken`.
   void wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                       std::vector<std::uint32_t>& woken);
-  // Measures each awake body's speed (its fastest point's, on `parallel`'s threads) and counts
-  // how long it has been still, then puts to sleep every body still for long enough (settings.time,
-  // or more in an island with a restless body) that touches no restless body, appending them to
-  // `fell_asleep`. Returns the number of islands.
-  std::uint32_t update(std::span<const Contact> contacts, float dt, const SleepSettings& settings,
-                       const Parallel& parallel, std::vector<std::uint32_t>& fell_asleep);
+  // An awake body finished after a collision pass of `pass_dt` (unit: s): its speed, the
+  // store's measure of its fastest point, and how long it has been still. Touches the body's
+  // own entries alone, so bodies may count on several threads.
+  void count_still_time(std::uint32_t body, float pass_dt, const SleepSettings& settings) {
+    speed_[body] = store_->fastest_point_speeds()[body];
+    still_time_[body] = speed_[body] < settings.speed ? still_time_[body] + pass_dt : 0.0f;
+  }
+  // Puts to sleep every awake body still for long enough (settings.time, or more in an island
+  // with a restless body) that touches no restless body, appending them to `fell_asleep`.
+  // Returns the number of islands.
+  std::uint32_t update(std::span<const Contact> contacts, const SleepSettings& settings,
+                       std::vector<std::uint32_t>& fell_asleep);
 
  private:
   // Union-find over body slots: path halving, the smaller slot the root of a set.
@@ -75,7 +80,8 @@ class SleepTracker final : public SlotArrays {
   bool split_ = false;
   std::vector<std::uint32_t> island_;  // islands(), scratch
   std::vector<float> still_time_;      // unit: s
-  // The fastest point's, measured by update(), the one place a body's speed is kept. unit: m/s
+  // The fastest point's at the last count_still_time(), as sleep sees it: a body set moving from
+  // outside is moving, a woken one at rest, until counted again. unit: m/s
   std::vector<float> speed_;
   std::vector<std::uint8_t> has_restless_;  // per island root, scratch
   std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch

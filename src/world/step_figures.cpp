@@ -36,6 +36,7 @@ constexpr auto kFigures = std::to_array<StepFigure>({
     figure<&D::leaf_pairs>("leaf_pairs", "", kCsv),
     figure<&S::contacts>("contacts", "", kCsv),
     figure<&S::impulses>("impulses", "", kCsv),
+    figure<&S::contacts_solved>("contacts_solved", "", kCsv),
     figure<&S::kinetic_energy>("kinetic_energy", "J", kCsv),
     figure<&S::deepest_penetration>("deepest_penetration", "m", kCsv),
     figure<&S::mean_penetration>("mean_penetration", "m", kCsv),
@@ -44,7 +45,7 @@ constexpr auto kFigures = std::to_array<StepFigure>({
     figure<&S::jitter>("jitter", "m/s", kCsv),
     figure<&S::warm_started>("warm_started", "", kCsv),
     figure<&S::islands>("islands", "", kCsv),
-    figure<&S::substeps>("substeps", "", kCsv),
+    figure<&S::collision_passes>("collision_passes", "", kCsv),
     // The rest.
     {.name = "detection_ms",
      .unit = "ms",

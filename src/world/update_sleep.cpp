@@ -1,20 +1,20 @@
-// Stage 6 of a substep (plausible mode): how long each moving body has been still, and the
-// bodies still long enough that touch no restless body fall asleep.
+// Plausible mode's last stage: the bodies still long enough (their still time counted by
+// finalize_bodies) that touch no restless body fall asleep.
 
-#include "collision/collision_detector.h"
 #include "core/stopwatch.h"
-#include "sphys/world.h"
-#include "world/sleep_tracker.h"
+#include "world/stages.h"
+#include "world/world_state.h"
 
 namespace sphys {
 
-void World::update_sleep(float dt, StepStats& stats) {
+void update_sleep(PassContext& pass) {
   const StepClock::time_point start = StepClock::now();
+  WorldState& world = pass.world;
   // The bodies that fall asleep stop there, in the store.
-  sleep_changes_.clear();
-  stats.islands =
-      sleep_->update(detector_->contacts(), dt, settings_.sleep, *parallel_, sleep_changes_);
-  stats.sleep_ms += elapsed_ms(start);
+  world.sleep_changes.clear();
+  pass.stats.islands =
+      world.sleep.update(world.detector.contacts(), world.settings.sleep, world.sleep_changes);
+  pass.stats.sleep_ms += elapsed_ms(start);
 }
 
 }  // namespace sphys

@@ -65,9 +65,9 @@ TEST(SimulateCommand, PresetRunWritesFramesAndRecording) {
   const std::vector<std::string> header = split(lines[0], ',');
   EXPECT_THAT(lines[0], StartsWith("frame,time_s,step_ms,"));
   // The plausibility figures of each frame close the line.
-  EXPECT_THAT(lines[0],
-              testing::EndsWith(",deepest_penetration_m,mean_penetration_m,bodies_at_rest,"
-                                "bodies_asleep,jitter_m_per_s,warm_started,islands,substeps"));
+  EXPECT_THAT(lines[0], testing::EndsWith(
+                            ",deepest_penetration_m,mean_penetration_m,bodies_at_rest,"
+                            "bodies_asleep,jitter_m_per_s,warm_started,islands,collision_passes"));
   const auto contacts_column = std::find(header.begin(), header.end(), "contacts") - header.begin();
   ASSERT_LT(contacts_column, static_cast<std::ptrdiff_t>(header.size()));
   for (int frame = 1; frame <= 5; ++frame) {
@@ -106,7 +106,7 @@ TEST(SimulateCommand, FreeFallFollowsSemiImplicitEuler) {
   const test::TempDir dir;
   const fs::path scene =
       dir.write("fall.json", scene_text(R"("gravity": [0, -6, 0], "time_step": 0.1, "frames": 4,
-                                "max_substeps": 1, "solver": {"soft_substeps": 4},
+                                "max_collision_passes": 1, "solver": {"soft_substeps": 4},
                                 "ground": {"type": "none"}, "bodies": [)" +
                                         std::string(kQuickBody) + "]"));
   const fs::path out = dir.path() / "out";
@@ -142,7 +142,7 @@ TEST(SimulateCommand, JsonSummaryParses) {
   EXPECT_TRUE(json["solver_lanes"] == "avx2" || json["solver_lanes"] == "sse2" ||
               json["solver_lanes"] == "portable")
       << json["solver_lanes"];
-  EXPECT_EQ(json["substeps"], 1);
+  EXPECT_EQ(json["collision_passes"], 1);
   EXPECT_EQ(json["time_step_s"].get<double>(), 1.0 / 60.0);
   EXPECT_GE(json["contacts_per_frame"]["mean"].get<double>(), 0.0);
   EXPECT_GE(json["contacts_per_frame"]["max"].get<double>(),
@@ -202,10 +202,11 @@ TEST(SimulateCommand, BadSceneFilesExitWithCode2AndTheJsonPath) {
 TEST(SimulateCommand, HelpTakesTheSettingsFromTheTable) {
   const test::CommandResult r = test::sphys_cli({"simulate", "--help"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  for (const char* field : {"response", "solver.contacts", "substeps", "paper_passes", "threads"}) {
+  for (const char* field :
+       {"response", "solver.contacts", "collision_passes", "paper_passes", "threads"}) {
     EXPECT_THAT(r.out, HasSubstr(option_help(setting_of(field)))) << field;
   }
-  EXPECT_THAT(r.out, HasSubstr("Valid: 1 to 64; unit: substeps."));
+  EXPECT_THAT(r.out, HasSubstr("Valid: 1 to 64; unit: collision passes."));
 }
 
 TEST(SimulateCommand, BadOptionsExitWithCode2) {
@@ -222,9 +223,12 @@ TEST(SimulateCommand, BadOptionsExitWithCode2) {
        "--mode: unknown response mode 'bogus'; response modes: paper, plausible"},
       {{"--contacts", "some"},
        "--contacts: unknown contact set 'some'; contact sets: all, reduced"},
-      {{"--substeps", "0"}, "--substeps must be between 1 and 64, got 0"},
-      {{"--substeps", "65"}, "--substeps must be between 1 and 64, got 65"},
-      {{"--substeps", "two"}, "--substeps"},
+      {{"--collision-passes", "0"}, "--collision-passes must be between 1 and 64, got 0"},
+      {{"--collision-passes", "65"}, "--collision-passes must be between 1 and 64, got 65"},
+      {{"--collision-passes", "two"}, "--collision-passes"},
+      {{"--substeps", "2"}, "--substeps was renamed --collision-passes"},
+      {{"--set", "substep_travel=0.2"},
+       "--set substep_travel was removed: renamed collision_pass_travel"},
       {{"--passes", "0"}, "--passes must be between 1 and 1000, got 0"},
       {{"--passes", "1001"}, "--passes must be between 1 and 1000, got 1001"},
       {{"--ground", "box"}, "--ground must be octree or plane, got 'box'"},
@@ -357,10 +361,10 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
                               std::string(kQuickBody) + "]"));
   const fs::path out = dir.path() / "out";
   const test::CommandResult r =
-      sphys_cli({"simulate", scene.string(), "--mode", "paper", "--contacts", "all", "--substeps",
-                 "3", "--ground", "plane", "--out", out.string()});
+      sphys_cli({"simulate", scene.string(), "--mode", "paper", "--contacts", "all",
+                 "--collision-passes", "3", "--ground", "plane", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("response            paper, 3 substeps per frame\n"));
+  EXPECT_THAT(r.out, HasSubstr("response            paper, 3 collision passes per frame\n"));
   EXPECT_THAT(r.out, HasSubstr("\nmean penetration    0 m (0%; over the 0 frames with overlaps)"));
   EXPECT_THAT(r.out, HasSubstr("\nat rest             0 of 1 movable bodies at the end (0 asleep, "
                                "1 still moving); never all at rest\n"));
@@ -369,7 +373,7 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
       nlohmann::json::parse(tools::read_recording(out / "recording.sphysrec").metadata);
   EXPECT_EQ(recorded["response"], "paper");
   EXPECT_EQ(recorded["contacts"], "all");
-  EXPECT_EQ(recorded["substeps"], 3);
+  EXPECT_EQ(recorded["collision_passes"], 3);
   EXPECT_EQ(recorded["ground"]["type"], "plane");
 
   const test::CommandResult set =
@@ -386,9 +390,10 @@ TEST(SimulateCommand, OptionsOverrideTheScenesWorldSettings) {
       sphys_cli({"simulate", scene.string(), "--contacts", "all", "--out", out.string()});
   ASSERT_EQ(plausible.exit_code, 0) << plausible.err;
   const std::string lanes(solver_lanes_name(resolve_solver_lanes(SolverLanes::kAuto)));
-  EXPECT_THAT(plausible.out,
-              HasSubstr("response            plausible, all contacts, " + lanes +
-                        " lanes, 1 to 8 substeps per frame (1.00 on average, 1 at most)\n"));
+  EXPECT_THAT(
+      plausible.out,
+      HasSubstr("response            plausible, all contacts, " + lanes +
+                " lanes, 1 to 8 collision passes per frame (1.00 on average, 1 at most)\n"));
 }
 
 }  // namespace

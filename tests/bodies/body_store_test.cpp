@@ -207,8 +207,15 @@ TEST(BodyStore, WorldInertiaAndEnergyFollowThePose) {
   EXPECT_LT((store.inverse_inertias_world()[slot] - expected).cwiseAbs().maxCoeff(), 1e-6f);
   // ½ m v² + ½ ωᵀ I ω = ½·2·14 + ½ (2·0.25 + 4·0.25) = 14.75 J.
   EXPECT_NEAR(store.kinetic_energy(slot), 14.75, 1e-5);
-  // |v| + |ω| · extent = √14 + √0.5 · 0.5 m/s.
-  EXPECT_NEAR(store.fastest_point_speed(slot), std::sqrt(14.0f) + std::sqrt(0.5f) * 0.5f, 1e-6f);
+  // |v| + |ω| · extent = √14 + √0.5 · 0.5 m/s, measured when the body was added and kept until
+  // measured again; zero once asleep.
+  const float speed = std::sqrt(14.0f) + std::sqrt(0.5f) * 0.5f;
+  EXPECT_NEAR(store.fastest_point_speeds()[slot], speed, 1e-6f);
+  store.linear_velocities()[slot] = Vec3::Zero();
+  EXPECT_NEAR(store.fastest_point_speeds()[slot], speed, 1e-6f);
+  EXPECT_NEAR(store.measure_fastest_point_speed(slot), std::sqrt(0.5f) * 0.5f, 1e-6f);
+  store.set_asleep(slot, true);
+  EXPECT_EQ(store.fastest_point_speeds()[slot], 0.0f);
 }
 
 TEST(BodyStore, FiniteFindsNanAndInfinityAnywhereInTheState) {

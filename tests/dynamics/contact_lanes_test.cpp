@@ -127,7 +127,7 @@ Scenario random_scenario(std::uint32_t seed) {
 
 // A substep of 1/240 s, and the default solver's slop, correction speed, rolling arm and
 // restitution threshold.
-constexpr LaneSettings kSettings{.inverse_substep = 240.0f,
+constexpr LaneSettings kSettings{.inverse_substep_dt = 240.0f,
                                  .linear_slop = 0.0004f,
                                  .max_correction_speed = 3.0f,
                                  .rolling_resistance = 0.01f,

@@ -29,7 +29,7 @@ SCENE = {
     "frames": 7,
     "gravity": [0.0, -9.5, 0.25],
     "response": "plausible",
-    "substeps": 2,
+    "collision_passes": 2,
     "solver": {"contact_hertz": 20, "soft_substeps": 9},
     "sleep": {"time": 0.75},
     "ground": {"type": "plane", "height": -0.5, "friction": 0.6},
@@ -67,7 +67,7 @@ def test_scene_round_trips_through_json_and_dicts():
     d = scene.to_dict()
     # Every key written out, the given values kept.
     assert d["format"] == "sphys-scene" and d["version"] == 1
-    assert d["gravity"] == [0.0, -9.5, 0.25] and d["substeps"] == 2
+    assert d["gravity"] == [0.0, -9.5, 0.25] and d["collision_passes"] == 2
     assert d["solver"]["contact_hertz"] == 20 and d["solver"]["soft_substeps"] == 9
     assert d["solver"]["rolling_resistance"] == 0.01  # a default, written out
     assert d["sleep"] == {"enabled": True, "speed": 0.05, "time": 0.75}
@@ -115,24 +115,24 @@ def test_scene_settings():
     scene = sphys.Scene.from_dict(SCENE)
     s = scene.settings
     assert s["solver.contact_hertz"] == 20 and s["solver.soft_substeps"] == 9
-    assert s["sleep.time"] == 0.75 and s["substeps"] == 2
+    assert s["sleep.time"] == 0.75 and s["collision_passes"] == 2
     assert s["ground_friction"] == 0.6 and s["ground_restitution"] == 0.3
     np.testing.assert_array_equal(np.float32(s["gravity"]), np.float32([0.0, -9.5, 0.25]))
     assert set(s) == {row["field"] for row in sphys.settings_table()}
 
     # Nested and dotted, as World() takes them; the scene file follows.
     scene.set_settings({"solver": {"contact_hertz": 45}, "sleep.time": 1.5,
-                        "ground_friction": 0.25, "substeps": 3})
+                        "ground_friction": 0.25, "collision_passes": 3})
     s = scene.settings
     assert s["solver.contact_hertz"] == 45 and s["sleep.time"] == 1.5
-    assert s["ground_friction"] == 0.25 and s["substeps"] == 3
+    assert s["ground_friction"] == 0.25 and s["collision_passes"] == 3
     assert s["solver.soft_substeps"] == 9  # untouched
     d = scene.to_dict()
     assert d["solver"]["contact_hertz"] == 45 and d["sleep"]["time"] == 1.5
-    assert d["ground"]["friction"] == 0.25 and d["substeps"] == 3
+    assert d["ground"]["friction"] == 0.25 and d["collision_passes"] == 3
 
     # A refused change names the setting and changes nothing.
-    for bad, name in [({"bogus": 1}, "bogus"), ({"substeps": 0}, "substeps"),
+    for bad, name in [({"bogus": 1}, "bogus"), ({"collision_passes": 0}, "collision_passes"),
                       ({"solver": {"method": "soft_step"}}, r"solver\.method was removed")]:
         with pytest.raises(sphys.Error, match=name):
             scene.set_settings(bad)

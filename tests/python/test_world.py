@@ -39,12 +39,12 @@ def rotation_matrix(q):
 
 @pytest.mark.parametrize("gravity", [(0.0, -9.81, 0.0), (0.0, 0.0, -9.81)], ids=["y-up", "z-up"])
 def test_free_fall_is_exactly_semi_implicit_euler(sphere_tree, gravity):
-    # One collision pass per step (max_substeps=1 turns the adaptive substeps off), no ground: the
-    # soft step's 6 substeps of h = dt / 6 are each v += g h, then x += v h, in float32
+    # One collision pass per step (max_collision_passes=1 turns the adaptive passes off), no
+    # ground: the soft step's 6 substeps of h = dt / 6 are each v += g h, then x += v h, in float32
     # (src/dynamics/soft_step_solver.cpp, src/bodies/rigid_body.cpp). numpy's float32 does the
     # same operations, each rounded once (the library is not built with fused multiply-adds), so
     # the two agree bit for bit.
-    world = sphys.World(gravity=gravity, max_substeps=1)
+    world = sphys.World(gravity=gravity, max_collision_passes=1)
     start = (1.0, 10.0, 2.0)
     body = world.add_body(sphere_tree(0.5), position=start)
     g = np.array(gravity, dtype=np.float32)
@@ -54,7 +54,7 @@ def test_free_fall_is_exactly_semi_implicit_euler(sphere_tree, gravity):
     steps = 60
     for _ in range(steps):
         stats = world.step(DT)
-        assert stats.substeps == 1
+        assert stats.collision_passes == 1
         for _ in range(6):
             v = (v + g * h).astype(np.float32)
             x = (x + v * h).astype(np.float32)
@@ -72,18 +72,18 @@ def test_free_fall_is_exactly_semi_implicit_euler(sphere_tree, gravity):
     np.testing.assert_allclose(world.velocities()[0, :3], np.array(gravity) * t, atol=2e-5)
 
 
-def test_free_fall_with_adaptive_substeps_stays_within_the_euler_bound(sphere_tree):
-    # By default a fast body takes more substeps. Each substep of length h falls g h²/2 further
-    # than the exact parabola, so after time t the extra fall is between 0 and g dt t / 2 (all
+def test_free_fall_with_adaptive_collision_passes_stays_within_the_euler_bound(sphere_tree):
+    # By default a fast body takes more collision passes, each of 6 solver substeps. Each
+    # substep of length h falls g h²/2 further than the exact parabola, so after time t the extra fall is between 0 and g dt t / 2 (all
     # h <= dt, summing to t); the velocity is g t exactly whatever the substeps.
     world = sphys.World(plausibility_figures=True)
     mass = 2.0
     body = world.add_body(sphere_tree(0.5), position=(0.0, 10.0, 0.0), mass=mass)
     steps = 90
-    substeps = []
+    passes = []
     for _ in range(steps):
-        substeps.append(world.step(DT).substeps)
-    assert max(substeps) > 1, "the falling body should have needed more substeps"
+        passes.append(world.step(DT).collision_passes)
+    assert max(passes) > 1, "the falling body should have needed more collision passes"
     t = steps * DT
     g = 9.81
     y = float(world.poses([body])[0, 1])
@@ -282,12 +282,12 @@ def test_sphere_comes_to_rest_on_the_ground_plane_and_sleeps(sphere_tree):
 
 @pytest.mark.parametrize("mode", ["paper", "plausible"])
 def test_contacts_match_the_sphere_geometry(sphere_tree, mode):
-    # Two single-sphere bodies approach. One substep per step, so the contacts of a step are made
+    # Two single-sphere bodies approach. One collision pass per step, so the contacts of a step are made
     # from the poses it started with: v = C2 - C1, n = v/|v|, P = C1 + r1/(r1+r2) v,
     # depth = r1 + r2 - |v| (eq. 1-3). Paper mode makes contacts from overlaps only (depth >= 0);
     # plausible mode also from gaps up to its margin (negative depth).
     r1, r2 = 0.5, 0.25
-    world = sphys.World(gravity=(0, 0, 0), response=mode, max_substeps=1)
+    world = sphys.World(gravity=(0, 0, 0), response=mode, max_collision_passes=1)
     a = world.add_body(sphere_tree(r1), position=(-1.0, 0.2, 0.0), linear_velocity=(2, 0, 0))
     b = world.add_body(sphere_tree(r2), position=(1.0, 0.0, 0.1), linear_velocity=(-1, 0, 0),
                        mass=3.0)
@@ -425,8 +425,8 @@ def test_set_detection_budget():
 
 
 def test_step_steps_and_stats(sphere_tree):
-    one = sphys.World(max_substeps=1)
-    many = sphys.World(max_substeps=1)
+    one = sphys.World(max_collision_passes=1)
+    many = sphys.World(max_collision_passes=1)
     for w in (one, many):
         w.add_body(sphere_tree(), position=(0, 5, 0))
     for _ in range(7):
@@ -449,16 +449,16 @@ def test_step_steps_and_stats(sphere_tree):
     assert 0 <= stats.integration_ms <= stats.step_ms
     assert 0 <= stats.sleep_ms <= stats.step_ms
     assert sphys.GROUND_PLANE_BODY == GROUND
-    assert d["bodies"] == 1 and d["movable_bodies"] == 1 and d["substeps"] == 1
+    assert d["bodies"] == 1 and d["movable_bodies"] == 1 and d["collision_passes"] == 1
     assert d["contacts"] == 0 and d["non_finite_body"] is None
     assert last.bodies == stats.bodies
     assert "contacts" in repr(stats) and repr(stats).startswith("<sphys.StepStats")
 
 
 def test_step_stats_count_a_two_sphere_collision(sphere_tree):
-    # Two single-sphere bodies, head on (as in the restitution test), one substep per step: every
+    # Two single-sphere bodies, head on (as in the restitution test), one collision pass per step: every
     # count is known. Kinetic energy: ½ m v² summed, before (3.5 J) and after the collision.
-    world = sphys.World(gravity=(0, 0, 0), max_substeps=1, plausibility_figures=True)
+    world = sphys.World(gravity=(0, 0, 0), max_collision_passes=1, plausibility_figures=True)
     world.add_body(sphere_tree(), position=(-1, 0, 0), linear_velocity=(2, 0, 0), restitution=0.5)
     world.add_body(sphere_tree(), position=(1, 0, 0), linear_velocity=(-1, 0, 0), mass=3,
                    restitution=0.5)
@@ -473,12 +473,13 @@ def test_step_stats_count_a_two_sphere_collision(sphere_tree):
     # One broad-phase pair, one root-root sphere test, one leaf pair, one contact, one island;
     # nothing warm-started yet; the soft step's solve and relax passes of its 6 substeps.
     assert {k: meet[k] for k in ("candidate_pairs", "sphere_tests", "leaf_pairs", "contacts",
-                                 "descended_pairs", "impulses", "islands", "warm_started",
+                                 "descended_pairs", "impulses", "contacts_solved", "islands",
+                                 "warm_started",
                                  "reused_pairs", "pairs_cut_short", "coincident_centres",
-                                 "response_passes", "substeps")} == {
+                                 "response_passes", "collision_passes")} == {
         "candidate_pairs": 1, "sphere_tests": 1, "leaf_pairs": 1, "contacts": 1,
-        "descended_pairs": 1, "impulses": 1, "islands": 1, "warm_started": 0, "reused_pairs": 0,
-        "pairs_cut_short": 0, "coincident_centres": 0, "response_passes": 12, "substeps": 1}
+        "descended_pairs": 1, "impulses": 0, "contacts_solved": 1, "islands": 1, "warm_started": 0, "reused_pairs": 0,
+        "pairs_cut_short": 0, "coincident_centres": 0, "response_passes": 12, "collision_passes": 1}
     assert history[touching[1]]["warm_started"] == 1  # the contact's impulse carried over
     bounced = [k for k, s in enumerate(history) if s["bounces"]]
     assert len(bounced) == 1 and history[bounced[0]]["bounces"] == 1  # restitution applied once
@@ -538,29 +539,29 @@ def test_world_going_non_finite_stops(sphere_tree):
 
 def test_settings_nested_and_dotted_are_the_same():
     nested = sphys.World(solver={"contact_hertz": 20.0, "soft_substeps": 7},
-                         sleep={"time": 0.25, "enabled": False}, substeps=3, response="paper",
+                         sleep={"time": 0.25, "enabled": False}, collision_passes=3, response="paper",
                          gravity=(1.0, 2.0, -3.0), ground_friction=0.75)
     dotted = sphys.World(**{"solver.contact_hertz": 20.0, "solver.soft_substeps": 7,
-                            "sleep.time": 0.25, "sleep.enabled": False}, substeps=3,
+                            "sleep.time": 0.25, "sleep.enabled": False}, collision_passes=3,
                          response="paper", gravity=np.array([1.0, 2.0, -3.0]),
                          ground_friction=0.75)
     s = nested.settings
     assert s == dotted.settings
     assert s["solver.contact_hertz"] == 20.0 and s["solver.soft_substeps"] == 7
     assert s["sleep.time"] == 0.25 and s["sleep.enabled"] is False
-    assert s["substeps"] == 3 and s["response"] == "paper" and s["ground_friction"] == 0.75
+    assert s["collision_passes"] == 3 and s["response"] == "paper" and s["ground_friction"] == 0.75
     assert s["gravity"] == (1.0, 2.0, -3.0)
     # Everything not given keeps its default.
     defaults = sphys.World().settings
     given = {"solver.contact_hertz", "solver.soft_substeps", "sleep.time", "sleep.enabled",
-             "substeps", "response", "gravity", "ground_friction"}
+             "collision_passes", "response", "gravity", "ground_friction"}
     assert {k: v for k, v in s.items() if k not in given} == {
         k: v for k, v in defaults.items() if k not in given}
     # A world's settings make the same world again.
     assert sphys.World(**s).settings == s
     # numpy scalars are numbers too.
-    w = sphys.World(substep_travel=np.float64(0.25), threads=np.int64(2))
-    assert w.settings["substep_travel"] == 0.25 and w.settings["threads"] == 2
+    w = sphys.World(collision_pass_travel=np.float64(0.25), threads=np.int64(2))
+    assert w.settings["collision_pass_travel"] == 0.25 and w.settings["threads"] == 2
 
 
 def test_settings_table():
@@ -572,8 +573,9 @@ def test_settings_table():
         assert row["default"] == defaults[row["field"]], row["field"]
         assert row["doc"]
     rows = {row["field"]: row for row in table}
-    assert rows["substeps"]["valid"] == "1 to 64" and rows["substeps"]["unit"] == "substeps"
-    assert rows["substeps"]["default"] == 1
+    assert rows["collision_passes"]["valid"] == "1 to 64"
+    assert rows["collision_passes"]["unit"] == "collision passes"
+    assert rows["collision_passes"]["default"] == 1
     assert rows["solver.soft_substeps"]["default"] == 6
     assert rows["sleep.enabled"]["default"] is True
     assert rows["solver.linear_slop"]["default"] == 0.0004 and rows["solver.linear_slop"]["unit"] == "m"
@@ -586,7 +588,7 @@ def test_settings_table():
 
 def test_settings_take_effect(sphere_tree):
     # Gravity along x; and sleep off keeps a resting sphere awake.
-    world = sphys.World(gravity=(2.0, 0.0, 0.0), max_substeps=1)
+    world = sphys.World(gravity=(2.0, 0.0, 0.0), max_collision_passes=1)
     world.add_body(sphere_tree())
     world.step(DT, steps=30)
     v = world.velocities()[0]
@@ -604,8 +606,9 @@ def test_settings_take_effect(sphere_tree):
     ({"solver": {"bogus": 1}}, "solver.bogus"),
     ({"solver.method": "soft_step"}, "solver.method was removed"),
     ({"solver": {"velocity_iterations": 20}}, "solver.velocity_iterations was removed"),
-    ({"substeps": 0}, "substeps"),
-    ({"substeps": 2.5}, "substeps"),
+    ({"substeps": 2}, "substeps was removed: renamed collision_passes"),
+    ({"collision_passes": 0}, "collision_passes"),
+    ({"collision_passes": 2.5}, "collision_passes"),
     ({"sleep": {"time": -1.0}}, "sleep.time"),
     ({"sleep.enabled": "maybe"}, "sleep.enabled"),
     ({"gravity": (0, 1)}, "gravity"),

@@ -251,7 +251,7 @@ struct Bounce {
 // nothing).
 Bounce drop_ball(float restitution, float height, bool fixed_step = true) {
   WorldSettings settings = on_plane(0.5f, restitution);
-  if (fixed_step) settings.max_substeps = 1;
+  if (fixed_step) settings.max_collision_passes = 1;
   // The soft step integrates in its own substeps.
   const double integrator_step = kDt / static_cast<float>(settings.solver.soft_substeps);
   World world(settings);
@@ -519,8 +519,8 @@ TEST(PlausibleSleep, AWokenStackStartsFromItsRestingImpulses) {
   for (const BodyId box : stack) world.set_velocity(box, Vec3::Zero(), Vec3::Zero());  // wakes it
   for (const BodyId box : stack) ASSERT_FALSE(world.asleep(box));
   const StepStats& first = world.step(kDt);
-  EXPECT_GT(first.impulses, 0u);
-  EXPECT_EQ(first.warm_started, first.impulses);
+  EXPECT_GT(first.contacts_solved, 0u);
+  EXPECT_EQ(first.warm_started, first.contacts_solved);
   float lowest_top = top;
   for (int frame = 0; frame < 30; ++frame) {
     world.step(kDt);
@@ -549,12 +549,13 @@ TEST(PlausibleSettings, ImpossibleSolverSettingsAreRefused) {
     change(settings);
     EXPECT_THROW(World{settings}, Error);
   };
-  refused([](WorldSettings& s) { s.substeps = 0; });
-  refused([](WorldSettings& s) { s.substeps = 65; });
-  refused([](WorldSettings& s) { s.max_substeps = 0; });
-  refused([](WorldSettings& s) { s.max_substeps = 65; });
-  refused([](WorldSettings& s) { s.substep_travel = 0.0f; });
-  refused([](WorldSettings& s) { s.substep_travel = std::numeric_limits<float>::infinity(); });
+  refused([](WorldSettings& s) { s.collision_passes = 0; });
+  refused([](WorldSettings& s) { s.collision_passes = 65; });
+  refused([](WorldSettings& s) { s.max_collision_passes = 0; });
+  refused([](WorldSettings& s) { s.max_collision_passes = 65; });
+  refused([](WorldSettings& s) { s.collision_pass_travel = 0.0f; });
+  refused(
+      [](WorldSettings& s) { s.collision_pass_travel = std::numeric_limits<float>::infinity(); });
   refused([](WorldSettings& s) { s.solver.soft_substeps = 0; });
   refused([](WorldSettings& s) { s.solver.contact_hertz = 0.0f; });
   refused([](WorldSettings& s) { s.solver.rolling_resistance = std::nanf(""); });

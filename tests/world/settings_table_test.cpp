@@ -130,8 +130,8 @@ TEST(SettingsTable, MessagesNameTheFieldTheRangeTheValueAndItsUnit) {
             "solver.manifold_points must be between 1 and 8, got 9 contacts");
   EXPECT_EQ(message([](WorldSettings& s) { s.sleep.speed = -0.5f; }),
             "sleep.speed must be finite and not negative, got -0.5 m/s");
-  EXPECT_EQ(message([](WorldSettings& s) { s.substep_travel = 0.0f; }),
-            "substep_travel must be positive and finite, got 0 bounding radii");
+  EXPECT_EQ(message([](WorldSettings& s) { s.collision_pass_travel = 0.0f; }),
+            "collision_pass_travel must be positive and finite, got 0 bounding radii");
   EXPECT_EQ(message([](WorldSettings& s) { s.ground_restitution = 1.5f; }),
             "ground_restitution must be between 0 and 1, got 1.5");
   EXPECT_EQ(message([](WorldSettings& s) { s.gravity = Vec3(0.0f, -3e38f, 0.0f); }),

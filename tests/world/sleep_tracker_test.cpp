@@ -30,10 +30,13 @@ struct Bodies {
     store.add(body, 0.5f);
   }
 
-  // Each awake body's speed (`speeds[i]`, m/s), as the tracker measures it from the store.
-  void move_at(const std::vector<float>& speeds) {
+  // Each awake body's speed (`speeds[i]`, m/s), finished as a collision pass of `dt` (unit: s)
+  // finishes it: its speed measured, its still time counted.
+  void move_at(const std::vector<float>& speeds, float dt, const SleepSettings& settings) {
     for (const std::uint32_t i : store.awake()) {
       store.linear_velocities()[i] = Vec3(speeds[i], 0.0f, 0.0f);
+      store.measure_fastest_point_speed(i);
+      tracker.count_still_time(i, dt, settings);
     }
   }
 
@@ -82,9 +85,8 @@ TEST(SleepTracker, IslandsPersistUntilBodiesPartThenSplitOnce) {
 std::vector<std::uint32_t> settle(Bodies& bodies, const std::vector<float>& speeds,
                                   const std::vector<Contact>& contacts) {
   std::vector<std::uint32_t> fell_asleep;
-  bodies.move_at(speeds);
-  (void)bodies.tracker.update(contacts, 2.0f * SleepSettings{}.time, SleepSettings{}, Parallel{},
-                              fell_asleep);
+  bodies.move_at(speeds, 2.0f * SleepSettings{}.time, SleepSettings{});
+  (void)bodies.tracker.update(contacts, SleepSettings{}, fell_asleep);
   return fell_asleep;
 }
 
@@ -129,14 +131,14 @@ TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMoves) {
   std::vector<std::uint32_t> fell_asleep;
   speeds[0] = 0.5f * settings.speed;
   speeds[3] = 0.0f;
-  bodies.move_at(speeds);
-  (void)bodies.tracker.update({}, 0.0f, settings, Parallel{}, fell_asleep);
+  bodies.move_at(speeds, 0.0f, settings);
+  (void)bodies.tracker.update({}, settings, fell_asleep);
   bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_TRUE(woken.empty());
   // Body 0 moves: body 1 wakes, body 2 beyond it sleeps on.
   speeds[0] = 2.0f * settings.speed;
-  bodies.move_at(speeds);
-  (void)bodies.tracker.update({}, 0.0f, settings, Parallel{}, fell_asleep);
+  bodies.move_at(speeds, 0.0f, settings);
+  (void)bodies.tracker.update({}, settings, fell_asleep);
   bodies.tracker.wake_disturbed(row, settings, woken);
   EXPECT_EQ(woken, (std::vector<std::uint32_t>{1}));
   EXPECT_TRUE(bodies.store.asleep(2));

@@ -41,6 +41,7 @@ TEST(StepFigures, TheFramesCsvColumnsAreTheDocumentedOnes) {
                                                "leaf_pairs",
                                                "contacts",
                                                "impulses",
+                                               "contacts_solved",
                                                "kinetic_energy_J",
                                                "deepest_penetration_m",
                                                "mean_penetration_m",
@@ -49,7 +50,7 @@ TEST(StepFigures, TheFramesCsvColumnsAreTheDocumentedOnes) {
                                                "jitter_m_per_s",
                                                "warm_started",
                                                "islands",
-                                               "substeps"};
+                                               "collision_passes"};
   std::vector<std::string> columns;
   for (const StepFigure& figure : step_figures()) {
     if (figure.in_frames_csv) columns.push_back(frames_csv_column(figure));

@@ -221,7 +221,7 @@ TEST(WorldBodies, AWakeUpInTheMiddleOfAStepDetectsEachPairOnce) {
   WorldSettings settings = on_plane();
   settings.solver.contacts = ContactSet::kAll;  // one contact per leaf pair: countable
   settings.solver.reuse_distance = 0.0f;        // every pair descends
-  settings.max_substeps = 1;
+  settings.max_collision_passes = 1;
   World world(settings);
   const float rest = resting_height();
   const BodyId sleeper = world.add_body(cube(Vec3(0.0f, rest, 0.0f)));

@@ -26,8 +26,8 @@ struct RunTotals {
   double step = 0;
   double contacts = 0;  // summed over the frames
   std::uint32_t max_contacts = 0;
-  double substeps = 0;  // summed over the frames
-  std::uint32_t max_substeps = 0;
+  double collision_passes = 0;  // summed over the frames
+  std::uint32_t max_collision_passes = 0;
   PlausibilityMeter plausibility;
   // The lowest centre of mass of the scene's bodies over the frames. unit: m
   float lowest_center_y = std::numeric_limits<float>::infinity();

@@ -100,9 +100,9 @@ struct Scene {
   int frames = 880;                        // one step per frame
   ResponseMode response = WorldSettings{}.response;
   int paper_passes = static_cast<int>(WorldSettings{}.paper_passes);
-  int substeps = static_cast<int>(WorldSettings{}.substeps);
-  int max_substeps = static_cast<int>(WorldSettings{}.max_substeps);
-  float substep_travel = WorldSettings{}.substep_travel;
+  int collision_passes = static_cast<int>(WorldSettings{}.collision_passes);
+  int max_collision_passes = static_cast<int>(WorldSettings{}.max_collision_passes);
+  float collision_pass_travel = WorldSettings{}.collision_pass_travel;
   SolverSettings solver;  // plausible mode; solver.contacts is the scene's "contacts"
   SleepSettings sleep;    // plausible mode
   GroundSpec ground;

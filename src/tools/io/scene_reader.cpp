@@ -288,6 +288,7 @@ Scene read_scene(const Json& document, const fs::path& name) {
   }
   const JsonNode root(document, "", source);
   read_header(root);
+  refuse_removed_settings(root, "");
   check_keys(root, scene_keys());
 
   Scene scene;

@@ -97,15 +97,18 @@ void read_settings(const JsonNode& node, std::string_view object, WorldSettings&
   }
 }
 
-void read_settings_object(const JsonNode& node, std::string_view object, WorldSettings& settings) {
-  if (node.json().is_object()) {
-    for (const auto& item : node.json().items()) {
-      const std::string field = std::string(object) + "." + item.key();
-      if (const RemovedSetting* removed = removed_setting(field)) {
-        node.child(item.key()).fail(removed_setting_message(*removed));
-      }
+void refuse_removed_settings(const JsonNode& node, std::string_view object) {
+  if (!node.json().is_object()) return;
+  for (const auto& item : node.json().items()) {
+    const std::string field = object.empty() ? item.key() : std::string(object) + "." + item.key();
+    if (const RemovedSetting* removed = removed_setting(field)) {
+      node.child(item.key()).fail(removed_setting_message(*removed));
     }
   }
+}
+
+void read_settings_object(const JsonNode& node, std::string_view object, WorldSettings& settings) {
+  refuse_removed_settings(node, object);
   check_keys(node, setting_keys(object));
   read_settings(node, object, settings);
 }

@@ -21,6 +21,10 @@ namespace sphys::tools {
 // are the caller's to check.
 void read_settings(const JsonNode& node, std::string_view object, WorldSettings& settings);
 
+// Fails naming the first key of the object at `node` (`object` as in read_settings) that is a
+// setting sphys no longer has, with what replaced it.
+void refuse_removed_settings(const JsonNode& node, std::string_view object);
+
 // "solver" and "sleep": objects of world settings only. A setting sphys no longer has is refused
 // with what replaced it.
 void read_settings_object(const JsonNode& node, std::string_view object, WorldSettings& settings);

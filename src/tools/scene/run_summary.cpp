@@ -81,8 +81,8 @@ void RunTotals::add(const StepStats& s, const SimulationSetup& setup) {
   step += s.step_ms;
   contacts += s.contacts;
   max_contacts = std::max(max_contacts, s.contacts);
-  substeps += s.substeps;
-  max_substeps = std::max(max_substeps, s.substeps);
+  collision_passes += s.collision_passes;
+  max_collision_passes = std::max(max_collision_passes, s.collision_passes);
   plausibility.add(s);
   for (const BodyId body : setup.bodies) {
     lowest_center_y = std::min(lowest_center_y, setup.world->body(body).pose.translation.y());
@@ -100,10 +100,10 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
   summary["response"] = response_mode_name(scene.response);
   summary["contact_set"] = contact_set_name(scene.solver.contacts);
   summary["solver_lanes"] = solver_lanes_name(setup.world->solver_lanes());
-  summary["substeps"] = scene.substeps;
-  summary["max_substeps"] = scene.max_substeps;
-  summary["substeps_per_frame"] = {{"mean", totals.substeps / frames},
-                                   {"max", totals.max_substeps}};
+  summary["collision_passes"] = scene.collision_passes;
+  summary["max_collision_passes"] = scene.max_collision_passes;
+  summary["collision_passes_per_frame"] = {{"mean", totals.collision_passes / frames},
+                                           {"max", totals.max_collision_passes}};
   summary["frames"] = totals.step_ms.size();
   summary["time_step_s"] = scene.time_step;
   summary["wall_s"] = totals.wall_s;

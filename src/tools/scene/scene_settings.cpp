@@ -15,9 +15,9 @@ WorldSettings world_settings(const Scene& scene) {
   settings.gravity = scene.gravity;
   settings.response = scene.response;
   settings.paper_passes = count(scene.paper_passes);
-  settings.substeps = count(scene.substeps);
-  settings.max_substeps = count(scene.max_substeps);
-  settings.substep_travel = scene.substep_travel;
+  settings.collision_passes = count(scene.collision_passes);
+  settings.max_collision_passes = count(scene.max_collision_passes);
+  settings.collision_pass_travel = scene.collision_pass_travel;
   settings.solver = scene.solver;
   settings.sleep = scene.sleep;
   // The exact plane's material; the octree ground is a body and carries its own.
@@ -30,9 +30,9 @@ void set_world_settings(Scene& scene, const WorldSettings& settings) {
   scene.gravity = settings.gravity;
   scene.response = settings.response;
   scene.paper_passes = static_cast<int>(settings.paper_passes);
-  scene.substeps = static_cast<int>(settings.substeps);
-  scene.max_substeps = static_cast<int>(settings.max_substeps);
-  scene.substep_travel = settings.substep_travel;
+  scene.collision_passes = static_cast<int>(settings.collision_passes);
+  scene.max_collision_passes = static_cast<int>(settings.max_collision_passes);
+  scene.collision_pass_travel = settings.collision_pass_travel;
   scene.solver = settings.solver;
   scene.sleep = settings.sleep;
   scene.ground.restitution = settings.ground_restitution;

@@ -138,9 +138,9 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.frames, b.frames);
   EXPECT_EQ(a.response, b.response);
   EXPECT_EQ(a.paper_passes, b.paper_passes);
-  EXPECT_EQ(a.substeps, b.substeps);
-  EXPECT_EQ(a.max_substeps, b.max_substeps);
-  EXPECT_EQ(bits(a.substep_travel), bits(b.substep_travel));
+  EXPECT_EQ(a.collision_passes, b.collision_passes);
+  EXPECT_EQ(a.max_collision_passes, b.max_collision_passes);
+  EXPECT_EQ(bits(a.collision_pass_travel), bits(b.collision_pass_travel));
   expect_same_solver(a.solver, b.solver);
   expect_same_sleep(a.sleep, b.sleep);
   expect_same_pairs(a.pair_materials, b.pair_materials);
@@ -173,9 +173,9 @@ constexpr std::string_view kFullScene = R"({
   "response": "paper",
   "paper_passes": 7,
   "contacts": "all",
-  "substeps": 4,
-  "max_substeps": 12,
-  "substep_travel": 0.25,
+  "collision_passes": 4,
+  "max_collision_passes": 12,
+  "collision_pass_travel": 0.25,
   "solver": {"soft_substeps": 7, "contact_hertz": 45, "contact_damping_ratio": 2.5,
              "warm_starting": false, "restitution_threshold": 0.5, "linear_slop": 0.01,
              "max_correction_speed": 2, "manifold_points": 6, "fast_pair_reach": 0.25,
@@ -221,9 +221,9 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   EXPECT_EQ(scene.frames, 1200);
   EXPECT_EQ(scene.response, ResponseMode::kPaper);
   EXPECT_EQ(scene.paper_passes, 7);
-  EXPECT_EQ(scene.substeps, 4);
-  EXPECT_EQ(scene.max_substeps, 12);
-  EXPECT_EQ(scene.substep_travel, 0.25f);
+  EXPECT_EQ(scene.collision_passes, 4);
+  EXPECT_EQ(scene.max_collision_passes, 12);
+  EXPECT_EQ(scene.collision_pass_travel, 0.25f);
   SolverSettings solver;
   solver.soft_substeps = 7;
   solver.contact_hertz = 45.0f;
@@ -304,7 +304,7 @@ TEST(SceneFile, WorldSettingsLeftOutAreTheRuntimesDefaults) {
   EXPECT_EQ(scene.response, ResponseMode::kPlausible);
   EXPECT_EQ(scene.response, runtime.response);
   EXPECT_EQ(scene.paper_passes, static_cast<int>(runtime.paper_passes));
-  EXPECT_EQ(scene.substeps, static_cast<int>(runtime.substeps));
+  EXPECT_EQ(scene.collision_passes, static_cast<int>(runtime.collision_passes));
   EXPECT_EQ(scene.solver.contacts, ContactSet::kReduced);
   expect_same_solver(scene.solver, runtime.solver);
   expect_same_sleep(scene.sleep, runtime.sleep);
@@ -315,10 +315,10 @@ TEST(SceneFile, WorldSettingsLeftOutAreTheRuntimesDefaults) {
 }
 
 TEST(SceneFile, SolverAndSleepObjectsSetOnlyTheKeysTheyHave) {
-  const Scene scene = parse_scene(scene_text(R"("contacts": "all", "substeps": 64,
+  const Scene scene = parse_scene(scene_text(R"("contacts": "all", "collision_passes": 64,
       "solver": {"manifold_points": 8}, "sleep": {"time": 0}, "bodies": [])"),
                                   "s.json");
-  EXPECT_EQ(scene.substeps, 64);
+  EXPECT_EQ(scene.collision_passes, 64);
   SolverSettings solver;
   solver.contacts = ContactSet::kAll;
   solver.manifold_points = 8;
@@ -449,9 +449,9 @@ class RandomScene {
     scene.frames = std::uniform_int_distribution<int>(1, 10'000'000)(rng_);
     scene.paper_passes = std::uniform_int_distribution<int>(1, 1000)(rng_);
     scene.response = pick(std::array{ResponseMode::kPaper, ResponseMode::kPlausible});
-    scene.substeps = std::uniform_int_distribution<int>(1, 64)(rng_);
-    scene.max_substeps = std::uniform_int_distribution<int>(1, 64)(rng_);
-    scene.substep_travel = std::abs(any_float()) + 1e-30f;
+    scene.collision_passes = std::uniform_int_distribution<int>(1, 64)(rng_);
+    scene.max_collision_passes = std::uniform_int_distribution<int>(1, 64)(rng_);
+    scene.collision_pass_travel = std::abs(any_float()) + 1e-30f;
     scene.solver = solver();
     scene.sleep = {
         .enabled = coin(), .speed = std::abs(any_float()), .time = std::abs(any_float())};
@@ -766,16 +766,22 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
        "expected a number, got a string \"1\""},
       {scene_text(R"("frames": 10)"), "/bodies", "missing"},
       // The world's settings.
-      {scene_text(R"("substeps": 0, "bodies": [])"), "/substeps",
+      {scene_text(R"("collision_passes": 0, "bodies": [])"), "/collision_passes",
        "must be between 1 and 64, got 0"},
-      {scene_text(R"("substeps": 65, "bodies": [])"), "/substeps",
+      {scene_text(R"("collision_passes": 65, "bodies": [])"), "/collision_passes",
        "must be between 1 and 64, got 65"},
-      {scene_text(R"("substeps": 1.5, "bodies": [])"), "/substeps", "must be an integer, got 1.5"},
+      {scene_text(R"("collision_passes": 1.5, "bodies": [])"), "/collision_passes",
+       "must be an integer, got 1.5"},
       {scene_text(R"("solver": [], "bodies": [])"), "/solver", "expected an object, got an array"},
       {scene_text(R"("solver": {"soft_substep": 3}, "bodies": [])"), "/solver/soft_substep",
        "unknown key; did you mean \"soft_substeps\"?"},
       {scene_text(R"("solver": {"soft_substeps": 0}, "bodies": [])"), "/solver/soft_substeps",
        "must be between 1 and 64, got 0"},
+      // Renamed settings are refused naming the new name.
+      {scene_text(R"("substeps": 2, "bodies": [])"), "/substeps",
+       "substeps was removed: renamed collision_passes"},
+      {scene_text(R"("max_substeps": 2, "bodies": [])"), "/max_substeps",
+       "max_substeps was removed: renamed max_collision_passes"},
       // The sequential-impulse solver's settings, removed with it, are refused by name.
       {scene_text(R"("solver": {"velocity_iterations": 20}, "bodies": [])"),
        "/solver/velocity_iterations",
@@ -793,9 +799,9 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
        "must be positive, got 0"},
       {scene_text(R"("solver": {"rolling_resistance": "none"}, "bodies": [])"),
        "/solver/rolling_resistance", "expected a number, got a string \"none\""},
-      {scene_text(R"("max_substeps": 0, "bodies": [])"), "/max_substeps",
+      {scene_text(R"("max_collision_passes": 0, "bodies": [])"), "/max_collision_passes",
        "must be between 1 and 64, got 0"},
-      {scene_text(R"("substep_travel": 0, "bodies": [])"), "/substep_travel",
+      {scene_text(R"("collision_pass_travel": 0, "bodies": [])"), "/collision_pass_travel",
        "must be positive, got 0"},
       {scene_text(R"("solver": {"restitution_threshold": -1}, "bodies": [])"),
        "/solver/restitution_threshold", "must not be negative, got -1"},
@@ -1037,7 +1043,7 @@ TEST(SceneFileSchema, WorldSettingsDefaultsAreTheRuntimes) {
   const nlohmann::json& defs = schema.at("$defs");
   const Scene defaults = parse_scene(scene_text(R"("bodies": [])"), "s.json");
   const nlohmann::json written = nlohmann::json::parse(scene_to_json(defaults));
-  for (const char* key : {"response", "paper_passes", "contacts", "substeps"}) {
+  for (const char* key : {"response", "paper_passes", "contacts", "collision_passes"}) {
     EXPECT_EQ(properties.at(key).at("default"), written.at(key)) << key;
   }
   const auto expect_defaults = [&](const char* def, const char* key) {

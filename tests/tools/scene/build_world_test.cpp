@@ -262,9 +262,9 @@ TEST(BuildWorld, SceneSettingsReachTheWorld) {
   scene.gravity = Vec3(0.0f, -1.62f, 0.5f);
   scene.response = ResponseMode::kPaper;
   scene.paper_passes = 4;
-  scene.substeps = 3;
-  scene.max_substeps = 5;
-  scene.substep_travel = 0.3f;
+  scene.collision_passes = 3;
+  scene.max_collision_passes = 5;
+  scene.collision_pass_travel = 0.3f;
   scene.solver.soft_substeps = 7;
   scene.solver.contact_hertz = 20.0f;
   scene.solver.contact_damping_ratio = 2.0f;
@@ -282,9 +282,9 @@ TEST(BuildWorld, SceneSettingsReachTheWorld) {
   EXPECT_EQ(settings.gravity, Vec3(0.0f, -1.62f, 0.5f));
   EXPECT_EQ(settings.response, ResponseMode::kPaper);
   EXPECT_EQ(settings.paper_passes, 4u);
-  EXPECT_EQ(settings.substeps, 3u);
-  EXPECT_EQ(settings.max_substeps, 5u);
-  EXPECT_EQ(settings.substep_travel, 0.3f);
+  EXPECT_EQ(settings.collision_passes, 3u);
+  EXPECT_EQ(settings.max_collision_passes, 5u);
+  EXPECT_EQ(settings.collision_pass_travel, 0.3f);
   const SolverSettings& solver = settings.solver;
   EXPECT_EQ(solver.soft_substeps, 7u);
   EXPECT_EQ(solver.contact_hertz, 20.0f);
@@ -311,7 +311,7 @@ TEST(BuildWorld, ADefaultSceneMakesADefaultWorld) {
   EXPECT_EQ(built.response, runtime.response);
   EXPECT_EQ(built.gravity, runtime.gravity);
   EXPECT_EQ(built.paper_passes, runtime.paper_passes);
-  EXPECT_EQ(built.substeps, runtime.substeps);
+  EXPECT_EQ(built.collision_passes, runtime.collision_passes);
   EXPECT_EQ(built.solver.soft_substeps, runtime.solver.soft_substeps);
   EXPECT_EQ(built.solver.linear_slop, runtime.solver.linear_slop);
   EXPECT_EQ(built.solver.contacts, runtime.solver.contacts);
@@ -324,9 +324,9 @@ TEST(BuildWorld, ADefaultSceneMakesADefaultWorld) {
 
 TEST(BuildWorld, WorldSettingsTheWorldRefusesAreReported) {
   Scene scene = scene_without_ground({});
-  scene.substeps = 0;
+  scene.collision_passes = 0;
   EXPECT_THROW((void)build_world(scene), Error);
-  scene.substeps = 1;
+  scene.collision_passes = 1;
   scene.solver.manifold_points = 9;
   EXPECT_THROW((void)build_world(scene), Error);
 }

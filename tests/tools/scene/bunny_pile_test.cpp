@@ -108,7 +108,8 @@ TEST(BunnyHeaps, TenThousandBunniesAreAllAsleepByFrame880LessThanAMillimetreDeep
 // through: a collision pass carries a bunny at most 0.3 of its bounding radius (about 0.26 m),
 // less than twice the reach of two of its smallest leaf spheres beyond 5% of overlap (about
 // 2 × (0.26 - 0.05) m), so a bunny crossing another is seen more than 5% inside it by some pass.
-// None ends below the plane. With one pass a frame (`max_substeps` 1) the shots sank 38% deep.
+// None ends below the plane. With one pass a frame (`max_collision_passes` 1) the shots sank 38%
+// deep.
 TEST(BunnyHeaps, AHundredBunniesShotAt50MetresPerSecondIntoARestingHeapPassThroughNothing) {
   Scene scene;
   scene.ground.kind = GroundSpec::Kind::kPlane;

@@ -73,7 +73,7 @@ ThreadedRun run_scene(const Scene& scene, std::uint32_t threads, int frames,
     steps.add(std::uint64_t{stats.contacts});
     steps.add(stats.sphere_tests);
     steps.add(std::uint64_t{stats.leaf_pairs});
-    steps.add(std::uint64_t{stats.substeps});
+    steps.add(std::uint64_t{stats.collision_passes});
     steps.add(std::uint64_t{stats.bodies_asleep});
     steps.add(stats.deepest_penetration);
     if (result.all_asleep_frame < 0 && stats.movable_bodies > 0 &&

@@ -1,0 +1,63 @@
+#pragma once
+
+// Everything a world holds behind its public face (sphys/world.h): the one store of its bodies,
+// the detector, the solver, sleep, the threads, the pipeline of its response mode and the
+// buffers its stages share. Made once per world, on the heap, and never moved: the detector and
+// the sleep tracker keep the store's address, the detector the threads'.
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "collision/broad_phase.h"  // pair_key: pair_materials' key, the same in either order
+#include "collision/collision_detector.h"
+#include "dynamics/soft_step_solver.h"
+#include "sphys/body_store.h"
+#include "sphys/material.h"
+#include "sphys/parallel.h"
+#include "sphys/step_stats.h"
+#include "sphys/world.h"
+#include "world/sleep_tracker.h"
+#include "world/world_access.h"
+
+namespace sphys {
+
+struct Pipeline;
+
+struct WorldState {
+  // Throws sphys::Error for settings out of their ranges (check_world_settings).
+  explicit WorldState(const WorldSettings& world_settings);
+  WorldState(const WorldState&) = delete;
+  WorldState& operator=(const WorldState&) = delete;
+
+  // Wakes a sleeping body and counts it restless: a velocity, an impulse or a force set it
+  // moving from outside, or a body it touched left.
+  void wake(std::uint32_t body);
+  // The narrow phase's budgets from the next step on; throws sphys::Error for a time that is
+  // negative or not finite, and changes nothing then.
+  void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
+
+  WorldSettings settings;
+  SolverLanes solver_lanes;
+  // The stages of a step in this world's mode, chosen once (world/pipeline.h).
+  const Pipeline* pipeline;
+  // The store first: what is attached to it (detector, sleep tracker) goes before it.
+  BodyStore store;
+  Parallel parallel;
+  CollisionDetector detector;
+  SoftStepSolver solver;  // plausible mode
+  SleepTracker sleep;     // plausible mode
+  std::unordered_map<std::uint64_t, PairMaterial> pair_materials;
+  std::vector<PairMaterial> materials;            // per contact, plausible mode's response
+  std::vector<std::uint8_t> touching;             // measure_rest's scratch, per slot
+  std::vector<std::uint32_t> sleep_changes;       // bodies woken or fallen asleep, scratch
+  std::vector<std::uint32_t> non_finite_in_run;   // the awake loops' scratch, per run
+  std::vector<std::uint32_t> removed_neighbours;  // remove_body's scratch
+  StepStats stats;
+  // A body's state stopped being finite: later steps do nothing.
+  bool stopped = false;
+  // Turns of the calls on the world (world/world_access.h).
+  WorldAccess access;
+};
+
+}  // namespace sphys
