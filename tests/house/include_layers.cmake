@@ -5,7 +5,7 @@ cmake_minimum_required(VERSION 3.25)
 # layer whose folder has NAME.cpp, include/sphys/tools/* to tools; a public header with no source
 # of its own (math.h, the settings structs) only declares, and any layer may include it.
 # Run as: cmake -DSOURCE_DIR=<repository> -P include_layers.cmake
-set(LAYERS core spheretree bodies collision dynamics world query tools)
+set(LAYERS core spheretree bodies collision dynamics world query robot tools)
 set(src "${SOURCE_DIR}/src")
 
 file(GLOB folders LIST_DIRECTORIES true RELATIVE "${src}" "${src}/*")

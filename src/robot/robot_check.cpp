@@ -13,9 +13,9 @@
 #include <thread>
 
 #include "core/simd_lanes.h"
-#include "query/configuration_layout.h"
-#include "query/robot_kinematics.h"
-#include "query/robot_pose_scratch.h"
+#include "robot/configuration_layout.h"
+#include "robot/robot_kinematics.h"
+#include "robot/robot_pose_scratch.h"
 #include "sphys/error.h"
 
 namespace sphys {
