@@ -79,7 +79,7 @@ class ConfigurationChecker {
                         const Parallel* parallel = nullptr) const;
 
  private:
-  // What check_one works in, one per run of configurations (configuration_check.cpp).
+  // What check_one works in, one per run of configurations (src/robot/configuration_scratch.h).
   struct Scratch;
 
  public:

@@ -77,4 +77,10 @@ void check_joint_values(const RobotModel& model, std::span<const double> values,
 [[nodiscard]] std::vector<Eigen::Isometry3d> robot_link_poses(const RobotModel& model,
                                                               std::span<const double> values);
 
+// The same poses with each value taken as it is, its limits unchecked (robot_link_poses checks
+// them): the one forward kinematics, which tools::link_poses poses a URDF's links by too.
+// `values`: one per joint, finite; throws sphys::Error for another count.
+[[nodiscard]] std::vector<Eigen::Isometry3d> forward_kinematics(const RobotModel& model,
+                                                                std::span<const double> values);
+
 }  // namespace sphys

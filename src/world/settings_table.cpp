@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/simd_lanes.h"
 #include "sphys/error.h"
 #include "sphys/world.h"
 
@@ -77,7 +78,6 @@ constexpr SettingRange above(double low) { return {.min = low, .min_inclusive = 
 
 constexpr std::array<std::string_view, 2> kResponseChoices = {"paper", "plausible"};
 constexpr std::array<std::string_view, 2> kContactChoices = {"all", "reduced"};
-constexpr std::array<std::string_view, 4> kLaneChoices = {"auto", "portable", "sse2", "avx2"};
 
 using W = WorldSettings;
 using S = SolverSettings;
@@ -358,7 +358,7 @@ const auto kTable = std::to_array<Setting>({
         .in_scene = false,
         .field = "solver.lanes",
         .kind = SettingKind::kEnum,
-        .choices = kLaneChoices,
+        .choices = kLaneSetNames,
         .doc = "The SIMD instructions of the soft step's contact passes, 8 manifolds at a time: "
                "auto takes SPHYS_SIMD from the environment where it is set, else AVX2 where the "
                "processor has it, else SSE2. Every choice gives the same bits.",

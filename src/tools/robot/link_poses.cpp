@@ -1,33 +1,18 @@
-// Forward kinematics: each link's pose from the root through the joints.
+// Forward kinematics of a URDF: each link's pose in the root's frame, by the robot model's one
+// forward kinematics (sphys/robot_model.h) over the URDF's chain.
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
-#include <Eigen/Geometry>
-
+#include "robot_chain.h"
 #include "sphys/error.h"
+#include "sphys/robot_model.h"
 #include "sphys/tools/robot.h"
 
 namespace sphys::tools {
-namespace {
-
-// The joint's own motion at `value`: a turn about its axis or a slide along it.
-Pose3d joint_motion(const RobotJoint& joint, double value) {
-  Pose3d motion = Pose3d::Identity();
-  if (joint.type == "revolute" || joint.type == "continuous") {
-    motion.linear() = Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
-  } else if (joint.type == "prismatic") {
-    motion.translation() = value * joint.axis;
-  }
-  return motion;
-}
-
-bool movable(const RobotJoint& joint) {
-  return joint.type == "revolute" || joint.type == "continuous" || joint.type == "prismatic";
-}
-
-}  // namespace
 
 std::map<std::string, Pose3d> link_poses(const Robot& robot,
                                          const std::map<std::string, double>& joint_values) {
@@ -37,7 +22,7 @@ std::map<std::string, Pose3d> link_poses(const Robot& robot,
     if (joint == robot.joints.end()) {
       throw Error::in_file(robot.file, "has no joint \"" + name + "\"");
     }
-    if (!movable(*joint)) {
+    if (!urdf_joint_motion(*joint)) {
       throw Error::in_file(robot.file, "joint \"" + name + "\" is " + joint->type +
                                            ": only revolute, continuous and prismatic joints "
                                            "take a value");
@@ -46,20 +31,19 @@ std::map<std::string, Pose3d> link_poses(const Robot& robot,
       throw Error("joint \"" + name + "\": the value must be finite");
     }
   }
-  std::map<std::string, Pose3d> poses{{robot.root_link, Pose3d::Identity()}};
-  // urdfdom guarantees a tree, so each pass places at least one more link until all are placed.
-  for (bool placed = true; placed;) {
-    placed = false;
-    for (const RobotJoint& joint : robot.joints) {
-      const auto parent = poses.find(joint.parent);
-      if (parent == poses.end() || poses.contains(joint.child)) continue;
-      const auto value = joint_values.find(joint.name);
-      poses[joint.child] = parent->second * joint.origin *
-                           joint_motion(joint, value == joint_values.end() ? 0.0 : value->second);
-      placed = true;
+  // Every joint that takes a value moves its link, a mimic joint on its own; floating and planar
+  // joints stand at their origins. The root stands at the origin (the model's base).
+  const RobotModel chain = robot_chain(robot, urdf_joint_motion);
+  std::vector<double> values(chain.joints.size(), 0.0);  // a joint not named stands at 0
+  for (std::size_t j = 0; j < chain.joints.size(); ++j) {
+    if (const auto value = joint_values.find(chain.joints[j].name); value != joint_values.end()) {
+      values[j] = value->second;
     }
   }
-  return poses;
+  const std::vector<Pose3d> poses = forward_kinematics(chain, values);
+  std::map<std::string, Pose3d> named;
+  for (std::size_t l = 0; l < chain.links.size(); ++l) named[chain.links[l].name] = poses[l];
+  return named;
 }
 
 }  // namespace sphys::tools

@@ -4,12 +4,12 @@
 #include "sphys/tools/robot_model_file.h"
 
 #include <algorithm>
-#include <deque>
-#include <map>
+#include <optional>
 #include <string>
 #include <tinyxml2.h>
 
 #include "io/input_file.h"
+#include "robot_chain.h"
 #include "sphys/error.h"
 
 namespace sphys::tools {
@@ -20,9 +20,7 @@ RobotJointType joint_type(const Robot& robot, const RobotJoint& joint) {
     throw Error::in_file(robot.file, "joint \"" + joint.name + "\" mimics \"" + joint.mimics +
                                          "\": mimic joints are not supported by robot checks");
   }
-  if (joint.type == "revolute") return RobotJointType::kRevolute;
-  if (joint.type == "continuous") return RobotJointType::kContinuous;
-  if (joint.type == "prismatic") return RobotJointType::kPrismatic;
+  if (const std::optional<RobotJointType> type = urdf_joint_motion(joint)) return *type;
   throw Error::in_file(robot.file, "joint \"" + joint.name + "\" is " + joint.type +
                                        ": robot checks take revolute, continuous, prismatic and "
                                        "fixed joints");
@@ -32,39 +30,9 @@ RobotJointType joint_type(const Robot& robot, const RobotJoint& joint) {
 
 RobotModel robot_model(const Robot& robot, std::span<const LinkSpheres> links,
                        std::span<const std::array<std::string, 2>> disabled) {
-  RobotModel model;
-  model.name = robot.name;
-  // Each link's joint from its parent, by the link's name.
-  std::map<std::string, const RobotJoint*> joint_to;
-  std::map<std::string, std::vector<const RobotJoint*>> children;
-  for (const RobotJoint& joint : robot.joints) {
-    joint_to[joint.child] = &joint;
-    children[joint.parent].push_back(&joint);
-  }
-  for (auto& [parent, list] : children) {
-    std::ranges::sort(list,
-                      [](const RobotJoint* a, const RobotJoint* b) { return a->child < b->child; });
-  }
-  std::deque<std::pair<std::string, std::int32_t>> open = {{robot.root_link, -1}};
-  while (!open.empty()) {
-    const auto [name, parent] = open.front();
-    open.pop_front();
-    RobotModel::Link link;
-    link.name = name;
-    link.parent = parent;
-    if (const auto joint = joint_to.find(name); joint != joint_to.end()) {
-      const RobotJoint& j = *joint->second;
-      link.origin = j.origin;
-      if (j.type != "fixed") {
-        RobotJointType type = joint_type(robot, j);
-        link.joint = static_cast<std::int32_t>(model.joints.size());
-        model.joints.push_back({j.name, type, j.axis, j.lower, j.upper});
-      }
-    }
-    const auto index = static_cast<std::int32_t>(model.links.size());
-    model.links.push_back(std::move(link));
-    for (const RobotJoint* child : children[name]) open.emplace_back(child->child, index);
-  }
+  RobotModel model = robot_chain(robot, [&](const RobotJoint& joint) {
+    return joint.type == "fixed" ? std::nullopt : std::optional(joint_type(robot, joint));
+  });
   for (const LinkSpheres& link : links) {
     std::int32_t index = -1;
     try {

@@ -12,11 +12,11 @@
 #include <string>
 #include <thread>
 
-#include "query/configuration_layout.h"
-#include "query/robot_kinematics.h"
-#include "query/robot_pose_scratch.h"
+#include "core/simd_lanes.h"
+#include "robot/configuration_layout.h"
+#include "robot/robot_kinematics.h"
+#include "robot/robot_pose_scratch.h"
 #include "sphys/error.h"
-#include "sphys/solver_settings.h"
 
 namespace sphys {
 namespace {
@@ -163,16 +163,15 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
               .box_half = k.link_half.data()};
   const Sphere reach = robot_reach(model_);
   k.sweep_margin = 1e-4f * (reach.center.norm() + reach.radius);
-  // The solver's choice of lanes (SPHYS_SIMD, else the widest the processor has): every kernel
+  // The library's choice of lanes (SPHYS_SIMD, else the widest the processor has): every kernel
   // gives the same bits, so it changes the speed only.
-  switch (resolve_solver_lanes(SolverLanes::kAuto)) {
+  SolverLanes lanes = choose_lanes(SolverLanes::kAuto, avx2_kernel().pose != nullptr);
+  switch (lanes) {
     case SolverLanes::kAvx2:
       k.kernel = avx2_kernel();
-      k.lanes = "avx2";
       break;
     case SolverLanes::kSse2:
       k.kernel = sse2_kernel();
-      k.lanes = "sse2";
       break;
     case SolverLanes::kAuto:
     case SolverLanes::kPortable:
@@ -180,8 +179,9 @@ RobotChecker::RobotChecker(const WorldQuery& query, RobotModel model, RobotCheck
   }
   if (k.kernel.pose == nullptr) {
     k.kernel = portable_kernel();
-    k.lanes = "portable";
+    lanes = SolverLanes::kPortable;
   }
+  k.lanes = kLaneSetNames[static_cast<std::size_t>(lanes)].data();  // literals: NUL-terminated
 }
 
 RobotChecker::~RobotChecker() = default;

@@ -1,3 +1,6 @@
+// A robot model's own checks: its links, joints, limits and spheres, and joint values against
+// them (its forward kinematics: forward_kinematics.cpp).
+
 #include "sphys/robot_model.h"
 
 #include <cmath>
@@ -111,33 +114,6 @@ void check_joint_values(const RobotModel& model, std::span<const double> values,
                                         : " is not finite"));
     }
   }
-}
-
-std::vector<Eigen::Isometry3d> robot_link_poses(const RobotModel& model,
-                                                std::span<const double> values) {
-  if (values.size() != model.joints.size()) {
-    throw Error("robot '" + model.name + "': " + std::to_string(values.size()) +
-                " joint values for " + std::to_string(model.joints.size()) + " joints");
-  }
-  check_joint_values(model, values, "values");
-  std::vector<Eigen::Isometry3d> poses(model.links.size());
-  for (std::size_t l = 0; l < model.links.size(); ++l) {
-    const RobotModel::Link& link = model.links[l];
-    Eigen::Isometry3d local = link.origin;
-    if (link.joint >= 0) {
-      const auto j = static_cast<std::size_t>(link.joint);
-      const RobotModel::Joint& joint = model.joints[j];
-      const double value = values[j];
-      if (joint.type == RobotJointType::kPrismatic) {
-        local.translate(value * joint.axis);
-      } else {
-        local.rotate(Eigen::AngleAxisd(value, joint.axis));
-      }
-    }
-    poses[l] =
-        link.parent < 0 ? model.base * local : poses[static_cast<std::size_t>(link.parent)] * local;
-  }
-  return poses;
 }
 
 }  // namespace sphys

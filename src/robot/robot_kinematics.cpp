@@ -1,14 +1,14 @@
 // The kinematics kernel in plain floats and in two SSE2 registers (robot_kinematics_kernel.h);
 // AVX2's is in robot_kinematics_avx2.cpp.
 
-#include "query/robot_kinematics.h"
+#include "robot/robot_kinematics.h"
 
 #include "core/simd.h"
 
 namespace sphys {
 namespace {
 
-#include "query/robot_kinematics_kernel.h"
+#include "robot/robot_kinematics_kernel.h"
 
 }  // namespace
 

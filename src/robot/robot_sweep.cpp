@@ -1,4 +1,4 @@
-#include "query/robot_sweep.h"
+#include "robot/robot_sweep.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "query/configuration_layout.h"
-#include "query/robot_kinematics.h"
-#include "query/robot_pose_scratch.h"
+#include "robot/configuration_layout.h"
+#include "robot/robot_kinematics.h"
+#include "robot/robot_pose_scratch.h"
 #include "sphys/error.h"
 #include "sphys/robot_check.h"
 

@@ -1,7 +1,7 @@
-// How far a link's spheres can move with the joints (query/robot_sweep.h): the rates of a chain
+// How far a link's spheres can move with the joints (robot/robot_sweep.h): the rates of a chain
 // worked out by hand, and the bound against the double kinematics along random motions.
 
-#include "query/robot_sweep.h"
+#include "robot/robot_sweep.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 
 // The kinematics kernel over a lane type (core/simd.h), included by each file that instantiates
 // it for its own lanes, inside that file's anonymous namespace, after core/simd.h and
-// query/robot_kinematics.h. Only correctly rounded adds and multiplies, in the same order for
+// robot/robot_kinematics.h. Only correctly rounded adds and multiplies, in the same order for
 // every lane type, so every width gives the same bits.
 
 // sin q and 1 - cos q for q in [-pi, pi], from the half angle h = q / 2 in [-pi/2, pi/2]:

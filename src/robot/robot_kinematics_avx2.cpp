@@ -4,14 +4,14 @@
 // processor without AVX2. It is called only where the processor has AVX2 (robot_check.cpp).
 
 #include "core/simd.h"
-#include "query/robot_kinematics.h"
+#include "robot/robot_kinematics.h"
 
 namespace sphys {
 
 #if defined(__AVX2__)
 namespace {
 
-#include "query/robot_kinematics_kernel.h"
+#include "robot/robot_kinematics_kernel.h"
 
 }  // namespace
 

@@ -10,9 +10,9 @@
 #include <thread>
 #include <vector>
 
-#include "query/configuration_layout.h"
-#include "query/robot_kinematics.h"
-#include "query/robot_sweep.h"
+#include "robot/configuration_layout.h"
+#include "robot/robot_kinematics.h"
+#include "robot/robot_sweep.h"
 #include "sphys/robot_check.h"
 
 namespace sphys {
