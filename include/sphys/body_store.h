@@ -2,8 +2,8 @@
 
 // The bodies of a world in one store, one slot per body, in structure-of-arrays form: every stage
 // of a step (bounds and narrow phase, solver, integration, sleep) reads and writes the same arrays
-// through spans, so no stage keeps a copy of a body to be brought up to date (the solvers load
-// the awake bodies' velocities into working arrays for one solve and write them back). The awake
+// through spans, so no stage keeps a copy of a body to be brought up to date (the soft step loads
+// the awake bodies' velocities into working arrays for one solve and writes them back). The awake
 // bodies are also listed densely (awake()), so that the stages that work on moving bodies only
 // never pass over the sleeping and static ones. The store is the one owner of per-slot arrays:
 // it says which body a slot holds (BodyId: the slot's generation and whether it is alive), and
