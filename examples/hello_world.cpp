@@ -10,23 +10,26 @@
 
 int main() {
   namespace tools = sphys::tools;
-  // The Stanford bunny, 0.2 m long, its centre of mass at the origin; water's density.
+  // The Stanford bunny, 0.2 m long, its centre of mass at the origin, of water's density.
   const tools::TriangleMesh bunny = tools::normalize(tools::load_model("bunny"), 0.2).mesh;
-  const tools::MassProperties mass = tools::compute_mass_properties(bunny, {.density = 1000.0});
+  const tools::MassProperties mass = tools::compute_mass_properties(bunny);  // 1000 kg/m³
+  tools::BuildOptions two_levels;
+  two_levels.depth = 2;
   const auto tree =
-      std::make_shared<const sphys::SphereTree>(tools::build_sphere_tree(bunny, {.depth = 2}));
-
+      std::make_shared<const sphys::SphereTree>(tools::build_sphere_tree(bunny, two_levels));
   sphys::WorldSettings settings;
   settings.collision.ground_plane_height = 0.0f;  // the exact plane y = 0, unit: m
   sphys::World world(settings);
   for (int i = 0; i < 10; ++i) {
-    sphys::BodyDesc body{.tree = tree, .mass = static_cast<float>(mass.mass)};
-    body.pose.translation = sphys::Vec3(0.05f * static_cast<float>(i % 2), 0.3f + 0.25f * i, 0);
+    sphys::BodyDesc body;
+    body.tree = tree;
+    body.mass = static_cast<float>(mass.mass);  // unit: kg
+    const auto k = static_cast<float>(i);       // a column, each bunny 0.25 m above the last
+    body.pose.translation = sphys::Vec3(i % 2 == 0 ? 0.0f : 0.05f, 0.3f + 0.25f * k, 0.0f);
     body.inertia = mass.inertia.cast<float>();
     world.add_body(body);
   }
   for (int step = 0; step < 300; ++step) world.step(1.0f / 60.0f);  // unit: s
-
   for (const sphys::Transform& pose : world.bodies().poses()) {
     const sphys::Vec3& p = pose.translation;
     const sphys::Quat& q = pose.rotation;
