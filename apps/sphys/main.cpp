@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "sphys/error.h"
 #include "sphys/tools/interrupt.h"
+#include "sphys/version.h"
 #include "standard_output.h"
 
 namespace {
@@ -33,7 +34,7 @@ int main(int argc, char** argv) {
   CLI::App app{"sphys: rigid-body collision handling with sphere-trees", "sphys"};
   // At most one command; none is reported after parsing so that an unknown word is named.
   app.require_subcommand(0, 1);
-  app.set_version_flag("--version", "sphys 0.1.0");
+  app.set_version_flag("--version", "sphys " SPHYS_VERSION_STRING);
   sphys::cli::add_mesh_info_command(app);
   sphys::cli::add_build_tree_command(app);
   sphys::cli::add_tree_info_command(app);

@@ -69,7 +69,9 @@ void bind_experiment(py::module_& m) {
       "('d2-4x25,...').");
 
   py::class_<RowResult>(m, "RowResult", "What one run of one row of the experiment measured.")
-      .def_property_readonly("row", [](const RowResult& r) { return r.row.id(); })
+      .def_property_readonly(
+          "row", [](const RowResult& r) { return r.row.id(); },
+          "The row's id, e.g. 'd2-4x25' (depth 2, 4 stacks of 25).")
       .def_property_readonly(
           "frames",
           [](const RowResult& r) {

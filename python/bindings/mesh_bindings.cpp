@@ -133,15 +133,21 @@ void bind_mesh(py::module_& m) {
         "sphys.Error is raised.");
 
   py::class_<tools::MeshReport>(m, "MeshReport", "What check_mesh found; counts.")
-      .def_readonly("triangles", &tools::MeshReport::triangles)
-      .def_readonly("vertices", &tools::MeshReport::vertices)
-      .def_readonly("degenerate_triangles", &tools::MeshReport::degenerate_triangles)
-      .def_readonly("non_finite_vertices", &tools::MeshReport::non_finite_vertices)
+      .def_readonly("triangles", &tools::MeshReport::triangles, "Triangles in the mesh")
+      .def_readonly("vertices", &tools::MeshReport::vertices, "Vertices in the mesh")
+      .def_readonly("degenerate_triangles", &tools::MeshReport::degenerate_triangles,
+                    "Triangles with a repeated vertex or an area below 1e-12 of the bounds' "
+                    "size squared")
+      .def_readonly("non_finite_vertices", &tools::MeshReport::non_finite_vertices,
+                    "Vertices with a NaN or infinite coordinate")
       .def_readonly("boundary_edges", &tools::MeshReport::boundary_edges,
                     "Edges used by one triangle: holes")
-      .def_readonly("non_manifold_edges", &tools::MeshReport::non_manifold_edges)
-      .def_readonly("misoriented_edges", &tools::MeshReport::misoriented_edges)
-      .def_readonly("unused_vertices", &tools::MeshReport::unused_vertices)
+      .def_readonly("non_manifold_edges", &tools::MeshReport::non_manifold_edges,
+                    "Edges used by three or more triangles")
+      .def_readonly("misoriented_edges", &tools::MeshReport::misoriented_edges,
+                    "Edges two triangles traverse the same way")
+      .def_readonly("unused_vertices", &tools::MeshReport::unused_vertices,
+                    "Vertices no triangle uses")
       .def_property_readonly("watertight", &tools::MeshReport::watertight,
                              "Closed, manifold and consistently oriented")
       .def("__repr__", [](const tools::MeshReport& r) {
@@ -188,8 +194,10 @@ void bind_mesh(py::module_& m) {
       "Volume, mass, centre of mass and inertia of the solid the mesh bounds, of `density` "
       "(kg/m³). Exact for watertight meshes; by winding numbers on `columns` columns otherwise.");
 
-  py::class_<tools::NormalizedMesh>(m, "NormalizedMesh")
-      .def_readonly("mesh", &tools::NormalizedMesh::mesh)
+  py::class_<tools::NormalizedMesh>(m, "NormalizedMesh",
+                                    "A mesh scaled and moved by normalize(), and how: x' = scale "
+                                    "* x + translation.")
+      .def_readonly("mesh", &tools::NormalizedMesh::mesh, "The mesh scaled and moved")
       .def_readonly("scale", &tools::NormalizedMesh::scale, "applied first, about the origin")
       .def_property_readonly(
           "translation", [](const tools::NormalizedMesh& n) { return vec3d_array(n.translation); },

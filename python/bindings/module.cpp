@@ -4,6 +4,7 @@
 #include <string>
 
 #include "bindings.h"
+#include "sphys/version.h"
 
 namespace sphys::python {
 
@@ -60,9 +61,11 @@ PYBIND11_MODULE(_sphys, m) {
   namespace py = pybind11;
   using namespace sphys::python;
   m.doc() = "sphys: rigid-body collision handling with sphere-trees (the native module).";
+  m.attr("__version__") = SPHYS_VERSION_STRING;
   // sphys's bad-input errors, with the command line's messages. A ValueError, so that code
   // catching ValueError for bad arguments catches them too.
-  py::register_exception<sphys::Error>(m, "Error", PyExc_ValueError);
+  py::register_exception<sphys::Error>(m, "Error", PyExc_ValueError).doc() =
+      "Bad input: the message names the file, line, JSON path or argument and the problem.";
   bind_mesh(m);
   bind_tree(m);
   bind_world(m);

@@ -169,11 +169,17 @@ void bind_query(py::module_& m) {
              return QueryFilter{std::move(skip), mask, std::move(categories), skip_sleeping};
            }),
            py::kw_only(), py::arg("skip") = std::vector<BodyId>{}, py::arg("mask") = ~0u,
-           py::arg("categories") = std::vector<std::uint32_t>{}, py::arg("skip_sleeping") = false)
-      .def_readwrite("skip", &QueryFilter::skip)
-      .def_readwrite("mask", &QueryFilter::mask)
-      .def_readwrite("categories", &QueryFilter::categories)
-      .def_readwrite("skip_sleeping", &QueryFilter::skip_sleeping);
+           py::arg("categories") = std::vector<std::uint32_t>{}, py::arg("skip_sleeping") = false,
+           "A filter; every argument as the attribute of its name.")
+      .def_readwrite("skip", &QueryFilter::skip,
+                     "BodyIds left out; each must be in the world (else sphys.Error).")
+      .def_readwrite("mask", &QueryFilter::mask,
+                     "A body is seen when its category bits share a bit with this.")
+      .def_readwrite("categories", &QueryFilter::categories,
+                     "Category bits per body slot; a body whose slot is past its end is in "
+                     "category 1.")
+      .def_readwrite("skip_sleeping", &QueryFilter::skip_sleeping,
+                     "True leaves sleeping bodies out.");
 
   py::class_<SharedQuery>(m, "WorldQuery",
                           "Questions asked of a world's leaf spheres without stepping it, as the "
@@ -181,8 +187,10 @@ void bind_query(py::module_& m) {
                           "Once made, any number of threads may query it at once, while the "
                           "world steps; refresh() takes the world's turn.")
       .def(py::init([](const SharedWorld& world) { return std::make_unique<SharedQuery>(world); }),
-           py::arg("world"), py::keep_alive<1, 2>())
-      .def("refresh", &SharedQuery::refresh)
+           py::arg("world"), py::keep_alive<1, 2>(), "A query of `world` as it is now.")
+      .def("refresh", &SharedQuery::refresh,
+           "Reads the world again (in its turn): later queries see it as it is now; one "
+           "running meanwhile finishes on what it started with.")
       .def(
           "cast_ray",
           [](const SharedQuery& shared, const py::object& origin, const py::object& direction,

@@ -109,29 +109,37 @@ void bind_robot(py::module_& m) {
   py::class_<RobotModel>(m, "RobotModel",
                          "A robot as its checks need it: links, joints with limits, spheres, "
                          "disabled link pairs and the base's pose (load_robot_model).")
-      .def_readonly("name", &RobotModel::name)
-      .def_property_readonly("joints",
-                             [](const RobotModel& model) {
-                               std::vector<std::string> names;
-                               for (const auto& joint : model.joints) names.push_back(joint.name);
-                               return names;
-                             })
-      .def_property_readonly("limits",
-                             [](const RobotModel& model) {
-                               std::vector<std::array<double, 2>> limits;
-                               for (const auto& joint : model.joints) {
-                                 limits.push_back({joint.lower, joint.upper});
-                               }
-                               return limits;
-                             })
-      .def_property_readonly("links",
-                             [](const RobotModel& model) {
-                               std::vector<std::string> names;
-                               for (const auto& link : model.links) names.push_back(link.name);
-                               return names;
-                             })
-      .def_property_readonly("spheres",
-                             [](const RobotModel& model) { return model.spheres.size(); })
+      .def_readonly("name", &RobotModel::name, "The robot's name in its URDF.")
+      .def_property_readonly(
+          "joints",
+          [](const RobotModel& model) {
+            std::vector<std::string> names;
+            for (const auto& joint : model.joints) names.push_back(joint.name);
+            return names;
+          },
+          "The moving joints' names, in the order joint values are given.")
+      .def_property_readonly(
+          "limits",
+          [](const RobotModel& model) {
+            std::vector<std::array<double, 2>> limits;
+            for (const auto& joint : model.joints) {
+              limits.push_back({joint.lower, joint.upper});
+            }
+            return limits;
+          },
+          "(lower, upper) of each joint, as joints lists them. unit: rad for "
+          "turning joints, m for sliding ones")
+      .def_property_readonly(
+          "links",
+          [](const RobotModel& model) {
+            std::vector<std::string> names;
+            for (const auto& link : model.links) names.push_back(link.name);
+            return names;
+          },
+          "The links' names.")
+      .def_property_readonly(
+          "spheres", [](const RobotModel& model) { return model.spheres.size(); },
+          "How many spheres the links have in all (a count).")
       .def(
           "set_base",
           [](RobotModel& model, const py::object& position, const py::object& orientation) {

@@ -131,7 +131,8 @@ void bind_scene(py::module_& m) {
       .def(
           "to_dict", [](const Scene& scene) { return from_json_text(tools::scene_to_json(scene)); },
           "The scene as a dict of the scene-file format: edit it, then Scene.from_dict().")
-      .def_readonly("name", &Scene::name)
+      .def_readonly("name", &Scene::name,
+                    "What the scene is called in messages: its file or preset.")
       .def_property(
           "frames", [](const Scene& s) { return s.frames; },
           [](Scene& s, int frames) {
@@ -263,8 +264,8 @@ void bind_scene(py::module_& m) {
                                "A recording's poses: every body at every frame (.sphysrec).")
       .def_readonly("time_step", &tools::Recording::time_step, "between frames. unit: s")
       .def_readonly("metadata", &tools::Recording::metadata, "the scene as JSON text")
-      .def_readonly("body_count", &tools::Recording::body_count)
-      .def_readonly("frame_count", &tools::Recording::frame_count)
+      .def_readonly("body_count", &tools::Recording::body_count, "bodies in every frame")
+      .def_readonly("frame_count", &tools::Recording::frame_count, "frames recorded")
       .def_property_readonly(
           "positions", [](const py::object& self) { return pose_member_view(self, false, 3); },
           "(F, B, 3) float32 read-only view: each body's centre of mass per frame. unit: m")

@@ -188,13 +188,18 @@ void bind_tree(py::module_& m) {
       m, "LevelQuality",
       "How well one level approximates the mesh: distances as fractions of the mesh's "
       "bounding-box diagonal, volumes as multiples of the mesh's volume, all sampled.")
-      .def_readonly("level", &tools::LevelQuality::level)
-      .def_readonly("spheres", &tools::LevelQuality::spheres)
+      .def_readonly("level", &tools::LevelQuality::level, "the level, 0 being the root")
+      .def_readonly("spheres", &tools::LevelQuality::spheres, "spheres in the level (a count)")
       .def_readonly("coverage", &tools::LevelQuality::coverage,
                     "fraction of the surface inside (want 1)")
-      .def_readonly("worst_gap", &tools::LevelQuality::worst_gap)
-      .def_readonly("outside_volume", &tools::LevelQuality::outside_volume)
-      .def_readonly("worst_protrusion", &tools::LevelQuality::worst_protrusion)
+      .def_readonly("worst_gap", &tools::LevelQuality::worst_gap,
+                    "largest distance from an uncovered surface sample to the nearest sphere. "
+                    "unit: the mesh's bounding-box diagonal")
+      .def_readonly("outside_volume", &tools::LevelQuality::outside_volume,
+                    "volume of the spheres' union outside the mesh. unit: the mesh's volume")
+      .def_readonly("worst_protrusion", &tools::LevelQuality::worst_protrusion,
+                    "largest distance from the union's boundary outside the mesh to the mesh. "
+                    "unit: the mesh's bounding-box diagonal")
       .def("__repr__", [](const tools::LevelQuality& q) {
         return "<sphys.LevelQuality level " + std::to_string(q.level) + ", " +
                std::to_string(q.spheres) + " spheres, coverage " + std::to_string(q.coverage) + ">";

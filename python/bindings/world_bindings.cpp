@@ -222,9 +222,11 @@ void bind_world(py::module_& m) {
   py::class_<BodyId>(m, "BodyId",
                      "A body of a world: its slot and the slot's generation (from 1). "
                      "BodyId() is the null id, which names no body: a world refuses it.")
-      .def(py::init<>())
-      .def_readonly("index", &BodyId::index)
-      .def_readonly("generation", &BodyId::generation)
+      .def(py::init<>(), "The null id.")
+      .def_readonly("index", &BodyId::index, "The body's slot in its world's body store.")
+      .def_readonly("generation", &BodyId::generation,
+                    "The slot's generation, from 1 (0: the null id); a removed body's slot "
+                    "takes the next one.")
       .def_property_readonly("is_null", &BodyId::is_null, "True for BodyId(), which names no body.")
       .def("__eq__", [](const BodyId& a, const BodyId& b) { return a == b; })
       .def("__hash__",
@@ -244,7 +246,10 @@ void bind_world(py::module_& m) {
         std::string(figure.name).c_str(),
         [figure](const StepStats& s) { return figure_value(figure, s); }, doc.c_str());
   }
-  step_stats.def_readonly("non_finite_body", &StepStats::non_finite_body)
+  step_stats
+      .def_readonly("non_finite_body", &StepStats::non_finite_body,
+                    "The slot of the first body whose state stopped being finite in this step "
+                    "(the world steps no more), or None.")
       .def("to_dict", &stats_dict, "Every figure by name (the names of sphys/step_stats.h).")
       .def("__repr__", [](const StepStats& s) {
         return "<sphys.StepStats " + std::to_string(s.step_ms) + " ms, " +
@@ -291,7 +296,8 @@ void bind_world(py::module_& m) {
              }
              return SharedWorld{std::make_shared<World>(world_settings)};
            }),
-           py::kw_only(), py::arg("ground_plane") = py::none())
+           py::kw_only(), py::arg("ground_plane") = py::none(),
+           "A world of the given settings (see the class) and ground plane height (m) or None.")
       .def_property_readonly(
           "settings",
           [](const SharedWorld& w) {
@@ -358,21 +364,23 @@ void bind_world(py::module_& m) {
             const Turn::Held turn = take_turn(*w.turn);
             w.world->remove_body(body);
           },
-          py::arg("body"))
+          py::arg("body"),
+          "Removes a body; its id names no body from then on (sphys.Error for a stale id).")
       .def(
           "alive",
           [](const SharedWorld& w, BodyId body) {
             const Turn::Held turn = take_turn(*w.turn);
             return w.world->alive(body);
           },
-          py::arg("body"))
+          py::arg("body"), "Whether the id names a body of the world now.")
       .def(
           "asleep",
           [](const SharedWorld& w, BodyId body) {
             const Turn::Held turn = take_turn(*w.turn);
             return w.world->asleep(body);
           },
-          py::arg("body"))
+          py::arg("body"),
+          "Whether the body sleeps: at rest, not simulated until something touches it.")
       .def(
           "body_ids",
           [](const SharedWorld& w) {

@@ -16,9 +16,12 @@ Everything the command line does, by task (docs/python.md):
   sphys.experiment.table (a pandas DataFrame when pandas is installed)
 * sweeps on Dask: sphys.sweep.sweep (and `python3 -m sphys.sweep`)
 
+sphys.__version__ is the library's version (CHANGES.md), as `sphys --version` says it.
+
 Units are SI throughout: metres, seconds, kilograms, radians. Quaternions are (x, y, z, w).
 Bad input raises sphys.Error (a ValueError) with the command line's message.
 """
 
 from ._sphys import *  # noqa: F401,F403  (the native module's whole API)
 from ._sphys import Error  # noqa: F401  (named, for readers and linters)
+from ._sphys import __version__  # noqa: F401  (include/sphys/version.h; `*` skips it)

@@ -145,6 +145,7 @@ class SweepResult:
     error, summary and final_poses_sha256."""
 
     def __init__(self, runs):
+        """runs: the run dicts, in grid order."""
         self.runs = runs
 
     @property
@@ -297,6 +298,8 @@ def _settings_argument(text):
 
 
 def main(argv=None):
+    """`python3 -m sphys.sweep`: the command line's arguments (argv, else sys.argv's) as sweep()
+    takes them; returns the exit status."""
     parser = argparse.ArgumentParser(
         prog="python3 -m sphys.sweep",
         description="Run a grid of scenes x settings x seeds on Dask distributed; write runs.csv "
