@@ -10,10 +10,11 @@ namespace sphys {
 
 // Largest manifold a body pair may be reduced to (SolverSettings::manifold_points). unit: contacts
 inline constexpr std::uint32_t kMaxManifoldPoints = 8;
-// Most collision passes a step may run (WorldSettings::collision_passes and max_collision_passes),
-// and most solver substeps a collision pass may run (SolverSettings::soft_substeps): a step of
-// 1/60 s cut 64 ways is 0.26 ms, finer than any scene sphys runs needs.
+// Most collision passes a step may run (WorldSettings::collision_passes and max_collision_passes):
+// a step of 1/60 s cut 64 ways is 0.26 ms, finer than any scene sphys runs needs.
 inline constexpr std::uint32_t kMaxCollisionPasses = 64;
+// Most solver substeps a collision pass may run (SolverSettings::soft_substeps), for the same
+// reason.
 inline constexpr std::uint32_t kMaxSoftSubsteps = 64;
 // Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
 inline constexpr std::uint32_t kMaxPaperPasses = 1000;

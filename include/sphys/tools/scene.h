@@ -100,9 +100,11 @@ struct Scene {
   int frames = 880;                        // one step per frame
   ResponseMode response = WorldSettings{}.response;
   int paper_passes = static_cast<int>(WorldSettings{}.paper_passes);
+  // WorldSettings' collision passes per frame, at least and at most, and the travel per pass
+  // that decides between them (unit: bounding radii).
   int collision_passes = static_cast<int>(WorldSettings{}.collision_passes);
-  int max_collision_passes = static_cast<int>(WorldSettings{}.max_collision_passes);
-  float collision_pass_travel = WorldSettings{}.collision_pass_travel;
+  int max_collision_passes = static_cast<int>(WorldSettings{}.max_collision_passes);  // at most
+  float collision_pass_travel = WorldSettings{}.collision_pass_travel;  // unit: bounding radii
   SolverSettings solver;  // plausible mode; solver.contacts is the scene's "contacts"
   SleepSettings sleep;    // plausible mode
   GroundSpec ground;
