@@ -15,7 +15,8 @@ inline constexpr std::uint32_t kMaxManifoldPoints = 8;
 // 1/60 s cut 64 ways is 0.26 ms, finer than any scene sphys runs needs.
 inline constexpr std::uint32_t kMaxCollisionPasses = 64;
 inline constexpr std::uint32_t kMaxSoftSubsteps = 64;
-// Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
+// Most passes over the contacts per collision pass in paper mode (WorldSettings::paper_passes).
+// unit: passes
 inline constexpr std::uint32_t kMaxPaperPasses = 1000;
 // Largest magnitude of each component of gravity (WorldSettings::gravity), about 100 g: beyond
 // any planet's, and small enough that a body falling freely for the longest run a scene may ask
