@@ -16,7 +16,8 @@ inline constexpr std::uint32_t kMaxCollisionPasses = 64;
 // Most solver substeps a collision pass may run (SolverSettings::soft_substeps), for the same
 // reason.
 inline constexpr std::uint32_t kMaxSoftSubsteps = 64;
-// Most passes over the contacts per step in paper mode (WorldSettings::paper_passes). unit: passes
+// Most passes over the contacts per collision pass in paper mode (WorldSettings::paper_passes).
+// unit: passes
 inline constexpr std::uint32_t kMaxPaperPasses = 1000;
 // Largest magnitude of each component of gravity (WorldSettings::gravity), about 100 g: beyond
 // any planet's, and small enough that a body falling freely for the longest run a scene may ask

@@ -29,8 +29,8 @@ enum class ContactSet {
   kReduced,  // a small manifold per body pair (see SolverSettings::manifold_points)
 };
 
-// The plausible mode's solver, the soft step (Box2D v3's; Catto's Solver2D): one collision pass,
-// then substeps that each integrate, solve the contacts once with a spring-damper push out of
+// The plausible mode's solver, the soft step (Box2D v3's; Catto's Solver2D): in each collision
+// pass, substeps that each integrate, solve the contacts once with a spring-damper push out of
 // penetration and relax them once, then restitution. See docs/dynamics.md for what each figure
 // does and why.
 struct SolverSettings {
@@ -41,7 +41,7 @@ struct SolverSettings {
   // rate; contacts with an immovable body are twice as stiff. unit: Hz
   float contact_hertz = 30.0f;
   float contact_damping_ratio = 10.0f;  // unit: dimensionless, 1 is critical damping
-  bool warm_starting = true;            // start from the previous step's impulses
+  bool warm_starting = true;            // start from the previous collision pass's impulses
   // Approach speeds below this get no restitution, so resting contacts do not bounce. unit: m/s
   float restitution_threshold = 1.0f;
   // Penetration left alone, so that resting contacts keep touching. unit: m
@@ -60,14 +60,14 @@ struct SolverSettings {
   // manifold (the detector's, src/collision/collision_detector.h): a few points spread over one
   // mean normal stop a resting pair, not a fast approach of two non-convex bodies. unit: m, >= 0
   float fast_pair_reach = 0.03f;
-  // Contacts are made this far before spheres touch, plus how far each pair can close in a step
-  // (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m
+  // Contacts are made this far before spheres touch, plus how far each pair can close in a
+  // collision pass (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m
   float contact_margin = 0.02f;
   bool speculative_contacts = true;
   // A body pair that moved relative to itself by at most this since its trees last descended
   // keeps its manifold, recomputed at the new poses from the same leaf pairs, instead of
-  // descending and reducing again (the detector's). 0 descends every pair every
-  // substep. Off by default: on a settling pile 2 mm saved 16% of the narrow phase but the wider
+  // descending and reducing again (the detector's). 0 descends every pair every collision
+  // pass. Off by default: on a settling pile 2 mm saved 16% of the narrow phase but the wider
   // descent's extra gap contacts cost the solver more (docs/performance.md). unit: m, >= 0
   float reuse_distance = 0.0f;
   // The instructions of the contacts' passes (World::solver_lanes() names those resolved).

@@ -69,7 +69,7 @@ struct StepStats : DetectionCounters {
   std::uint32_t response_passes = 0;
   // Collision passes in this step (WorldSettings::collision_passes, max_collision_passes).
   std::uint32_t collision_passes = 1;
-  std::uint32_t warm_started = 0;  // contacts whose impulses came from the previous step
+  std::uint32_t warm_started = 0;  // contacts whose impulses came from the previous collision pass
   std::uint32_t bounces = 0;       // contacts given restitution (plausible mode)
   // Groups of touching dynamic bodies (plausible mode), persistent: a group whose bodies parted
   // counts as one until the next step splits it.

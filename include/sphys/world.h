@@ -45,19 +45,21 @@ struct SleepSettings {
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);  // unit: m/s²
   ResponseMode response = ResponseMode::kPlausible;
-  // Paper mode: passes over the contacts at most per step; a step stops early after a pass that
-  // finds no approaching contact. 1 is a single pass. See docs/experiment.md.
+  // Paper mode: passes over the contacts at most per collision pass; the response stops early
+  // after a pass that finds no approaching contact. 1 is a single pass. See docs/experiment.md.
+  // unit: passes
   std::uint32_t paper_passes = 1;
   SolverSettings solver;
   SleepSettings sleep;
   // Collision passes: each step(dt) runs detection and response at least this many times, each
-  // pass over dt / collision_passes (the solver's own substeps are solver.soft_substeps). 1..64
+  // pass over dt / collision_passes (the solver's own substeps are solver.soft_substeps). 1..64;
+  // unit: collision passes
   std::uint32_t collision_passes = 1;
   // Plausible mode: more collision passes in a step where bodies move fast, up to this many, so
   // that no moving body's fastest point (|v| + |ω| · its bounding radius) travels more than
   // `collision_pass_travel` of its bounding radius in one. Speculative contacts see straight
   // motion only; a body spinning through a pile meets contacts they did not foresee. 1..64; at
-  // most `collision_passes` turns it off.
+  // most `collision_passes` turns it off. unit: collision passes
   std::uint32_t max_collision_passes = 8;
   float collision_pass_travel = 0.3f;  // unit: bounding radii per collision pass, > 0
   // What detection uses of the trees, its budgets and the ground plane. Which contacts it makes

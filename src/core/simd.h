@@ -1,7 +1,9 @@
 #pragma once
 
-// Floats in lanes: the few operations the contact solver does W at a time. Four kinds, each with
-// the same operations, so that one template serves them all (dynamics/contact_lanes.h):
+// Floats in lanes: the few operations the SIMD kernels do W at a time (the soft step's contact
+// passes, the robot kinematics, the queries' sphere tests). Four kinds, each with the same
+// operations, so that one template serves them all (dynamics/contact_lane_kernels.h,
+// robot/robot_kinematics_kernel.h):
 // - PortableLanes<W>: plain floats, for any processor, and W = 1 for the colour-less remainder;
 // - Sse2Lanes: 4 lanes of SSE2, x86-64's baseline, always there on x86-64;
 // - Sse2PairLanes: 8 lanes as two SSE2 registers, so that SSE2 solves the blocks AVX2 does;

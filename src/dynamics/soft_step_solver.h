@@ -1,15 +1,16 @@
 #pragma once
 
 // The plausible mode's solver: the soft step (Catto's Solver2D "soft step", as in Box2D v3; Bepu
-// v2's substepping). One collision pass feeds several solver
-// substeps, each of which integrates velocities, warm starts, solves the contacts once with a soft
-// (spring-damper) position bias, integrates positions and relaxes the contacts once without the
-// bias; restitution and the impulses kept for the next step come once at the end. Contact
-// separations follow the bodies' motion within the step, so speculative contacts close their gaps
-// exactly. The contacts are solved as manifolds in SIMD lanes, colour by colour of the constraint
-// graph (contact_lanes.h, constraint_colouring.h). See docs/dynamics.md. The member functions are
-// defined by job: the constraints in soft_step_constraints.cpp, the manifolds' blocks in
-// soft_step_blocks.cpp, the stages and the step in soft_step_solver.cpp.
+// v2's substepping). One collision pass feeds several solver substeps, each of which integrates
+// velocities, warm starts, solves the contacts once with a soft (spring-damper) position bias,
+// integrates positions and relaxes the contacts once without the bias; restitution and the
+// impulses kept for the next collision pass come once at the end. In the dynamics files "the
+// step" is this soft step, one solve() over one collision pass: its start is the pass's start.
+// Contact separations follow the bodies' motion within the step, so speculative contacts close
+// their gaps exactly. The contacts are solved as manifolds in SIMD lanes, colour by colour of the
+// constraint graph (contact_lanes.h, constraint_colouring.h). See docs/dynamics.md. The member
+// functions are defined by job: the constraints in soft_step_constraints.cpp, the manifolds' blocks
+// in soft_step_blocks.cpp, the stages and the step in soft_step_solver.cpp.
 
 #include <array>
 #include <atomic>
@@ -35,11 +36,11 @@ namespace sphys {
 
 class SoftStepSolver {
  public:
-  // Advances the store's awake bodies by the context's step, under gravity and the contacts:
-  // their velocities and poses on return are those at the end of the step. The other bodies count
-  // as static. `materials[k]` is contact k's material; `memory[k]` is its warm start on entry and
-  // what it leaves for the next step on return. The colours' blocks are solved on the context's
-  // threads, and the result does not depend on how many there are.
+  // Advances the store's awake bodies through the context's collision pass, under gravity and the
+  // contacts: their velocities and poses on return are those at the end of the pass. The other
+  // bodies count as static. `materials[k]` is contact k's material; `memory[k]` is its warm start
+  // on entry and what it leaves for the next pass on return. The colours' blocks are solved on the
+  // context's threads, and the result does not depend on how many there are.
   SoftStepStats solve(BodyStore& bodies, std::span<const Contact> contacts,
                       std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
                       const SoftStepContext& context);
