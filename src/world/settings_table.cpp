@@ -112,9 +112,10 @@ const auto kTable = std::to_array<Setting>({
         .kind = SettingKind::kInteger,
         .unit = "passes",
         .range = between(1, kMaxPaperPasses),
-        .doc = "Paper mode: passes over the contacts per step at most; a step stops after a pass "
-               "that finds no approaching contact. 1 gives every contact at most one impulse, as "
-               "published.",
+        .doc =
+            "Paper mode: passes over the contacts per collision pass at most; the response stops "
+            "after a pass that finds no approaching contact. 1 gives every contact at most one "
+            "impulse, as published.",
     }),
     scalar<Nested<&W::solver, &S::contacts>>({
         .key = "contacts",
@@ -184,7 +185,7 @@ const auto kTable = std::to_array<Setting>({
         .key = "warm_starting",
         .field = "solver.warm_starting",
         .kind = SettingKind::kBool,
-        .doc = "Start from the previous step's impulses.",
+        .doc = "Start from the previous collision pass's impulses.",
     }),
     scalar<Nested<&W::solver, &S::restitution_threshold>>({
         .object = "solver",
@@ -242,8 +243,8 @@ const auto kTable = std::to_array<Setting>({
         .key = "speculative_contacts",
         .field = "solver.speculative_contacts",
         .kind = SettingKind::kBool,
-        .doc = "Widen the margin by how far each pair can close in a step, so that fast bodies "
-               "neither tunnel nor sink in.",
+        .doc = "Widen the margin by how far each pair can close in a collision pass, so that fast "
+               "bodies neither tunnel nor sink in.",
     }),
     scalar<Nested<&W::solver, &S::fast_pair_reach>>({
         .object = "solver",

@@ -26,7 +26,7 @@ struct RunTotals {
   double step = 0;
   double contacts = 0;  // summed over the frames
   std::uint32_t max_contacts = 0;
-  double collision_passes = 0;  // summed over the frames
+  double collision_passes = 0;             // summed over the frames
   std::uint32_t max_collision_passes = 0;  // in one frame
   PlausibilityMeter plausibility;
   // The lowest centre of mass of the scene's bodies over the frames. unit: m
