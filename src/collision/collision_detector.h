@@ -15,6 +15,7 @@
 
 #include "collision/cell_sweep_and_prune.h"
 #include "collision/pair_cache.h"
+#include "collision/pair_kind.h"
 #include "collision/sweep_and_prune.h"
 #include "collision/tree_descent.h"
 #include "sphys/body_store.h"
@@ -42,7 +43,7 @@ struct DetectorSettings : CollisionSettings {
   std::uint32_t manifold_points = 0;
   // With reduced contacts, a body pair whose speculative reach (how far its bodies can close in
   // the coming step, from set_motion(); the pair's gap less the contact margin) exceeds this, and
-  // is no more than the smaller body's extent (narrow_phase.cpp says why), is reduced by parts
+  // is no more than the smaller body's extent (pair_kind.cpp says why), is reduced by parts
   // instead (ContactReducer::reduce_by_parts): a small manifold per pair of parts that meet, each
   // part a first-level node of its tree with the leaves below it. Two non-convex bodies closing
   // fast meet at several places at angles one manifold does not follow (docs/dynamics.md). A body
@@ -59,6 +60,9 @@ struct DetectorSettings : CollisionSettings {
   bool measure_penetration = false;
   // Fixed when the detector is made (set_settings() keeps it).
   BroadPhaseKind broad_phase = BroadPhaseKind::kSweepAndPrune;
+
+  // Whether a time-critical budget is on (max_sphere_tests, max_microseconds).
+  [[nodiscard]] bool has_budget() const { return max_sphere_tests > 0 || max_microseconds > 0.0; }
 };
 
 // Figures of one detect() call.
@@ -176,10 +180,8 @@ class CollisionDetector final : public SlotArrays {
     bool plane = false;  // the record is a body's against the ground plane
     std::uint32_t leaves_begin = 0;
     std::uint32_t leaves_end = 0;
-    bool reused = false;               // the leaves are the record's kept contacts at the new poses
-    bool crowd = false;                // two crowded bodies: their roots' contact
-    bool fast = false;                 // two bodies that can close by more than fast_pair_reach
-    std::uint32_t contacts_begin = 0;  // its contacts in the chunk's output
+    PairKind kind = PairKind::kManifold;  // decided by pair_kind() in the narrow phase
+    std::uint32_t contacts_begin = 0;     // its contacts in the chunk's output
   };
 
   // The narrow phase's work on a run of jobs (collision/narrow_chunk.h).
@@ -199,20 +201,20 @@ class CollisionDetector final : public SlotArrays {
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
-  // Whether a time-critical budget is on.
-  [[nodiscard]] bool budget() const {
-    return settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
-  }
+  [[nodiscard]] float descent_gap(float margin) const;
   // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();
   void narrow_phase(NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
   void pair_leaves(const Job& job, NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
-  [[nodiscard]] bool reuse(PairRecord& record, const Transform& relative, float margin,
-                           float extent_b, std::uint32_t body_a, std::uint32_t body_b,
-                           NarrowChunk& chunk);
+  void kept_leaves(const PairRecord& record, std::uint32_t body_a, std::uint32_t body_b,
+                   NarrowChunk& chunk) const;
+  void descend(std::uint32_t body_a, std::uint32_t body_b, int depth, float looked,
+               NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
   void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
   void make_contacts(NarrowChunk& chunk) const;
+  void reused_contacts(const PairRecord& record, const Quat& rotation_a, NarrowChunk& chunk) const;
+  void reduce_by_parts(const PairRecord& record, NarrowChunk& chunk) const;
   void place_contacts(NarrowChunk& chunk);
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
                                                float margin) const;

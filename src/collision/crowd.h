@@ -1,14 +1,17 @@
 #pragma once
 
 // Crowds (docs/collision.md, "Crowds"; CollisionSettings::crowd_pairs_per_body): who is crowded,
-// and which of a crowd's pairs the broad phases list. The broad phases (sweep_and_prune.cpp,
-// cell_sweep_and_prune.cpp) call it.
+// which of a crowd's pairs the broad phases list, and how the narrow phase serves a pair of two
+// crowded bodies. The broad phases (sweep_and_prune.cpp, cell_sweep_and_prune.cpp) and the
+// narrow phase (narrow_phase.cpp, through PairKind::kCrowded) call it.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "collision/broad_phase.h"
+#include "sphys/sphere_tree.h"
 
 namespace sphys {
 
@@ -110,6 +113,20 @@ class CellCrowds {
   std::vector<std::uint8_t> crowded_;  // per proxy id; empty without a crowd
   std::uint64_t pairs_deferred_ = 0;
 };
+
+// How the narrow phase serves a pair of two crowded bodies (PairKind::kCrowded): one contact from
+// their trees' roots, never reused (a crowd has pairs by the square of its bodies, each of whose
+// descents would overlap at every level), its depth capped by crowd_contact_depth().
+inline constexpr int kCrowdTreeDepth = 1;  // unit: levels, the root's alone
+
+// The soft step pushes a pair apart the faster the deeper it overlaps, and a crowd's pushes add
+// up from body to body: at the full depth of bodies spawned on each other, a crowd bursts at
+// several m/s. Capped at kCrowdDepth of the smaller root's radius, it parts as a pile of bodies
+// overlapping a little. unit: m
+inline float crowd_contact_depth(float depth, const Sphere& root_a, const Sphere& root_b) {
+  constexpr float kCrowdDepth = 0.5f;  // unit: dimensionless
+  return std::min(depth, kCrowdDepth * std::min(root_a.radius, root_b.radius));
+}
 
 template <class Boxes>
 void Crowd::list(const Boxes& boxes, std::vector<std::uint64_t>& listed) {
