@@ -4,10 +4,6 @@
 
 namespace sphys {
 
-std::uint64_t Crowd::crowd_pairs(double share, std::size_t boxes) const {
-  return static_cast<std::uint64_t>(share * 0.5 * limit_ * static_cast<double>(boxes));
-}
-
 std::size_t Crowd::nearest_kept() const { return std::max<std::size_t>(1, limit_ / 2); }
 
 void Crowd::begin_nearest(std::size_t ids, std::vector<std::uint64_t>& listed) {

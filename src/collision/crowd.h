@@ -61,7 +61,9 @@ class Crowd {
   };
 
   // The pair count past which `boxes` boxes are a crowd: L n / 2, times `share`.
-  [[nodiscard]] std::uint64_t crowd_pairs(double share, std::size_t boxes) const;
+  [[nodiscard]] std::uint64_t crowd_pairs(double share, std::size_t boxes) const {
+    return static_cast<std::uint64_t>(share * 0.5 * limit_ * static_cast<double>(boxes));
+  }
   // The crowded boxes whose pairs a crowd's sweep chooses among: dynamic boxes that overlapped
   // more than L others at the last sweep.
   template <class Boxes>

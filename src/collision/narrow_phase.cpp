@@ -89,33 +89,9 @@ void CollisionDetector::kept_leaves(const PairRecord& record, std::uint32_t body
   ++chunk.counters.reused_pairs;
 }
 
-// The leaf pairs of two bodies' trees used to `depth` levels within the gap `looked`.
-void CollisionDetector::descend(std::uint32_t ia, std::uint32_t ib, int depth, float looked,
-                                NarrowChunk& chunk, StepClock::time_point start) {
-  const Body& a = bodies_[ia];
-  const Body& b = bodies_[ib];
-  chunk.node_pairs.clear();
-  // The clock is read only for a time budget: a read per pair cost 1.7% of a step at 1,000
-  // bunnies.
-  const double spent = settings_.max_microseconds > 0.0 ? 1e3 * elapsed_ms(start) : 0.0;
-  DescentSettings settings = descent_budget(spent, chunk.counters.sphere_tests, looked);
-  settings.depth_a = depth;
-  settings.depth_b = depth;
-  const DescentStats descent =
-      chunk.descent.descend(*a.tree, pose_of(ia), *b.tree, pose_of(ib), settings, chunk.node_pairs);
-  chunk.counters.sphere_tests += descent.sphere_tests;
-  chunk.counters.leaf_pairs += descent.leaf_pairs;
-  chunk.counters.pairs_cut_short += descent.cut_short_pairs;
-  for (const NodePair& nodes : chunk.node_pairs) {
-    chunk.leaves.push_back({ia, ib, nodes.node_a, nodes.node_b,
-                            chunk.descent.world_sphere_a(*a.tree, nodes.node_a),
-                            chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
-  }
-  ++chunk.counters.descended_pairs;
-}
-
 // The leaf spheres of one job within its pair's gap, as its kind says: the record's kept leaf
-// pairs, or a descent (the ground plane's, or the trees', to the roots alone for a crowd).
+// pairs, or a descent (the ground plane's, or the trees', to the roots alone for a crowd). The
+// descent is written here, at its one call, where the compiler keeps it inline.
 void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
                                     StepClock::time_point start) {
   PairLeaves pair;
@@ -149,8 +125,12 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
     pair.record = &record;
     const std::uint32_t ia = body_of_proxy_[record.proxies.a];
     const std::uint32_t ib = body_of_proxy_[record.proxies.b];
-    const float margin = pair_margin(bodies_[ia], bodies_[ib]);
-    const Transform relative = relative_pose(pose_of(ia), pose_of(ib));
+    const Body& a = bodies_[ia];
+    const Body& b = bodies_[ib];
+    const float margin = pair_margin(a, b);
+    const Transform& pose_a = pose_of(ia);
+    const Transform& pose_b = pose_of(ib);
+    const Transform relative = relative_pose(pose_a, pose_b);
     pair.kind = pair_kind({.record = &record,
                            .relative = &relative,
                            .margin = margin,
@@ -158,23 +138,32 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
                            .smaller_extent = std::min(extents[ia], extents[ib]),
                            .crowded = crowded(ia) && crowded(ib)},
                           settings_);
-    const float looked = descent_gap(margin);
-    switch (pair.kind) {
-      case PairKind::kReused:
-        kept_leaves(record, ia, ib, chunk);
-        break;
-      case PairKind::kCrowded:
-        descend(ia, ib, kCrowdTreeDepth, looked, chunk, start);
-        record.relative = relative;
-        record.descent_margin = -1.0f;  // roots' contacts are not to be reused
-        break;
-      case PairKind::kPaper:
-      case PairKind::kFastByParts:
-      case PairKind::kManifold:
-        descend(ia, ib, settings_.tree_depth, looked, chunk, start);
-        record.relative = relative;
-        record.descent_margin = looked;
-        break;
+    if (pair.kind == PairKind::kReused) {
+      kept_leaves(record, ia, ib, chunk);
+    } else {
+      // A crowd's pair descends to its roots alone (crowd.h), and their contact is not reused.
+      const bool crowd = pair.kind == PairKind::kCrowded;
+      const float looked = descent_gap(margin);
+      chunk.node_pairs.clear();
+      // The clock is read only for a time budget: a read per pair cost 1.7% of a step at 1,000
+      // bunnies.
+      const double spent = settings_.max_microseconds > 0.0 ? 1e3 * elapsed_ms(start) : 0.0;
+      DescentSettings settings = descent_budget(spent, chunk.counters.sphere_tests, looked);
+      settings.depth_a = crowd ? kCrowdTreeDepth : settings_.tree_depth;
+      settings.depth_b = settings.depth_a;
+      const DescentStats descent =
+          chunk.descent.descend(*a.tree, pose_a, *b.tree, pose_b, settings, chunk.node_pairs);
+      chunk.counters.sphere_tests += descent.sphere_tests;
+      chunk.counters.leaf_pairs += descent.leaf_pairs;
+      chunk.counters.pairs_cut_short += descent.cut_short_pairs;
+      for (const NodePair& nodes : chunk.node_pairs) {
+        chunk.leaves.push_back({ia, ib, nodes.node_a, nodes.node_b,
+                                chunk.descent.world_sphere_a(*a.tree, nodes.node_a),
+                                chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
+      }
+      record.relative = relative;
+      record.descent_margin = crowd ? -1.0f : looked;
+      ++chunk.counters.descended_pairs;
     }
     record.done = true;
   }
@@ -259,14 +248,22 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
           chunk.run[i].depth =
               crowd_contact_depth(chunk.run[i].depth, roots.sphere_a, roots.sphere_b);
         }
-        chunk.contacts.insert(chunk.contacts.end(), chunk.run.begin(), chunk.run.end());
-        break;
+        [[fallthrough]];  // its one contact, capped, goes as the paper's do
       case PairKind::kPaper:
         chunk.contacts.insert(chunk.contacts.end(), chunk.run.begin(), chunk.run.end());
         break;
-      case PairKind::kFastByParts:
-        reduce_by_parts(*pair.record, chunk);
+      case PairKind::kFastByParts: {
+        const SphereTree& tree_a = *bodies_[first.body_a].tree;
+        const SphereTree& tree_b = *bodies_[first.body_b].tree;
+        chunk.parts.clear();
+        for (const Contact& contact : chunk.run) {
+          chunk.parts.push_back(std::uint64_t{part_of(tree_a, contact.leaf_a)} << 32 |
+                                part_of(tree_b, contact.leaf_b));
+        }
+        chunk.reducer.reduce_by_parts(chunk.run, chunk.parts, cache_.last_contacts(*pair.record),
+                                      chunk.contacts);
         break;
+      }
       case PairKind::kManifold:
         chunk.reducer.reduce(chunk.run, settings_.manifold_points,
                              cache_.last_contacts(*pair.record), chunk.contacts);
@@ -298,20 +295,6 @@ void CollisionDetector::reused_contacts(const PairRecord& record, const Quat& ro
     chunk.contacts.push_back(contact);
     chunk.shapes.push_back(shape);
   }
-}
-
-// A fast pair's contacts reduced per pair of parts (first-level nodes) that meet.
-void CollisionDetector::reduce_by_parts(const PairRecord& record, NarrowChunk& chunk) const {
-  const Contact& any = chunk.run.front();
-  const SphereTree& tree_a = *bodies_[any.body_a].tree;
-  const SphereTree& tree_b = *bodies_[any.body_b].tree;
-  chunk.parts.clear();
-  for (const Contact& contact : chunk.run) {
-    chunk.parts.push_back(std::uint64_t{part_of(tree_a, contact.leaf_a)} << 32 |
-                          part_of(tree_b, contact.leaf_b));
-  }
-  chunk.reducer.reduce_by_parts(chunk.run, chunk.parts, cache_.last_contacts(record),
-                                chunk.contacts);
 }
 
 }  // namespace sphys
