@@ -70,10 +70,6 @@ class Crowd {
   void mark_choosing(const Boxes& boxes);
   [[nodiscard]] std::size_t nearest_kept() const;
   void begin_nearest(std::size_t ids, std::vector<std::uint64_t>& listed);
-  // A pair found by a crowd's sweep: listed if a box of it is not among the choosing boxes, else
-  // offered to each box's nearest partners.
-  template <class Boxes>
-  void choose(std::uint64_t key, const Boxes& boxes, std::vector<std::uint64_t>& listed);
   void offer_nearest(ProxyId id, const Partner& partner);
   // Every crowded box's nearest partners into `listed`, sorted and each once.
   void list_nearest(std::uint64_t overlapping, std::vector<std::uint64_t>& listed);
@@ -142,21 +138,32 @@ void Crowd::list(const Boxes& boxes, std::vector<std::uint64_t>& listed) {
   overlaps_.assign(boxes.ids(), 0);
   const std::uint64_t limit = crowd_pairs(was_crowded ? 0.5 : 1.0, boxes.live());
   std::uint64_t overlapping = 0;
-  const auto count = [&](std::uint64_t key) {
+  const auto count = [&](const ProxyPair& pair) {
     ++overlapping;
-    const ProxyPair pair = pair_of(key);
     ++overlaps_[pair.a];
     ++overlaps_[pair.b];
+  };
+  // A pair is listed if a box of it is not among the choosing boxes, else offered to each box's
+  // nearest partners.
+  const auto choose = [&](std::uint64_t key, const ProxyPair& pair) {
+    if (choosing_[pair.a] != 0 && choosing_[pair.b] != 0) {
+      const float distance2 = boxes.distance2(pair.a, pair.b);
+      offer_nearest(pair.a, {distance2, pair.b});
+      offer_nearest(pair.b, {distance2, pair.a});
+    } else {
+      listed.push_back(key);
+    }
   };
   if (was_crowded) {
     begin_nearest(boxes.ids(), listed);
     boxes.sweep([&](std::uint64_t key) {
-      count(key);
-      choose(key, boxes, listed);
+      const ProxyPair pair = pair_of(key);
+      count(pair);
+      choose(key, pair);
     });
   } else {
     boxes.sweep([&](std::uint64_t key) {
-      count(key);
+      count(pair_of(key));
       if (listed.size() <= limit) listed.push_back(key);
     });
   }
@@ -164,7 +171,7 @@ void Crowd::list(const Boxes& boxes, std::vector<std::uint64_t>& listed) {
   if (crowded_ && !was_crowded) {
     mark_choosing(boxes);
     begin_nearest(boxes.ids(), listed);
-    boxes.sweep([&](std::uint64_t key) { choose(key, boxes, listed); });
+    boxes.sweep([&](std::uint64_t key) { choose(key, pair_of(key)); });
   } else if (!crowded_ && was_crowded) {
     listed.clear();
     boxes.sweep([&](std::uint64_t key) { listed.push_back(key); });
@@ -178,18 +185,6 @@ void Crowd::mark_choosing(const Boxes& boxes) {
   for (ProxyId id = 0; id < overlaps_.size(); ++id) {
     choosing_[id] = overlaps_[id] > limit_ && !boxes.is_static(id) ? 1 : 0;
   }
-}
-
-template <class Boxes>
-void Crowd::choose(std::uint64_t key, const Boxes& boxes, std::vector<std::uint64_t>& listed) {
-  const ProxyPair pair = pair_of(key);
-  if (choosing_[pair.a] == 0 || choosing_[pair.b] == 0) {
-    listed.push_back(key);
-    return;
-  }
-  const float distance2 = boxes.distance2(pair.a, pair.b);
-  offer_nearest(pair.a, {distance2, pair.b});
-  offer_nearest(pair.b, {distance2, pair.a});
 }
 
 template <class ProxyOf>
