@@ -281,17 +281,14 @@ void CellSweepAndPrune::set_crowd_limit(std::uint32_t pairs_per_box) {
 
 // The boxes crowded in some cell, and the pairs the cells left out.
 void CellSweepAndPrune::mark_crowded() {
-  pairs_deferred_ = 0;
-  crowded_.clear();
+  crowds_.clear();
   if (crowd_limit_ == 0) return;
   for (const Cell& cell : cells_) {
-    if (!cell.sweep.has_crowd()) continue;
-    if (crowded_.empty()) crowded_.assign(proxies_.size(), 0);
-    pairs_deferred_ += cell.sweep.pairs_deferred();
-    for (ProxyId local = 0; local < cell.proxy_of_local.size(); ++local) {
-      const ProxyId id = cell.proxy_of_local[local];
-      if ((id & kLeftBit) == 0 && cell.sweep.crowded(local)) crowded_[id] = 1;
-    }
+    crowds_.add_cell(cell.sweep.crowd(), proxies_.size(), cell.proxy_of_local.size(),
+                     [&](ProxyId local) {
+                       const ProxyId id = cell.proxy_of_local[local];
+                       return (id & kLeftBit) == 0 ? id : CellCrowds::kNoProxy;
+                     });
   }
 }
 

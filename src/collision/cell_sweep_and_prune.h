@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision/broad_phase.h"
+#include "collision/crowd.h"
 #include "collision/sweep_and_prune.h"
 #include "sphys/math.h"
 #include "sphys/parallel.h"
@@ -58,13 +59,12 @@ class CellSweepAndPrune {
   [[nodiscard]] std::uint64_t swaps_last_update() const { return swaps_last_update_; }
   // The edge of a cell in use (unit: m); 0 until chosen.
   [[nodiscard]] float cell_size() const { return cell_size_; }
-  // Crowds, as SweepAndPrune's, judged in each cell by its own boxes: a box is crowded in the
-  // update() if it is in some cell. pairs_deferred() sums the cells' (a pair left out in one cell
-  // may be listed through another).
+  // Crowds, as SweepAndPrune's, judged in each cell by its own boxes (collision/crowd.h,
+  // CellCrowds).
   void set_crowd_limit(std::uint32_t pairs_per_box);
-  [[nodiscard]] bool crowded(ProxyId id) const { return id < crowded_.size() && crowded_[id] != 0; }
-  [[nodiscard]] bool has_crowd() const { return !crowded_.empty(); }
-  [[nodiscard]] std::uint64_t pairs_deferred() const { return pairs_deferred_; }
+  [[nodiscard]] bool crowded(ProxyId id) const { return crowds_.crowded(id); }
+  [[nodiscard]] bool has_crowd() const { return crowds_.found(); }
+  [[nodiscard]] std::uint64_t pairs_deferred() const { return crowds_.pairs_deferred(); }
   // Cells holding boxes after the last update().
   [[nodiscard]] std::size_t cell_count() const { return cell_of_key_.size() - empty_cells_; }
 
@@ -140,9 +140,8 @@ class CellSweepAndPrune {
   std::unordered_map<ProxyId, std::vector<ProxyId>> wide_partners_;
   std::vector<ProxyId> wide_now_;  // update_wide()'s working list
 
-  std::uint32_t crowd_limit_ = 0;      // unit: overlapping boxes per box; 0: no limit
-  std::vector<std::uint8_t> crowded_;  // per proxy id, as of the last update()
-  std::uint64_t pairs_deferred_ = 0;
+  std::uint32_t crowd_limit_ = 0;       // unit: overlapping boxes per box; 0: no limit
+  CellCrowds crowds_;                   // as of the last update()
   PairCounts counts_;                   // per pair: the cells (and wide tests) in which it overlaps
   std::vector<std::uint64_t> touched_;  // pair keys whose count changed in this update()
   std::vector<ProxyPair> pairs_;

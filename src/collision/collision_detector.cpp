@@ -220,7 +220,7 @@ void CollisionDetector::plan_chunks() {
   chunks_.clear();
   std::size_t pair_used = 0;
   std::size_t plane_used = 0;
-  const bool one_run = budget();
+  const bool one_run = settings_.has_budget();
   for (std::size_t begin = 0; begin < jobs_.size();) {
     const bool plane = jobs_[begin].plane;
     const std::size_t length = plane ? kBodiesPerChunk : (one_run ? jobs_.size() : kPairsPerChunk);
@@ -256,7 +256,7 @@ void CollisionDetector::run_jobs(std::size_t base) {
   };
 
   const StepClock::time_point narrow_start = StepClock::now();
-  if (budget()) {
+  if (settings_.has_budget()) {
     for (std::size_t c = 0; c < chunks_.size(); ++c) narrow_phase(*chunks_[c], narrow_start);
   } else {
     for_each_chunk([&](NarrowChunk& chunk) { narrow_phase(chunk, narrow_start); });

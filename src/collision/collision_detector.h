@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -14,52 +13,19 @@
 #include <vector>
 
 #include "collision/cell_sweep_and_prune.h"
+#include "collision/detector_settings.h"
 #include "collision/pair_cache.h"
+#include "collision/pair_kind.h"
 #include "collision/sweep_and_prune.h"
 #include "collision/tree_descent.h"
 #include "sphys/body_store.h"
 #include "sphys/collision_settings.h"
 #include "sphys/contact.h"
 #include "sphys/parallel.h"
-#include "sphys/setting_limits.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/step_stats.h"
 
 namespace sphys {
-
-// The detector's settings: the world's collision settings and what the world derives from its
-// solver settings and response mode (World's detector_settings(), world.cpp, the one place).
-struct DetectorSettings : CollisionSettings {
-  // Leaf spheres apart by up to this gap make contacts too, with negative depth, so that a
-  // response can stop bodies before they touch. unit: m
-  float contact_margin = 0.0f;
-  // Speculative contacts: the gap allowed for a pair grows by how far the two can close in the
-  // coming step, from the motions given by set_motion() (swept sphere bounds).
-  bool speculative = false;
-  // Contacts per body pair: 0 keeps one per overlapping leaf pair (the paper's); 1 to
-  // kMaxManifoldPoints reduces each pair's to a manifold of at most that many (contact reduction,
-  // docs/dynamics.md), persistent from one narrow phase to the next through the pair's record.
-  std::uint32_t manifold_points = 0;
-  // With reduced contacts, a body pair whose speculative reach (how far its bodies can close in
-  // the coming step, from set_motion(); the pair's gap less the contact margin) exceeds this, and
-  // is no more than the smaller body's extent (narrow_phase.cpp says why), is reduced by parts
-  // instead (ContactReducer::reduce_by_parts): a small manifold per pair of parts that meet, each
-  // part a first-level node of its tree with the leaves below it. Two non-convex bodies closing
-  // fast meet at several places at angles one manifold does not follow (docs/dynamics.md). A body
-  // and the ground plane keep their manifold: the plane's contacts share its one normal. unit: m
-  float fast_pair_reach = std::numeric_limits<float>::infinity();
-  // A pair whose bodies moved relative to each other by at most this since its last descent keeps
-  // its contacts, recomputed from the same leaf pairs at the new poses, instead of descending and
-  // reducing again. The descent looks this much beyond the pair's gap, so no leaf pair it left out
-  // can come within the gap meanwhile. 0 descends every pair every time; with a time-critical
-  // budget every pair descends. unit: m, >= 0
-  float reuse_distance = 0.0f;
-  // The deepest and mean penetration of the leaf pairs in CollisionStats: a pass over every leaf
-  // pair, so only on request.
-  bool measure_penetration = false;
-  // Fixed when the detector is made (set_settings() keeps it).
-  BroadPhaseKind broad_phase = BroadPhaseKind::kSweepAndPrune;
-};
 
 // Figures of one detect() call.
 struct CollisionStats : DetectionCounters {
@@ -176,10 +142,8 @@ class CollisionDetector final : public SlotArrays {
     bool plane = false;  // the record is a body's against the ground plane
     std::uint32_t leaves_begin = 0;
     std::uint32_t leaves_end = 0;
-    bool reused = false;               // the leaves are the record's kept contacts at the new poses
-    bool crowd = false;                // two crowded bodies: their roots' contact
-    bool fast = false;                 // two bodies that can close by more than fast_pair_reach
-    std::uint32_t contacts_begin = 0;  // its contacts in the chunk's output
+    PairKind kind = PairKind::kManifold;  // decided by pair_kind() in the narrow phase
+    std::uint32_t contacts_begin = 0;     // its contacts in the chunk's output
   };
 
   // The narrow phase's work on a run of jobs (collision/narrow_chunk.h).
@@ -199,20 +163,17 @@ class CollisionDetector final : public SlotArrays {
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
-  // Whether a time-critical budget is on.
-  [[nodiscard]] bool budget() const {
-    return settings_.max_sphere_tests > 0 || settings_.max_microseconds > 0.0;
-  }
+  [[nodiscard]] float descent_gap(float margin) const;
   // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();
   void narrow_phase(NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
   void pair_leaves(const Job& job, NarrowChunk& chunk, std::chrono::steady_clock::time_point start);
-  [[nodiscard]] bool reuse(PairRecord& record, const Transform& relative, float margin,
-                           float extent_b, std::uint32_t body_a, std::uint32_t body_b,
-                           NarrowChunk& chunk);
+  void kept_leaves(const PairRecord& record, std::uint32_t body_a, std::uint32_t body_b,
+                   NarrowChunk& chunk) const;
   void ground_plane_leaves(std::uint32_t body, float reach_down, NarrowChunk& chunk) const;
   void make_contacts(NarrowChunk& chunk) const;
+  void reused_contacts(const PairRecord& record, const Quat& rotation_a, NarrowChunk& chunk) const;
   void place_contacts(NarrowChunk& chunk);
   [[nodiscard]] DescentSettings descent_budget(double spent_microseconds, std::uint64_t spent_tests,
                                                float margin) const;

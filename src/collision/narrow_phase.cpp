@@ -5,10 +5,11 @@
 // contacts.
 
 #include <algorithm>
-#include <cmath>
 
 #include "collision/collision_detector.h"
+#include "collision/crowd.h"
 #include "collision/narrow_chunk.h"
+#include "collision/pair_kind.h"
 #include "core/stopwatch.h"
 
 namespace sphys {
@@ -20,24 +21,12 @@ Transform relative_pose(const Transform& a, const Transform& b) {
   return {inverse * b.rotation, inverse * (b.translation - a.translation)};
 }
 
-// How far any point of a body within `extent` of its origin can have moved between two of its
-// poses (relative ones here): the origin's move plus the turn's reach. unit: m
-float pose_change(const Transform& from, const Transform& to, float extent) {
-  Quat turn = from.rotation.conjugate() * to.rotation;
-  const float angle = 2.0f * std::atan2(turn.vec().norm(), std::abs(turn.w()));
-  return (to.translation - from.translation).norm() + angle * extent;
-}
-
 // The part of a tree a node lies in: its first-level ancestor (the root for the root). A node's
 // parent has a smaller index, so the walk ends within the tree's depth.
 std::uint32_t part_of(const SphereTree& tree, std::uint32_t node) {
   while (tree.parent(node) > 0) node = static_cast<std::uint32_t>(tree.parent(node));
   return node;
 }
-
-// The deepest a crowd's root contact reports, as a share of the smaller root's radius (see
-// make_contacts()). unit: dimensionless
-constexpr float kCrowdDepth = 0.5f;
 
 }  // namespace
 
@@ -54,14 +43,18 @@ float CollisionDetector::plane_margin(const Body& body) const {
   return settings_.contact_margin + std::max(-body.displacement.y(), 0.0f) + body.turn_reach;
 }
 
+// The gap a descent looks up to: the pair's, and beyond it by the reuse distance, so that the next
+// narrow phases may reuse its leaf pairs (no pair is reused under a time-critical budget). unit: m
+float CollisionDetector::descent_gap(float margin) const {
+  return margin + (settings_.has_budget() ? 0.0f : settings_.reuse_distance);
+}
+
 // What is left of the time-critical budgets after `spent_microseconds` and `spent_tests` sphere
-// tests in this call.
+// tests in this call, for a descent within the gap `margin`.
 DescentSettings CollisionDetector::descent_budget(double spent_microseconds,
                                                   std::uint64_t spent_tests, float margin) const {
   DescentSettings descent;
   descent.margin = margin;
-  descent.depth_a = settings_.tree_depth;
-  descent.depth_b = settings_.tree_depth;
   // A budget that is on never reaches 0 (which would mean "off"): a pair met after the budget
   // is spent is resolved at its roots.
   if (settings_.max_sphere_tests > 0) {
@@ -78,16 +71,9 @@ void CollisionDetector::narrow_phase(NarrowChunk& chunk, StepClock::time_point s
   for (std::size_t j = chunk.begin; j < chunk.end; ++j) pair_leaves(jobs_[j], chunk, start);
 }
 
-// A pair whose bodies barely moved relative to each other since its last descent, within the gap
-// that descent looked up to, keeps its leaf pairs: they are placed at the new poses.
-bool CollisionDetector::reuse(PairRecord& record, const Transform& relative, float margin,
-                              float extent_b, std::uint32_t body_a, std::uint32_t body_b,
-                              NarrowChunk& chunk) {
-  if (settings_.reuse_distance <= 0.0f || budget() || record.descent_margin < 0.0f) return false;
-  const float moved = pose_change(record.relative, relative, extent_b);
-  if (!(moved <= settings_.reuse_distance && margin + moved <= record.descent_margin)) {
-    return false;
-  }
+// A reused pair's leaf pairs: the record's contacts' leaves, placed at the new poses.
+void CollisionDetector::kept_leaves(const PairRecord& record, std::uint32_t body_a,
+                                    std::uint32_t body_b, NarrowChunk& chunk) const {
   const Body& b = bodies_[body_b];
   for (std::uint32_t i = record.first; i < record.first + record.count; ++i) {
     const Contact& old = cache_.previous_contacts()[i];
@@ -101,15 +87,17 @@ bool CollisionDetector::reuse(PairRecord& record, const Transform& relative, flo
     chunk.leaves.push_back(leaves);
   }
   ++chunk.counters.reused_pairs;
-  return true;
 }
 
-// The leaf spheres of one job within its pair's gap: reused from its record, or from a descent.
+// The leaf spheres of one job within its pair's gap, as its kind says: the record's kept leaf
+// pairs, or a descent (the ground plane's, or the trees', to the roots alone for a crowd). The
+// descent is written here, at its one call, where the compiler keeps it inline.
 void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
                                     StepClock::time_point start) {
   PairLeaves pair;
   pair.plane = job.plane;
   pair.leaves_begin = static_cast<std::uint32_t>(chunk.leaves.size());
+  const std::span<const float> extents = store_->extents();
   if (job.plane) {
     Body& body = bodies_[job.index];
     body.ground_done = true;
@@ -117,10 +105,16 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
     PairRecord& record = cache_.ground_record(job.index);
     pair.record = &record;
     const float margin = plane_margin(body);
-    pair.reused = reuse(record, pose, margin, store_->extents()[job.index], kGroundPlaneBody,
-                        job.index, chunk);
-    if (!pair.reused) {
-      const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
+    pair.kind = pair_kind({.record = &record,
+                           .relative = &pose,
+                           .margin = margin,
+                           .extent_b = extents[job.index],
+                           .plane = true},
+                          settings_);
+    if (pair.kind == PairKind::kReused) {
+      kept_leaves(record, kGroundPlaneBody, job.index, chunk);
+    } else {
+      const float looked = descent_gap(margin);
       ground_plane_leaves(job.index, *settings_.ground_plane_height + looked, chunk);
       record.relative = pose;
       record.descent_margin = looked;
@@ -134,31 +128,29 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
     const Body& a = bodies_[ia];
     const Body& b = bodies_[ib];
     const float margin = pair_margin(a, b);
-    // Parts say where two bodies will meet only while they close by less than the smaller's
-    // extent: beyond, every part pair of the two falls within the gap (a 1 km bunny thrown at
-    // 10⁴ m/s went non-finite with them), and the manifold is as good a guess.
-    const float reach = margin - settings_.contact_margin;
-    pair.fast = reach > settings_.fast_pair_reach &&
-                reach <= std::min(store_->extents()[ia], store_->extents()[ib]);
     const Transform& pose_a = pose_of(ia);
     const Transform& pose_b = pose_of(ib);
     const Transform relative = relative_pose(pose_a, pose_b);
-    // Two crowded bodies touch at their roots alone: a crowd has pairs by the square of its
-    // bodies, each of whose descents would overlap at every level.
-    const bool crowd = crowded(ia) && crowded(ib);
-    pair.crowd = crowd;
-    pair.reused = !crowd && reuse(record, relative, margin, store_->extents()[ib], ia, ib, chunk);
-    if (!pair.reused) {
-      const float looked = margin + (budget() ? 0.0f : settings_.reuse_distance);
+    pair.kind = pair_kind({.record = &record,
+                           .relative = &relative,
+                           .margin = margin,
+                           .extent_b = extents[ib],
+                           .smaller_extent = std::min(extents[ia], extents[ib]),
+                           .crowded = crowded(ia) && crowded(ib)},
+                          settings_);
+    if (pair.kind == PairKind::kReused) {
+      kept_leaves(record, ia, ib, chunk);
+    } else {
+      // A crowd's pair descends to its roots alone (crowd.h), and their contact is not reused.
+      const bool crowd = pair.kind == PairKind::kCrowded;
+      const float looked = descent_gap(margin);
       chunk.node_pairs.clear();
       // The clock is read only for a time budget: a read per pair cost 1.7% of a step at 1,000
       // bunnies.
       const double spent = settings_.max_microseconds > 0.0 ? 1e3 * elapsed_ms(start) : 0.0;
       DescentSettings settings = descent_budget(spent, chunk.counters.sphere_tests, looked);
-      if (crowd) {
-        settings.depth_a = 1;
-        settings.depth_b = 1;
-      }
+      settings.depth_a = crowd ? kCrowdTreeDepth : settings_.tree_depth;
+      settings.depth_b = settings.depth_a;
       const DescentStats descent =
           chunk.descent.descend(*a.tree, pose_a, *b.tree, pose_b, settings, chunk.node_pairs);
       chunk.counters.sphere_tests += descent.sphere_tests;
@@ -170,7 +162,7 @@ void CollisionDetector::pair_leaves(const Job& job, NarrowChunk& chunk,
                                 chunk.descent.world_sphere_b(*b.tree, nodes.node_b)});
       }
       record.relative = relative;
-      record.descent_margin = crowd ? -1.0f : looked;  // roots' contacts are not to be reused
+      record.descent_margin = crowd ? -1.0f : looked;
       ++chunk.counters.descended_pairs;
     }
     record.done = true;
@@ -210,8 +202,8 @@ void CollisionDetector::ground_plane_leaves(std::uint32_t index, float reach_dow
 }
 
 // One contact per pair of leaf spheres (paper eq. 1-3), in the narrow phase's order; then, pair by
-// pair, the reduction to a manifold, or for a reused pair its contacts' own depth offsets and
-// normals.
+// pair, as its kind says: a reused pair's contacts take their own depth offsets and normals, a
+// crowd's its capped depth, the others are reduced (or not, the paper's) and their shapes noted.
 void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
   const bool measure = settings_.measure_penetration;
   for (PairLeaves& pair : chunk.pairs) {
@@ -242,44 +234,40 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
         chunk.penetration_sum += contact.depth;
         ++chunk.penetrating_contacts;
       }
-      if (pair.crowd) {
-        // The soft step pushes a pair apart the faster the deeper it overlaps, and a crowd's
-        // pushes add up from body to body: at the full depth of bodies spawned on each other, a
-        // crowd bursts at several m/s. Capped, it parts as a pile of bodies overlapping a little.
-        contact.depth = std::min(
-            contact.depth, kCrowdDepth * std::min(leaves.sphere_a.radius, leaves.sphere_b.radius));
-      }
       chunk.run.push_back(contact);
     }
     const Quat rotation_a = plane ? Quat::Identity() : pose_of(first.body_a).rotation;
-    if (pair.reused) {
-      const std::uint32_t old_first = pair.record->first;
-      for (std::size_t i = 0; i < chunk.run.size(); ++i) {
-        const ContactShape& shape = cache_.previous_shapes()[old_first + i];
-        Contact contact = chunk.run[i];
-        contact.depth += shape.depth_offset;
-        contact.normal = rotation_a * shape.normal_in_a;
-        chunk.contacts.push_back(contact);
-        chunk.shapes.push_back(shape);
-      }
-      continue;
-    }
     const std::size_t reduced_begin = chunk.contacts.size();
-    if (settings_.manifold_points == 0) {
-      chunk.contacts.insert(chunk.contacts.end(), chunk.run.begin(), chunk.run.end());
-    } else if (pair.fast) {
-      const SphereTree& tree_a = *bodies_[first.body_a].tree;
-      const SphereTree& tree_b = *bodies_[first.body_b].tree;
-      chunk.parts.clear();
-      for (const Contact& contact : chunk.run) {
-        chunk.parts.push_back(std::uint64_t{part_of(tree_a, contact.leaf_a)} << 32 |
-                              part_of(tree_b, contact.leaf_b));
+    switch (pair.kind) {
+      case PairKind::kReused:
+        reused_contacts(*pair.record, rotation_a, chunk);
+        continue;  // its shapes are the record's
+      case PairKind::kCrowded:
+        for (std::size_t i = 0; i < chunk.run.size(); ++i) {
+          const LeafSpheres& roots = chunk.leaves[pair.leaves_begin + i];
+          chunk.run[i].depth =
+              crowd_contact_depth(chunk.run[i].depth, roots.sphere_a, roots.sphere_b);
+        }
+        [[fallthrough]];  // its one contact, capped, goes as the paper's do
+      case PairKind::kPaper:
+        chunk.contacts.insert(chunk.contacts.end(), chunk.run.begin(), chunk.run.end());
+        break;
+      case PairKind::kFastByParts: {
+        const SphereTree& tree_a = *bodies_[first.body_a].tree;
+        const SphereTree& tree_b = *bodies_[first.body_b].tree;
+        chunk.parts.clear();
+        for (const Contact& contact : chunk.run) {
+          chunk.parts.push_back(std::uint64_t{part_of(tree_a, contact.leaf_a)} << 32 |
+                                part_of(tree_b, contact.leaf_b));
+        }
+        chunk.reducer.reduce_by_parts(chunk.run, chunk.parts, cache_.last_contacts(*pair.record),
+                                      chunk.contacts);
+        break;
       }
-      chunk.reducer.reduce_by_parts(chunk.run, chunk.parts, cache_.last_contacts(*pair.record),
-                                    chunk.contacts);
-    } else {
-      chunk.reducer.reduce(chunk.run, settings_.manifold_points, cache_.last_contacts(*pair.record),
-                           chunk.contacts);
+      case PairKind::kManifold:
+        chunk.reducer.reduce(chunk.run, settings_.manifold_points,
+                             cache_.last_contacts(*pair.record), chunk.contacts);
+        break;
     }
     for (std::size_t k = reduced_begin; k < chunk.contacts.size(); ++k) {
       const Contact& contact = chunk.contacts[k];
@@ -292,6 +280,20 @@ void CollisionDetector::make_contacts(NarrowChunk& chunk) const {
       }
       chunk.shapes.push_back({contact.depth - own_depth, rotation_a.conjugate() * contact.normal});
     }
+  }
+}
+
+// A reused pair's contacts, each with its own depth offset and normal (in body a's frame) as the
+// record kept them.
+void CollisionDetector::reused_contacts(const PairRecord& record, const Quat& rotation_a,
+                                        NarrowChunk& chunk) const {
+  for (std::size_t i = 0; i < chunk.run.size(); ++i) {
+    const ContactShape& shape = cache_.previous_shapes()[record.first + i];
+    Contact contact = chunk.run[i];
+    contact.depth += shape.depth_offset;
+    contact.normal = rotation_a * shape.normal_in_a;
+    chunk.contacts.push_back(contact);
+    chunk.shapes.push_back(shape);
   }
 }
 

@@ -101,25 +101,11 @@ Aabb SweepAndPrune::box(ProxyId id) const {
   return {Vec3(b[0], b[1], b[2]), Vec3(b[3], b[4], b[5])};
 }
 
-bool SweepAndPrune::crowded(ProxyId id) const {
-  return crowded_ && id < choosing_.size() && choosing_[id] != 0;
-}
-
-bool SweepAndPrune::over_crowd_limit(ProxyId id) const {
-  return overlaps_[id] > crowd_limit_ && (flags_[id] & kStatic) == 0;
-}
-
-void SweepAndPrune::set_crowd_limit(std::uint32_t pairs_per_box) { crowd_limit_ = pairs_per_box; }
-
-std::uint64_t SweepAndPrune::crowd_pairs(double share) const {
-  return static_cast<std::uint64_t>(share * 0.5 * crowd_limit_ * static_cast<double>(live_count_));
-}
-
 void SweepAndPrune::update() {
   swaps_last_update_ = 0;
   entered_.clear();
   left_.clear();
-  if (crowded_ || waiting_.size() > kMaxIncrementalAdds) {
+  if (crowd_.found() || waiting_.size() > kMaxIncrementalAdds) {
     rebuild();
   } else {
     drop_removed_pairs();
@@ -127,7 +113,7 @@ void SweepAndPrune::update() {
     integrate_added();
     merge_changes();
     // Boxes moved or were added into a pile: listed whole, the pairs are past the limit.
-    if (crowd_limit_ > 0 && pairs_.size() > crowd_pairs(1.0)) {
+    if (crowd_.overflows(pairs_.size(), live_count_)) {
       undo_changes();
       rebuild();
     }
@@ -269,7 +255,7 @@ void SweepAndPrune::undo_changes() {
 // The boxes whose interval on `axis` is open as the sorted endpoints pass, each opening box
 // tested against them: O(p) for p overlapping intervals on that axis.
 template <class Found>
-void SweepAndPrune::sweep(int axis, const Found& found) {
+void SweepAndPrune::sweep(int axis, const Found& found) const {
   // The open boxes, with their bounds on the other two axes copied so that the inner loop reads
   // one array.
   struct Open {
@@ -303,106 +289,28 @@ void SweepAndPrune::sweep(int axis, const Found& found) {
   }
 }
 
-// rebuild()'s pairs with a crowd limit. Out of a crowd, one sweep lists the pairs while they are
-// few and counts every box's overlaps; past the limit, a second lists every pair with a box that is
-// not crowded and, of the pairs of two crowded boxes, those of each crowded box with its L/2
-// nearest partners (by the boxes' centres; ties to the lower id). Nearest partners are the deepest
-// overlaps, those that hold the crowd up, and they change little from one update to the next. In a
-// crowd, one sweep counts and selects at once by the last update's crowded boxes; a second lists
-// all the pairs only when the crowd has thinned out below L/2.
-void SweepAndPrune::list_crowd(int axis) {
-  const bool was_crowded = crowded_;
-  if (was_crowded) {
-    choosing_.assign(bounds_.size(), 0);
-    for (ProxyId id = 0; id < overlaps_.size(); ++id) choosing_[id] = over_crowd_limit(id) ? 1 : 0;
-  }
-  overlaps_.assign(bounds_.size(), 0);
-  const std::uint64_t limit = crowd_pairs(was_crowded ? 0.5 : 1.0);
-  std::uint64_t overlapping = 0;
-  const auto count = [&](std::uint64_t key) {
-    ++overlapping;
-    const ProxyPair pair = pair_of(key);
-    ++overlaps_[pair.a];
-    ++overlaps_[pair.b];
-  };
-  if (was_crowded) {
-    begin_nearest();
-    sweep(axis, [&](std::uint64_t key) {
-      count(key);
-      choose(key);
-    });
-  } else {
-    sweep(axis, [&](std::uint64_t key) {
-      count(key);
-      if (added_.size() <= limit) added_.push_back(key);
-    });
-  }
-  crowded_ = overlapping > limit;
-  if (crowded_ && !was_crowded) {
-    choosing_.assign(bounds_.size(), 0);
-    for (ProxyId id = 0; id < overlaps_.size(); ++id) choosing_[id] = over_crowd_limit(id) ? 1 : 0;
-    begin_nearest();
-    sweep(axis, [&](std::uint64_t key) { choose(key); });
-  } else if (!crowded_ && was_crowded) {
-    added_.clear();
-    sweep(axis, [&](std::uint64_t key) { added_.push_back(key); });
-    return;
-  }
-  if (!crowded_) return;
-  const std::size_t kept = nearest_kept();
-  for (ProxyId id = 0; id < nearest_count_.size(); ++id) {
-    const Partner* heap = nearest_.data() + std::size_t{id} * kept;
-    for (std::uint32_t i = 0; i < nearest_count_[id]; ++i) {
-      added_.push_back(pair_key(id, heap[i].other));
+struct SweepAndPrune::CrowdBoxes {
+  const SweepAndPrune& boxes;
+  int axis = 0;
+
+  [[nodiscard]] std::size_t ids() const { return boxes.bounds_.size(); }
+  [[nodiscard]] std::size_t live() const { return boxes.live_count_; }
+  [[nodiscard]] bool is_static(ProxyId id) const { return (boxes.flags_[id] & kStatic) != 0; }
+  [[nodiscard]] float distance2(ProxyId a, ProxyId b) const {
+    const std::array<float, 6>& p = boxes.bounds_[a].now;
+    const std::array<float, 6>& q = boxes.bounds_[b].now;
+    float distance2 = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+      const float d = 0.5f * (p[k] + p[k + 3] - q[k] - q[k + 3]);
+      distance2 += d * d;
     }
+    return distance2;
   }
-  std::sort(added_.begin(), added_.end());
-  added_.erase(std::unique(added_.begin(), added_.end()), added_.end());
-  pairs_deferred_ = overlapping - added_.size();
-}
-
-std::size_t SweepAndPrune::nearest_kept() const {
-  return std::max<std::size_t>(1, crowd_limit_ / 2);
-}
-
-void SweepAndPrune::begin_nearest() {
-  added_.clear();
-  nearest_.assign(bounds_.size() * nearest_kept(), Partner{});
-  nearest_count_.assign(bounds_.size(), 0);
-}
-
-// A pair found by a crowd's sweep: listed if a box of it is not among the boxes choosing_ marks,
-// else offered to each box's nearest partners.
-void SweepAndPrune::choose(std::uint64_t key) {
-  const ProxyPair pair = pair_of(key);
-  if (choosing_[pair.a] == 0 || choosing_[pair.b] == 0) {
-    added_.push_back(key);
-    return;
+  template <class Found>
+  void sweep(const Found& found) const {
+    boxes.sweep(axis, found);
   }
-  float distance2 = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    const float d = 0.5f * (bounds_[pair.a].now[k] + bounds_[pair.a].now[k + 3] -
-                            bounds_[pair.b].now[k] - bounds_[pair.b].now[k + 3]);
-    distance2 += d * d;
-  }
-  offer_nearest(pair.a, {distance2, pair.b});
-  offer_nearest(pair.b, {distance2, pair.a});
-}
-
-// Keeps a box's nearest partners as a bounded max-heap: the farthest is the first to go.
-void SweepAndPrune::offer_nearest(ProxyId id, const Partner& partner) {
-  const std::size_t kept = nearest_kept();
-  Partner* heap = nearest_.data() + std::size_t{id} * kept;
-  std::uint32_t& count = nearest_count_[id];
-  if (count < kept) {
-    heap[count++] = partner;
-    std::push_heap(heap, heap + count);
-  } else if (partner < heap[0]) {
-    std::pop_heap(heap, heap + count);
-    heap[count - 1] = partner;
-    std::push_heap(heap, heap + count);
-  }
-}
+};
 
 // Many adds: sort every axis from scratch and find all pairs with one sweep along the axis on
 // which the fewest intervals overlap (counted in O(n) from the sorted endpoints). The sweep keeps
@@ -439,12 +347,7 @@ void SweepAndPrune::rebuild() {
   }
 
   added_.clear();
-  pairs_deferred_ = 0;
-  if (crowd_limit_ == 0) {
-    sweep(sweep_axis, [&](std::uint64_t key) { added_.push_back(key); });
-  } else {
-    list_crowd(sweep_axis);
-  }
+  crowd_.list(CrowdBoxes{*this, sweep_axis}, added_);
 
   std::sort(added_.begin(), added_.end());
   pair_set_.clear();

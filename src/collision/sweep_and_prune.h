@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision/broad_phase.h"
+#include "collision/crowd.h"
 #include "sphys/math.h"
 
 namespace sphys {
@@ -58,47 +59,30 @@ class SweepAndPrune {
   // of motion the cost follows. 0 after an update() that rebuilt everything (see docs).
   [[nodiscard]] std::uint64_t swaps_last_update() const { return swaps_last_update_; }
 
-  // Crowds (docs/collision.md, "Crowds"): boxes piled on each other make pairs by the square of
-  // their number. With a limit L (0: none), an update() at which the boxes overlap more than L
-  // others each on average (more than L/2 to stay so) lists, of the pairs of two crowded boxes
-  // (dynamic ones overlapping more than L others), only those of each crowded box with its L/2
-  // nearest partners. Pairs with a box that is not crowded (a static one among them: the ground)
-  // are all listed. Such an update() rebuilds everything: O(n log n + p) time for p overlapping
-  // pairs, and memory for the listed pairs only. Deterministic, as without a limit.
-  void set_crowd_limit(std::uint32_t pairs_per_box);
-  // Whether the last update() paired the proxy only with its nearest: in a crowd, a box that was
-  // crowded at the update before (at this one, for the crowd's first).
-  [[nodiscard]] bool crowded(ProxyId id) const;
+  // Crowds (collision/crowd.h, Crowd; docs/collision.md, "Crowds"): with a limit L (0: none) of
+  // overlapping boxes per box, an update() in a crowd lists each crowded box's pairs with its L/2
+  // nearest crowded partners only. Such an update() rebuilds everything: O(n log n + p) time for
+  // p overlapping pairs, and memory for the listed pairs only. Deterministic, as without a limit.
+  void set_crowd_limit(std::uint32_t pairs_per_box) { crowd_.set_limit(pairs_per_box); }
+  // Whether the last update() paired the proxy only with its nearest (Crowd::crowded).
+  [[nodiscard]] bool crowded(ProxyId id) const { return crowd_.crowded(id); }
   // Whether the last update() found a crowd, and how many overlapping pairs it left out.
-  [[nodiscard]] bool has_crowd() const { return crowded_; }
-  [[nodiscard]] std::uint64_t pairs_deferred() const { return pairs_deferred_; }
+  [[nodiscard]] bool has_crowd() const { return crowd_.found(); }
+  [[nodiscard]] std::uint64_t pairs_deferred() const { return crowd_.pairs_deferred(); }
+  [[nodiscard]] const Crowd& crowd() const { return crowd_; }
 
  private:
-  // A crowded box's partner, ordered by distance (squared, of the boxes' centres; unit: m²), then
-  // id.
-  struct Partner {
-    float distance2 = 0.0f;
-    ProxyId other = 0;
-    friend auto operator<=>(const Partner&, const Partner&) = default;
-  };
+  // What the crowd's listing reads of the boxes (Crowd::list), with one sweep along an axis.
+  struct CrowdBoxes;
 
   void store(ProxyId id, const Aabb& box);
   void rebuild();
   // rebuild()'s sweep along one axis of sorted endpoints: hands each overlapping pair's key to
   // `found`.
   template <class Found>
-  void sweep(int axis, const Found& found);
-  void list_crowd(int axis);
-  // A dynamic box that overlapped more than the limit's boxes at the last sweep.
-  [[nodiscard]] bool over_crowd_limit(ProxyId id) const;
-  [[nodiscard]] std::size_t nearest_kept() const;
-  void begin_nearest();
-  void choose(std::uint64_t key);
-  void offer_nearest(ProxyId id, const Partner& partner);
+  void sweep(int axis, const Found& found) const;
   // Back to the pairs before this update's incremental changes, for a rebuild that replaces them.
   void undo_changes();
-  // The pair count past which the boxes are a crowd (docs above): L n / 2, times `share`.
-  [[nodiscard]] std::uint64_t crowd_pairs(double share) const;
   void sort_axis(int axis);
   void integrate_added();
   void drop_removed_pairs();
@@ -137,16 +121,7 @@ class SweepAndPrune {
   std::size_t live_count_ = 0;
   std::uint64_t swaps_last_update_ = 0;
 
-  std::uint32_t crowd_limit_ = 0;  // unit: overlapping boxes per box; 0: no limit
-  bool crowded_ = false;
-  std::uint64_t pairs_deferred_ = 0;     // overlapping pairs the last update() left out
-  std::vector<std::uint32_t> overlaps_;  // per id: boxes it overlapped at the last rebuild
-  // Per id: 1 for the crowded boxes whose pairs a crowd's sweep chooses among (list_crowd()):
-  // what crowded() reports.
-  std::vector<std::uint8_t> choosing_;
-  // Per id, L/2 slots: a crowded box's nearest partners, and how many it has.
-  std::vector<Partner> nearest_;
-  std::vector<std::uint32_t> nearest_count_;
+  Crowd crowd_;  // who is crowded, as of the last rebuild
 };
 
 }  // namespace sphys
