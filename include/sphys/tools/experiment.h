@@ -88,8 +88,8 @@ struct Plausibility {
   int penetrating_frames = 0;  // frames with overlapping leaf pairs
   // At the end of the run: bodies that are not static, and those at rest or asleep among them.
   std::uint32_t movable_bodies = 0;
-  std::uint32_t bodies_at_rest = 0;
-  std::uint32_t bodies_asleep = 0;
+  std::uint32_t bodies_at_rest = 0;  // as StepStats::bodies_at_rest counts them
+  std::uint32_t bodies_asleep = 0;   // as StepStats::bodies_asleep counts them
   // The first frame (from 1) from which every moving body stayed at rest to the end; unset when
   // some body still moved in the last frame.
   std::optional<int> all_at_rest_frame;
@@ -194,7 +194,6 @@ struct PlotFiles {
 };
 // The file names write_plots gives the row's plots.
 [[nodiscard]] PlotFiles plot_files(const ExperimentRow& row);
-
 // Whether write_plots can draw: gnuplot is on PATH.
 [[nodiscard]] bool plots_available();
 // PNG plots via gnuplot (frame time and contacts per frame for each row with frames) into
