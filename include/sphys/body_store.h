@@ -48,33 +48,34 @@ namespace detail {
 // The state of a store's bodies, one array per quantity, indexed by slot: what copying a store
 // copies.
 struct BodyArrays {
-  std::vector<Transform> pose_;
-  std::vector<Vec3> linear_velocity_;
-  std::vector<Vec3> angular_velocity_;
-  std::vector<float> inverse_mass_;
-  std::vector<Mat3> inertia_body_;
-  std::vector<Mat3> inverse_inertia_body_;
-  std::vector<Mat3> inverse_inertia_world_;
-  std::vector<float> extent_;
+  std::vector<Transform> pose_;              // the body frame, origin at the centre of mass
+  std::vector<Vec3> linear_velocity_;        // of the centre of mass. unit: m/s
+  std::vector<Vec3> angular_velocity_;       // world frame. unit: rad/s
+  std::vector<float> inverse_mass_;          // 0 for a static body. unit: 1/kg
+  std::vector<Mat3> inertia_body_;           // about the centre of mass, body axes. unit: kg·m²
+  std::vector<Mat3> inverse_inertia_body_;   // unit: 1/(kg·m²)
+  std::vector<Mat3> inverse_inertia_world_;  // R I_body⁻¹ Rᵀ. unit: 1/(kg·m²)
+  std::vector<float> extent_;  // farthest point of the shape from the centre of mass. unit: m
   // |v| + |ω| · extent as of the body's last finalize or change of velocity. unit: m/s
   std::vector<float> fastest_point_speed_;
-  std::vector<float> restitution_;
-  std::vector<float> friction_;
-  std::vector<std::uint8_t> alive_;
-  std::vector<std::uint8_t> dynamic_;
-  std::vector<std::uint8_t> moving_;
+  std::vector<float> restitution_;         // unit: dimensionless, 0..1
+  std::vector<float> friction_;            // Coulomb coefficient. unit: dimensionless
+  std::vector<std::uint8_t> alive_;        // 1 while the slot holds a body
+  std::vector<std::uint8_t> dynamic_;      // 1 for a body alive and not static
+  std::vector<std::uint8_t> moving_;       // 1 for a dynamic body that is awake
   std::vector<std::uint32_t> generation_;  // from 1, moved on when the slot's body leaves
   std::vector<std::uint32_t> free_;        // freed slots, the last freed last
   // Forces and torques applied for the next step (world frame), and the slots that have one.
-  std::vector<Vec3> force_;   // unit: N
-  std::vector<Vec3> torque_;  // unit: N·m
-  std::vector<std::uint32_t> forced_;
-  std::uint32_t dynamic_bodies_ = 0;
-  std::vector<std::uint32_t> awake_;
+  std::vector<Vec3> force_;            // unit: N
+  std::vector<Vec3> torque_;           // unit: N·m
+  std::vector<std::uint32_t> forced_;  // the slots given a force or torque since the last clear
+  std::uint32_t dynamic_bodies_ = 0;   // how many slots are dynamic
+  std::vector<std::uint32_t> awake_;   // the moving slots, in increasing order
 };
 
 }  // namespace detail
 
+// A world's bodies, one slot each, in arrays indexed by slot (the top of this file says why).
 class BodyStore : private detail::BodyArrays {
  public:
   BodyStore() = default;
@@ -95,8 +96,10 @@ class BodyStore : private detail::BodyArrays {
   // Grows `arrays` to the store's slots now and with the store from then on, until detached (or
   // attached to another store, or destroyed).
   void attach(SlotArrays& arrays);
+  // Stops growing `arrays` with the store; nothing when they are not attached to it.
   void detach(SlotArrays& arrays);
 
+  // How many slots there are, free ones included: the size of every per-slot array.
   [[nodiscard]] std::uint32_t slots() const { return static_cast<std::uint32_t>(pose_.size()); }
   // The id of a slot's body, or of the next one to be added there when the slot is free.
   [[nodiscard]] BodyId id_of(std::uint32_t slot) const { return {slot, generation_[slot]}; }
@@ -107,16 +110,20 @@ class BodyStore : private detail::BodyArrays {
   }
   // A copy of the body in a slot.
   [[nodiscard]] RigidBody body(std::uint32_t slot) const;
+  // True while the slot holds a body.
   [[nodiscard]] bool alive(std::uint32_t slot) const { return alive_[slot] != 0; }
+  // True for a slot that holds a static body (it never moves).
   [[nodiscard]] bool is_static(std::uint32_t slot) const {
     return alive_[slot] != 0 && dynamic_[slot] == 0;
   }
+  // True for a dynamic body that sleeps; false for an awake, a static or no body.
   [[nodiscard]] bool asleep(std::uint32_t slot) const {
     return dynamic_[slot] != 0 && moving_[slot] == 0;
   }
   // Puts dynamic bodies to sleep (their velocities become zero) or wakes them, and lists the
   // awake ones again (once for all of them: a pass over the slots).
   void set_asleep(std::span<const std::uint32_t> slots, bool asleep);
+  // The same for one slot.
   void set_asleep(std::uint32_t slot, bool asleep) { set_asleep({&slot, 1}, asleep); }
 
   // How many bodies are alive and not static (asleep or not).
@@ -130,15 +137,21 @@ class BodyStore : private detail::BodyArrays {
 
   // The arrays, indexed by slot. Poses place the body frame, whose origin is the centre of mass.
   [[nodiscard]] std::span<Transform> poses() { return pose_; }
+  // The poses, read only.
   [[nodiscard]] std::span<const Transform> poses() const { return pose_; }
-  [[nodiscard]] std::span<Vec3> linear_velocities() { return linear_velocity_; }  // unit: m/s
+  // Velocities of the centres of mass, world frame. unit: m/s
+  [[nodiscard]] std::span<Vec3> linear_velocities() { return linear_velocity_; }
+  // The linear velocities, read only. unit: m/s
   [[nodiscard]] std::span<const Vec3> linear_velocities() const { return linear_velocity_; }
   // World frame. unit: rad/s
   [[nodiscard]] std::span<Vec3> angular_velocities() { return angular_velocity_; }
+  // The angular velocities, read only. unit: rad/s
   [[nodiscard]] std::span<const Vec3> angular_velocities() const { return angular_velocity_; }
-  [[nodiscard]] std::span<const float> inverse_masses() const { return inverse_mass_; }  // 1/kg
-  // About the centre of mass, body axes. unit: kg·m² and 1/(kg·m²)
+  // 0 for a static body or a free slot. unit: 1/kg
+  [[nodiscard]] std::span<const float> inverse_masses() const { return inverse_mass_; }
+  // About the centre of mass, body axes. unit: kg·m²
   [[nodiscard]] std::span<const Mat3> inertias_body() const { return inertia_body_; }
+  // The inverses of inertias_body(). unit: 1/(kg·m²)
   [[nodiscard]] std::span<const Mat3> inverse_inertias_body() const {
     return inverse_inertia_body_;
   }
@@ -147,16 +160,21 @@ class BodyStore : private detail::BodyArrays {
   [[nodiscard]] std::span<const Mat3> inverse_inertias_world() const {
     return inverse_inertia_world_;
   }
+  // Sets the slot's inverse_inertias_world() from its rotation now.
   void update_world_inertia(std::uint32_t slot);
   // Farthest point of the body's shape from its centre of mass. unit: m
   [[nodiscard]] std::span<const float> extents() const { return extent_; }
+  // The bodies' restitution coefficients. unit: dimensionless, 0..1
   [[nodiscard]] std::span<const float> restitutions() const { return restitution_; }
+  // The bodies' Coulomb friction coefficients. unit: dimensionless
   [[nodiscard]] std::span<const float> frictions() const { return friction_; }
 
   // Adds a force through the centre of mass (unit: N) and a torque (unit: N·m), world frame, to
   // what acts on the body through the next step (as gravity does, in every collision pass).
   void add_force(std::uint32_t slot, const Vec3& force, const Vec3& torque);
+  // The forces through the centres of mass for the next step, world frame. unit: N
   [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
+  // The torques for the next step, world frame. unit: N·m
   [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
   // The slots given a force or torque since the last clear_forces().
   [[nodiscard]] std::span<const std::uint32_t> forced() const { return forced_; }

@@ -19,6 +19,8 @@ enum class BroadPhaseKind : std::uint8_t {
 // ConfigurationCheckSettings::tree_depth). unit: levels
 inline constexpr int kMostTreeDepth = 16;
 
+// What detection does each collision pass: the trees' levels used, the time-critical budgets, the
+// ground plane and crowds.
 struct CollisionSettings {
   // Levels of every sphere-tree used, the root included; 0 uses them all (a depth-3 tree used as
   // depth 2: the nodes of the last used level are the leaves). unit: levels

@@ -17,6 +17,7 @@
 
 namespace sphys {
 
+// What a ConfigurationChecker checks against, and how deep.
 struct ConfigurationCheckSettings {
   // Which of the world's bodies count (e.g. the robot's own base, if it is a body, left out).
   QueryFilter filter;
@@ -24,6 +25,7 @@ struct ConfigurationCheckSettings {
   // listed in `allowed_link_pairs` (what SRDF's disabled collisions list: neighbours, links that
   // can never meet). Spheres of one link never are.
   bool self_collision = false;
+  // Pairs of links (either order) whose spheres may touch: not checked against each other.
   std::vector<std::array<std::int32_t, 2>> allowed_link_pairs;
   // Levels of the world's sphere-trees the check answers at, the root included; 0: the levels the
   // world uses (CollisionSettings::tree_depth). Deeper than the world's, a sphere is tested below
@@ -40,7 +42,7 @@ struct ConfigurationCheckSettings {
 
 // One configuration's answer.
 struct ConfigurationResult {
-  bool free = true;
+  bool free = true;  // no sphere touches a body or (self-collision) another link's sphere
   // The first colliding sphere: the lowest-numbered sphere that touches a body of the world,
   // else (self-collision) the first sphere of the first pair of spheres that touch, pairs in
   // order of their first sphere then their second. -1 when free.
@@ -59,6 +61,7 @@ class ConfigurationChecker {
   ConfigurationChecker(const WorldQuery& query, std::vector<std::int32_t> sphere_links,
                        ConfigurationCheckSettings settings = {});
 
+  // How many spheres a configuration has (the size of sphere_links).
   [[nodiscard]] std::size_t spheres() const { return links_.size(); }
   // Links: one more than the largest in sphere_links.
   [[nodiscard]] std::size_t links() const { return link_count_; }
@@ -87,6 +90,7 @@ class ConfigurationChecker {
   // next: for callers that make the spheres themselves, a few at a time (RobotChecker).
   class Run {
    public:
+    // A run of `checker`'s checks, which must outlive it.
     explicit Run(const ConfigurationChecker& checker);
     ~Run();
     Run(const Run&) = delete;
@@ -99,6 +103,7 @@ class ConfigurationChecker {
     // far from everything costs nothing more per configuration. check_gathered(c) then gives what
     // check() would for configuration c; a configuration out of range throws sphys::Error.
     void gather(const float* spheres, std::size_t configurations);
+    // What check() would give for the gathered configuration `configuration`.
     [[nodiscard]] ConfigurationResult check_gathered(std::size_t configuration);
     // For a caller that bounds each link itself, as RobotChecker does from its links' poses:
     // `boxes` holds, per link (links() of them), six rows `stride` floats apart, low x, y, z then
@@ -108,7 +113,9 @@ class ConfigurationChecker {
     // then gives what check() would for spheres inside those boxes, reading only the spheres of
     // links near a group, or every sphere when reads_every_sphere() (self-collision).
     void bound(const float* boxes, std::size_t stride);
+    // After bound(): whether any group lies near the link's box.
     [[nodiscard]] bool near(std::size_t link) const;
+    // After bound(): what check() would give for `spheres`, which lie inside the links' boxes.
     [[nodiscard]] ConfigurationResult check_bounded(const float* spheres);
     // After bound() with boxes that hold their links' spheres in every one of `configurations`
     // states at `spheres`: those states gathered as gather() gathers them, reading only the

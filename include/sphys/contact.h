@@ -14,8 +14,8 @@ inline constexpr std::uint32_t kGroundPlaneBody = 0xFFFFFFFFu;
 
 // One contact between two bodies, made from one overlapping pair of spheres.
 struct Contact {
-  std::uint32_t body_a = 0;
-  std::uint32_t body_b = 0;
+  std::uint32_t body_a = 0;     // slot of body a, or kGroundPlaneBody for the ground plane
+  std::uint32_t body_b = 0;     // slot of body b
   Vec3 point = Vec3::Zero();    // unit: m, world frame
   Vec3 normal = Vec3::UnitY();  // unit vector from body a towards body b, world frame
   float depth = 0.0f;           // overlap along the normal; 0 when touching. unit: m

@@ -14,6 +14,7 @@ namespace sphys {
 // exit code 2; any other exception is an internal error (exit code 1).
 class Error : public std::runtime_error {
  public:
+  // `message`: the whole line to show, where and what (the helpers below compose it).
   explicit Error(const std::string& message);
 
   // "<file>: <problem>"

@@ -12,15 +12,16 @@
 
 namespace sphys {
 
-using Vec3 = Eigen::Vector3f;
-using Mat3 = Eigen::Matrix3f;
-using Quat = Eigen::Quaternionf;
+using Vec3 = Eigen::Vector3f;     // a point, direction or vector quantity, float
+using Mat3 = Eigen::Matrix3f;     // a 3×3 matrix (rotations, inertia tensors), float
+using Quat = Eigen::Quaternionf;  // a rotation, of unit length, float
 
 // A rigid transform: rotation then translation, x_world = rotation * x_body + translation.
 struct Transform {
-  Quat rotation = Quat::Identity();
-  Vec3 translation = Vec3::Zero();
+  Quat rotation = Quat::Identity();  // body axes to world axes
+  Vec3 translation = Vec3::Zero();   // where the body origin is in the world. unit: m
 
+  // The world position of a point given in the body frame.
   [[nodiscard]] Vec3 apply(const Vec3& body_point) const {
     return rotation * body_point + translation;
   }
@@ -44,17 +45,21 @@ struct Transform {
 // Axis-aligned bounding box. A default-constructed box is empty (min > max) so that the first
 // extend() sets it.
 struct Aabb {
-  Vec3 min = Vec3::Constant(std::numeric_limits<float>::infinity());
-  Vec3 max = Vec3::Constant(-std::numeric_limits<float>::infinity());
+  Vec3 min = Vec3::Constant(std::numeric_limits<float>::infinity());   // low corner. unit: m
+  Vec3 max = Vec3::Constant(-std::numeric_limits<float>::infinity());  // high corner. unit: m
 
+  // The smallest box holding the sphere.
   [[nodiscard]] static Aabb around_sphere(const Vec3& center, float radius) {
     return {center.array() - radius, center.array() + radius};
   }
+  // True when min > max on some axis: the box holds no point.
   [[nodiscard]] bool empty() const { return (min.array() > max.array()).any(); }
+  // Grows the box to hold `point`.
   void extend(const Vec3& point) {
     min = min.cwiseMin(point);
     max = max.cwiseMax(point);
   }
+  // Grows the box to hold `other`.
   void extend(const Aabb& other) {
     min = min.cwiseMin(other.min);
     max = max.cwiseMax(other.max);
@@ -63,10 +68,13 @@ struct Aabb {
   [[nodiscard]] bool overlaps(const Aabb& other) const {
     return (min.array() <= other.max.array()).all() && (other.min.array() <= max.array()).all();
   }
+  // Closed: a point on a face is inside.
   [[nodiscard]] bool contains(const Vec3& point) const {
     return (min.array() <= point.array()).all() && (point.array() <= max.array()).all();
   }
+  // Edge lengths, max - min. unit: m
   [[nodiscard]] Vec3 size() const { return max - min; }
+  // The midpoint of min and max. unit: m
   [[nodiscard]] Vec3 center() const { return 0.5f * (min + max); }
 };
 

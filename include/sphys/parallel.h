@@ -12,6 +12,7 @@
 
 namespace sphys {
 
+// Runs a world's loops on its threads (the top of this file says what a loop may do).
 class Parallel {
  public:
   // `threads`: at most this many threads run a loop; 0 takes every hardware thread; 1 runs the
@@ -21,6 +22,7 @@ class Parallel {
   Parallel(const Parallel&) = delete;
   Parallel& operator=(const Parallel&) = delete;
 
+  // How many threads run a loop: the number asked for, or the hardware's for 0.
   [[nodiscard]] std::uint32_t threads() const { return threads_; }
 
   // Calls fn(i) for every i in [0, count), in any order and concurrently when there are threads;

@@ -25,7 +25,7 @@ struct RigidBody {
   Mat3 inertia_body = Mat3::Zero();          // unit: kg·m²
   float restitution = 0.3f;                  // unit: dimensionless, 0..1
   float friction = 0.5f;                     // Coulomb coefficient. unit: dimensionless
-  bool is_static = false;
+  bool is_static = false;                    // never moves: infinite mass, no velocities
 
   // I⁻¹ in the world frame: R I_body⁻¹ Rᵀ.
   [[nodiscard]] Mat3 inverse_inertia_world() const;
@@ -33,6 +33,7 @@ struct RigidBody {
   [[nodiscard]] Vec3 velocity_at(const Vec3& point) const {
     return linear_velocity + angular_velocity.cross(point - pose.translation);
   }
+  // 1 / inverse_mass; 0 for a static body (infinite mass). unit: kg
   [[nodiscard]] float mass() const { return inverse_mass > 0.0f ? 1.0f / inverse_mass : 0.0f; }
   // ½ m v² + ½ ωᵀ I ω. unit: J
   [[nodiscard]] double kinetic_energy() const;
@@ -56,11 +57,11 @@ void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angu
 // A body as integrate_positions_keeping_spin moves it: its pose and angular velocity (updated),
 // its linear velocity and its inertia in its own frame.
 struct SpinningBody {
-  Transform* pose;
-  const Vec3* linear_velocity;
-  Vec3* angular_velocity;
-  const Mat3* inertia_body;
-  const Mat3* inverse_inertia_body;
+  Transform* pose;                   // moved. unit: m
+  const Vec3* linear_velocity;       // world frame. unit: m/s
+  Vec3* angular_velocity;            // world frame, updated. unit: rad/s
+  const Mat3* inertia_body;          // about the centre of mass, body axes. unit: kg·m²
+  const Mat3* inverse_inertia_body;  // unit: 1/(kg·m²)
 };
 // The motion of integrate_position with the angular momentum following Euler's equations in the
 // body frame by the implicit midpoint rule, in double: a torque-free body keeps |L| and its

@@ -19,6 +19,7 @@
 
 namespace sphys {
 
+// What a RobotChecker checks against, and how deep.
 struct RobotCheckSettings {
   // Which of the world's bodies count.
   QueryFilter filter;
@@ -31,16 +32,17 @@ struct RobotCheckSettings {
 
 // A straight motion's answer.
 struct MotionResult {
-  bool free = true;
+  bool free = true;          // no state along the motion collides
   std::uint32_t states = 0;  // states along the motion, both ends included
   // The first colliding state along the motion (0 is the start), -1 when free, and its answer.
   std::int32_t first_collision = -1;
-  ConfigurationResult collision;
+  ConfigurationResult collision;  // the first colliding state's answer; free when none
   // How far along the motion (0..1) the last free state before the first colliding one lies: 1
   // when free, 0 also when the start collides (then first_collision is 0).
   double last_free = 1.0;
 };
 
+// Checks a robot's configurations and straight motions, given as joint values, against a world.
 class RobotChecker {
  public:
   // Throws sphys::Error for a model check_robot_model refuses, and as ConfigurationChecker does.
@@ -52,7 +54,9 @@ class RobotChecker {
   // Configurations the kinematics pose together: a call for a multiple of it wastes no lanes.
   static constexpr int kPosedTogether = 8;
 
+  // The model checked, as given.
   [[nodiscard]] const RobotModel& model() const { return model_; }
+  // Joint values per configuration: the model's joints.
   [[nodiscard]] std::size_t joints() const { return model_.joints.size(); }
   // "avx2", "sse2" or "portable": the kinematics' lanes on this processor.
   [[nodiscard]] const char* lanes() const;

@@ -17,16 +17,18 @@
 
 namespace sphys {
 
+// How a joint moves its link.
 enum class RobotJointType : std::uint8_t {
   kRevolute,    // turns about its axis by the joint value (rad), within its limits
   kContinuous,  // turns without limits (rad)
   kPrismatic,   // slides along its axis by the joint value (m), within its limits
 };
 
+// A robot's links, joints and spheres (the top of this file says where it comes from).
 struct RobotModel {
   // A link of the chain. Links are listed parents first; link 0 is the root.
   struct Link {
-    std::string name;
+    std::string name;          // what link_index looks up (the URDF's link name)
     std::int32_t parent = -1;  // the link it hangs from; -1 for the root
     // The link's frame in its parent's at joint value 0 (a fixed joint's whole pose). unit: m
     Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
@@ -35,20 +37,21 @@ struct RobotModel {
     std::int32_t joint = -1;
   };
 
+  // A joint that moves one link; fixed joints are no Joint (Link::joint -1).
   struct Joint {
-    std::string name;
-    RobotJointType type = RobotJointType::kRevolute;
+    std::string name;                                 // as the URDF names it, if from one
+    RobotJointType type = RobotJointType::kRevolute;  // how it moves its link
     Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // a unit vector in the moved link's frame
     double lower = 0.0;  // limits, unit: rad or m (both infinite for a continuous joint)
-    double upper = 0.0;
+    double upper = 0.0;  // unit: rad or m
   };
 
-  std::string name;
-  std::vector<Link> links;
+  std::string name;           // as the URDF names it, if from one
+  std::vector<Link> links;    // parents first; link 0 is the root
   std::vector<Joint> joints;  // a configuration holds one value per joint, in this order
   // Each sphere's link and the sphere in that link's frame. unit: m
   std::vector<std::int32_t> sphere_links;
-  std::vector<Sphere> spheres;
+  std::vector<Sphere> spheres;  // one per entry of sphere_links, in its link's frame. unit: m
   // Pairs of links whose spheres are never checked against each other (SRDF's disabled
   // collisions: neighbours, links that can never meet); a link is never checked against itself.
   std::vector<std::array<std::int32_t, 2>> allowed_link_pairs;

@@ -21,10 +21,11 @@ namespace sphys {
 
 struct WorldSettings;
 
+// What kind of value a setting holds, which says how files and the command line write it.
 enum class SettingKind {
   kInteger,  // an unsigned count, exact in a double
   kNumber,   // a float or double figure
-  kBool,
+  kBool,     // a flag: 0 or 1 as a double
   kEnum,     // one of `choices`, by the enum's value (0, 1, ...)
   kVector3,  // [x, y, z], each component finite
 };
@@ -32,37 +33,42 @@ enum class SettingKind {
 // The values a setting may take: a closed, open or half-open interval. An infinite end is no
 // bound; every number must be finite besides.
 struct SettingRange {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_inclusive = true;
-  bool max_inclusive = true;
+  double min = -std::numeric_limits<double>::infinity();  // low end, in the setting's unit
+  double max = std::numeric_limits<double>::infinity();   // high end, in the setting's unit
+  bool min_inclusive = true;                              // min itself is a valid value
+  bool max_inclusive = true;                              // max itself is a valid value
 
+  // True when the low end bounds (it is finite).
   [[nodiscard]] bool has_min() const { return min > -std::numeric_limits<double>::infinity(); }
+  // True when the high end bounds (it is finite).
   [[nodiscard]] bool has_max() const { return max < std::numeric_limits<double>::infinity(); }
+  // Whether `value` lies between the ends, each inclusive or not as said; NaN never does.
+  // Finiteness is not checked here.
   [[nodiscard]] bool contains(double value) const;
 };
 
+// One world setting, as the table declares it (the top of this file says who reads it).
 struct Setting {
   // Where scene files carry it: the object ("" for the top level, "solver", "sleep", "ground")
   // and the key inside it. Settings a scene does not carry (`in_scene` false) have no object.
   std::string_view object{};
-  std::string_view key{};
-  bool in_scene = true;
+  std::string_view key{};  // the key inside `object` ("soft_substeps")
+  bool in_scene = true;    // false for a setting scene files do not carry
   // The field of WorldSettings, as C++ names it ("solver.soft_substeps"); messages of the
   // runtime name the setting so.
   std::string_view field{};
-  SettingKind kind = SettingKind::kNumber;
-  std::string_view unit{};  // "" for a dimensionless figure, a flag or a choice
-  SettingRange range{};
+  SettingKind kind = SettingKind::kNumber;  // how its value is written and read
+  std::string_view unit{};                  // "" for a dimensionless figure, a flag or a choice
+  SettingRange range{};  // kInteger, kNumber: the values it may take; kVector3: each component
   std::span<const std::string_view> choices{};  // kEnum: the names, in the order of the values
   std::string_view doc{};                       // one sentence or two, what it does and why
   // The field's value as a double: a count, 0 or 1, an enum's value; a float as the double of
   // its shortest decimal form (shortest_double), so that 0.3f reads "0.3". Not for kVector3.
   double (*get)(const WorldSettings&) = nullptr;
-  void (*set)(WorldSettings&, double) = nullptr;
+  void (*set)(WorldSettings&, double) = nullptr;  // stores a value as `get` gives it
   // kVector3 only.
   Vec3 (*get_vector)(const WorldSettings&) = nullptr;
-  void (*set_vector)(WorldSettings&, const Vec3&) = nullptr;
+  void (*set_vector)(WorldSettings&, const Vec3&) = nullptr;  // kVector3: stores the vector
 };
 
 // A setting sphys had and no longer has, with what replaced it: a scene file or --set that names

@@ -53,8 +53,8 @@ struct SolverSettings {
   // the ground does. Round bodies on a rounded sphere-tree would otherwise rock and roll for
   // ever. unit: m, >= 0
   float rolling_resistance = 0.01f;
-  ContactSet contacts = ContactSet::kReduced;
-  std::uint32_t manifold_points = 4;  // per body pair when reduced, 1..8
+  ContactSet contacts = ContactSet::kReduced;  // every leaf pair's contact, or a manifold per pair
+  std::uint32_t manifold_points = 4;           // per body pair when reduced, 1..8
   // Two bodies that can close by more than this in a collision pass (their speculative reach), and
   // by no more than the smaller one's extent, keep two contacts per pair of parts instead of one
   // manifold (the detector's, src/collision/collision_detector.h): a few points spread over one
@@ -63,6 +63,8 @@ struct SolverSettings {
   // Contacts are made this far before spheres touch, plus how far each pair can close in a
   // collision pass (speculative contacts), so that fast bodies neither tunnel nor sink in. unit: m
   float contact_margin = 0.02f;
+  // Widens contact_margin by how far each pair can close in the collision pass (the "plus" above);
+  // off, the margin alone.
   bool speculative_contacts = true;
   // A body pair that moved relative to itself by at most this since its trees last descended
   // keeps its manifold, recomputed at the new poses from the same leaf pairs, instead of

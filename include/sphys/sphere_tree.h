@@ -8,6 +8,7 @@
 
 namespace sphys {
 
+// A ball: one node of a sphere-tree, or a bound.
 struct Sphere {
   Vec3 center = Vec3::Zero();  // unit: m, in the body frame
   float radius = 0.0f;         // unit: m
@@ -16,8 +17,8 @@ struct Sphere {
 // A node as a builder or a file reader hands it over: its sphere and its parent's index
 // (-1 for the root), in breadth-first order.
 struct SphereTreeNode {
-  Sphere sphere;
-  std::int32_t parent = -1;
+  Sphere sphere;             // the node's sphere. unit: m
+  std::int32_t parent = -1;  // index of the parent node among those handed over; -1: the root
 };
 
 // A hierarchy of spheres bounding one body, read every step by the narrow phase.
@@ -38,23 +39,35 @@ class SphereTree {
   // radius, more than `branching` children, or branching outside 2..8.
   [[nodiscard]] static SphereTree from_nodes(std::span<const SphereTreeNode> nodes, int branching);
 
+  // Number of nodes, every level.
   [[nodiscard]] std::size_t size() const { return spheres_.size(); }
+  // True only for a default-constructed tree: from_nodes makes none without a root.
   [[nodiscard]] bool empty() const { return spheres_.empty(); }
+  // The most children a node may have, 2..8 (the paper's B).
   [[nodiscard]] int branching() const { return branching_; }
   // Number of levels including the root.
   [[nodiscard]] int depth() const { return static_cast<int>(level_begin_.size()) - 1; }
 
+  // A node's sphere, in the body frame. unit: m
   [[nodiscard]] const Sphere& sphere(std::uint32_t node) const { return spheres_[node]; }
+  // Node 0's sphere, which bounds the body. unit: m
   [[nodiscard]] const Sphere& root() const { return spheres_.front(); }
+  // Every node's sphere, by node index (breadth-first). unit: m
   [[nodiscard]] std::span<const Sphere> spheres() const { return spheres_; }
+  // The index of a node's parent; -1 for the root.
   [[nodiscard]] std::int32_t parent(std::uint32_t node) const { return parent_[node]; }
+  // The index of a node's first child; its children are the child_count(node) nodes from there.
+  // 0 for a leaf.
   [[nodiscard]] std::uint32_t first_child(std::uint32_t node) const { return first_child_[node]; }
+  // How many children a node has, 0..branching().
   [[nodiscard]] std::uint32_t child_count(std::uint32_t node) const { return child_count_[node]; }
+  // True for a node without children (on the last level or above it).
   [[nodiscard]] bool is_leaf(std::uint32_t node) const { return child_count_[node] == 0; }
   // Radius about the node's centre of a sphere holding the node's sphere and every sphere below
   // it. Builders do not nest children inside parents (each level is fitted to the surface on its
   // own), so culling a subtree must use this bound, not the node's own radius. unit: m
   [[nodiscard]] float subtree_radius(std::uint32_t node) const { return subtree_radius_[node]; }
+  // The level a node is on, 0 for the root.
   [[nodiscard]] int level(std::uint32_t node) const;
 
   // The deepest level a descent uses when it stops after `tree_depth` levels (0, or more than
@@ -64,7 +77,9 @@ class SphereTree {
   }
   // Nodes of level k (0 = root) as the index range [begin, end).
   [[nodiscard]] std::uint32_t level_begin(int level) const { return level_begin_[level]; }
+  // One past the last node of level k.
   [[nodiscard]] std::uint32_t level_end(int level) const { return level_begin_[level + 1]; }
+  // The spheres of level k's nodes, in index order. unit: m
   [[nodiscard]] std::span<const Sphere> level_spheres(int level) const {
     return std::span(spheres_).subspan(level_begin(level), level_end(level) - level_begin(level));
   }
@@ -75,6 +90,7 @@ class SphereTree {
   // leaves). Throws sphys::Error unless 1 <= depth.
   [[nodiscard]] SphereTree truncated(int depth) const;
 
+  // The same branching, parents and spheres (centres and radii compared exactly).
   friend bool operator==(const SphereTree& a, const SphereTree& b);
 
  private:

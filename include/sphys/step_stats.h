@@ -26,11 +26,12 @@ struct DetectionCounters {
   // Pairs (a body and the ground plane included) whose trees descended, and pairs that kept their
   // contacts from the last descent as they barely moved (SolverSettings::reuse_distance).
   std::uint32_t descended_pairs = 0;
-  std::uint32_t reused_pairs = 0;
+  std::uint32_t reused_pairs = 0;  // kept their contacts (reuse_distance), no descent
   // Crowds (CollisionSettings::crowd_pairs_per_body): overlapping body pairs the broad phase left
   // out to keep the step's work bounded.
   std::uint64_t pairs_deferred = 0;
 
+  // Adds every counter of `other` to this one's.
   DetectionCounters& operator+=(const DetectionCounters& other) {
     candidate_pairs += other.candidate_pairs;
     sphere_tests += other.sphere_tests;
@@ -44,6 +45,7 @@ struct DetectionCounters {
   }
 };
 
+// The figures of one World::step (the top of this file says which are measured when).
 struct StepStats : DetectionCounters {
   // Wall-clock time of each phase of the step and of the whole step. unit: ms
   double broad_phase_ms = 0.0;   // bounds and Sweep & Prune
@@ -78,7 +80,7 @@ struct StepStats : DetectionCounters {
   // count over the collision passes).
   std::uint32_t crowded_bodies = 0;
   std::uint32_t movable_bodies = 0;  // bodies that are not static
-  std::uint32_t bodies_asleep = 0;
+  std::uint32_t bodies_asleep = 0;   // movable bodies asleep at the end of the step
 
   // Plausibility figures, measured on the leaf-pair contacts before any reduction and on the
   // bodies at the end of the step (WorldSettings::plausibility_figures).
@@ -106,7 +108,7 @@ struct StepFigure {
   bool count = false;     // a whole number (Python gives an int)
   // Every frame's value is a column of frames.csv (its name: frames_csv_column()).
   bool in_frames_csv = false;
-  double (*read)(const StepStats&) = nullptr;
+  double (*read)(const StepStats&) = nullptr;  // the figure's value in a step's stats
 };
 
 // Every figure of StepStats, the frames CSV's in its column order first; a non-finite body

@@ -32,7 +32,7 @@ enum class ResponseMode {
 
 // Bodies at rest stop being simulated until something touches them (plausible mode).
 struct SleepSettings {
-  bool enabled = true;
+  bool enabled = true;  // false simulates every body in every step
   // A body is still while its fastest point (|v| + |ω| · its bounding radius) is under this.
   // unit: m/s
   float speed = 0.05f;
@@ -42,15 +42,17 @@ struct SleepSettings {
   float time = 0.5f;
 };
 
+// Everything a world is made with, each setting declared once in the settings table
+// (sphys/settings_table.h), which checks them; a default one is a valid world.
 struct WorldSettings {
-  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);  // unit: m/s²
-  ResponseMode response = ResponseMode::kPlausible;
+  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);           // unit: m/s²
+  ResponseMode response = ResponseMode::kPlausible;  // the step's pipeline (ResponseMode)
   // Paper mode: passes over the contacts at most per collision pass; the response stops early
   // after a pass that finds no approaching contact. 1 is a single pass. See docs/experiment.md.
   // unit: passes
   std::uint32_t paper_passes = 1;
-  SolverSettings solver;
-  SleepSettings sleep;
+  SolverSettings solver;  // plausible mode's soft step and the contacts it is given
+  SleepSettings sleep;    // plausible mode
   // Collision passes: each step(dt) runs detection and response at least this many times, each
   // pass over dt / collision_passes (the solver's own substeps are solver.soft_substeps). 1..64;
   // unit: collision passes
@@ -72,7 +74,7 @@ struct WorldSettings {
   std::optional<BroadPhaseKind> broad_phase = std::nullopt;
   // Material of the exact ground plane (CollisionSettings::ground_plane_height), if there is one.
   float ground_restitution = 0.3f;
-  float ground_friction = 0.5f;
+  float ground_friction = 0.5f;  // Coulomb coefficient. unit: dimensionless, >= 0
   // Threads a step runs on (oneTBB): the broad phase's cells, the narrow phase, the contacts and
   // the solver's set-up and passes (docs/performance.md).
   // 0 takes every hardware thread. The results are bit for bit the same whatever the count.
@@ -86,15 +88,15 @@ struct WorldSettings {
 // What add_body needs. The sphere-tree and the inertia are in the body frame, whose origin is the
 // centre of mass.
 struct BodyDesc {
-  std::shared_ptr<const SphereTree> tree;
-  Transform pose;                        // unit: m
-  Vec3 linear_velocity = Vec3::Zero();   // unit: m/s
-  Vec3 angular_velocity = Vec3::Zero();  // world frame. unit: rad/s
-  float mass = 1.0f;                     // ignored for static bodies. unit: kg
-  Mat3 inertia = Mat3::Identity();       // about the centre of mass, body axes. unit: kg·m²
-  float restitution = 0.3f;              // 0..1
-  float friction = 0.5f;                 // >= 0
-  bool is_static = false;
+  std::shared_ptr<const SphereTree> tree;  // required, not empty; bodies of one shape may share it
+  Transform pose;                          // unit: m
+  Vec3 linear_velocity = Vec3::Zero();     // unit: m/s
+  Vec3 angular_velocity = Vec3::Zero();    // world frame. unit: rad/s
+  float mass = 1.0f;                       // ignored for static bodies. unit: kg
+  Mat3 inertia = Mat3::Identity();         // about the centre of mass, body axes. unit: kg·m²
+  float restitution = 0.3f;                // 0..1
+  float friction = 0.5f;                   // >= 0
+  bool is_static = false;                  // never moves: infinite mass, no velocities
 };
 
 class WorldAccess;
@@ -108,9 +110,14 @@ struct WorldState;
 // while a Reading is held, or on the thread that steps.
 class World {
  public:
+  // An empty world. Throws sphys::Error for a setting outside its range (check_world_settings)
+  // or lanes this processor or build lacks (resolve_solver_lanes).
   explicit World(const WorldSettings& settings = {});
   ~World();
+  // Takes the other's bodies and state whole; the moved-from world may only be destroyed or
+  // assigned to.
   World(World&&) noexcept;
+  // As the move constructor.
   World& operator=(World&&) noexcept;
 
   // Holds the world for reading across several calls, e.g. while another thread copies bodies()
@@ -118,6 +125,7 @@ class World {
   // throws sphys::Error while a step or change is under way.
   class Reading {
    public:
+    // Holds `world` for reading until destroyed.
     explicit Reading(const World& world);
     ~Reading();
     Reading(const Reading&) = delete;
@@ -154,6 +162,7 @@ class World {
   // The friction and restitution of contacts between these two bodies, instead of the mix of
   // their own (see sphys/material.h). Checked like a body's material.
   void set_pair_material(BodyId a, BodyId b, const PairMaterial& material);
+  // True while the body sleeps (plausible mode); a static body never does.
   [[nodiscard]] bool asleep(BodyId body) const;
   // Body slots, alive or removed; id_of(i) is the id of slot i's body (or of its last one).
   [[nodiscard]] std::uint32_t body_slots() const;
@@ -170,10 +179,13 @@ class World {
   // being finite the step reports it in StepStats::non_finite_body and the world stays stopped
   // (later steps do nothing).
   const StepStats& step(float dt);
+  // The figures of the last step (what step() returned); a default StepStats before the first.
   [[nodiscard]] const StepStats& stats() const;
   // The contacts the last step (its last collision pass) responded to: after reduction, when
   // reduced.
   [[nodiscard]] std::span<const Contact> contacts() const;
+  // True once a step found a body's state not finite (StepStats::non_finite_body): later steps do
+  // nothing.
   [[nodiscard]] bool stopped() const;
 
   // The time-critical narrow phase's budgets (CollisionSettings::max_sphere_tests and
@@ -181,6 +193,7 @@ class World {
   // that is negative or not finite throws sphys::Error.
   void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
 
+  // The settings the world was made with, with the budgets set_detection_budget changed since.
   [[nodiscard]] const WorldSettings& settings() const;
   // The lanes settings().solver.lanes resolved to on this processor (never kAuto).
   [[nodiscard]] SolverLanes solver_lanes() const;

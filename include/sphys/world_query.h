@@ -30,7 +30,7 @@ struct QueryFilter {
   // A body is seen when its category bits share a bit with `mask`. `categories` holds the bits
   // per body slot (World::id_of); a body whose slot is past its end is in category 1.
   std::uint32_t mask = ~0u;
-  std::vector<std::uint32_t> categories;
+  std::vector<std::uint32_t> categories;  // category bits by body slot; missing slots: 1
   // Sleeping bodies are left out.
   bool skip_sleeping = false;
 };
@@ -46,7 +46,7 @@ struct Ray {
 // Where a ray enters a body's leaf spheres. A ray that starts inside a leaf sphere hits it at
 // distance 0, its normal against the ray.
 struct RayHit {
-  BodyId body;
+  BodyId body;                  // the body hit
   std::uint32_t leaf = 0;       // the leaf sphere's node in the body's tree
   Vec3 point = Vec3::Zero();    // unit: m
   Vec3 normal = Vec3::UnitY();  // outward unit normal of the leaf sphere at `point`
@@ -55,7 +55,7 @@ struct RayHit {
 
 // A box turned and placed by `pose`: the points pose.apply(p) with |p_i| <= half_extents_i.
 struct OrientedBox {
-  Transform pose;
+  Transform pose;                            // the box's centre and axes in the world. unit: m
   Vec3 half_extents = Vec3::Constant(0.5f);  // unit: m, >= 0
 };
 
@@ -74,13 +74,13 @@ struct DistanceResult {
   // The closest pair: leaf nodes of body a's and body b's tree (leaf_b is 0 against a point) and
   // the nearest points of their spheres' surfaces (against a point, point_b is the point).
   std::uint32_t leaf_a = 0;
-  std::uint32_t leaf_b = 0;
+  std::uint32_t leaf_b = 0;     // 0 against a point
   Vec3 point_a = Vec3::Zero();  // unit: m
   Vec3 point_b = Vec3::Zero();  // unit: m
   // False when a budget stopped the descent: `distance` is then a lower bound of the leaf
   // spheres' gap (and of the meshes'), and the pair is the closest found so far.
   bool exact = true;
-  std::uint64_t sphere_tests = 0;
+  std::uint64_t sphere_tests = 0;  // sphere tests the descent made. unit: sphere tests
 };
 
 namespace query_detail {
@@ -96,13 +96,18 @@ struct Snapshot;
 // refresh() alone.
 class WorldQuery {
  public:
+  // Reads the world's bodies now (see above for when that throws).
   explicit WorldQuery(const World& world);
   ~WorldQuery();
+  // Takes the other's copy of the bodies; the moved-from query may only be destroyed or assigned
+  // to.
   WorldQuery(WorldQuery&&) noexcept;
+  // As the move constructor.
   WorldQuery& operator=(WorldQuery&&) noexcept;
 
   // Reads the world's bodies again; not beside this query's own calls on other threads.
   void refresh();
+  // The world the query reads.
   [[nodiscard]] const World& world() const { return *world_; }
 
   // The nearest hit, if any. Throws sphys::Error naming `ray.origin`, `ray.direction` (zero or
@@ -120,8 +125,10 @@ class WorldQuery {
   // slot. Throws sphys::Error for a negative or non-finite size or a non-finite place.
   [[nodiscard]] std::vector<BodyId> overlap_sphere(const Vec3& center, float radius,
                                                    const QueryFilter& filter = {}) const;
+  // The same for a turned box.
   [[nodiscard]] std::vector<BodyId> overlap_box(const OrientedBox& box,
                                                 const QueryFilter& filter = {}) const;
+  // The same for an axis-aligned box.
   [[nodiscard]] std::vector<BodyId> overlap_aabb(const Aabb& box,
                                                  const QueryFilter& filter = {}) const;
   // Leaf spheres overlapping a leaf sphere of `tree` at `pose` (its leaves: the world's
@@ -136,6 +143,7 @@ class WorldQuery {
   // sphys::Error naming an unknown body or a non-finite point.
   [[nodiscard]] DistanceResult distance(BodyId a, BodyId b,
                                         const DistanceBudget& budget = {}) const;
+  // The same between a body and a world point (unit: m).
   [[nodiscard]] DistanceResult distance(BodyId body, const Vec3& point,
                                         const DistanceBudget& budget = {}) const;
 

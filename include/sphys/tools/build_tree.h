@@ -24,13 +24,15 @@ enum class BuildMethod {
   Tight,     // Merge, then the outside volume shrunk under the coverage and protrusion (ours)
 };
 
+// The method's name in scene files and on the command line ("combined"), as parse_method reads it.
 [[nodiscard]] std::string_view method_name(BuildMethod method);
 // Throws sphys::Error listing the valid names.
 [[nodiscard]] BuildMethod parse_method(std::string_view name);
 
+// How build_sphere_tree builds a tree.
 struct BuildOptions {
-  BuildMethod method = BuildMethod::Combined;
-  int branching = 8;       // children per node, 2..8
+  BuildMethod method = BuildMethod::Combined;  // the construction algorithm
+  int branching = 8;                           // children per node, 2..8
   int depth = 3;           // levels including the root (the paper's depths are 2 and 3)
   std::uint64_t seed = 1;  // every random choice derives from it: same seed, same tree
   // Called with the fraction done (0..1) now and then, for progress bars.

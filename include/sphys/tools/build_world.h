@@ -17,6 +17,7 @@
 
 namespace sphys::tools {
 
+// What build_world may change of a scene, and how it works.
 struct BuildWorldOptions {
   // Replaces every body's sphere-tree depth (built trees are built to it, trees read from .sph
   // files are truncated to it). unit: levels including the root
@@ -38,19 +39,20 @@ struct BodyShape {
   std::string mesh;  // as the scene names it
   // The mesh in the body frame (metres, centre of mass at the origin), for drawing and export.
   std::shared_ptr<const TriangleMesh> body_mesh;
-  double volume = 0.0;  // unit: m³
-  std::shared_ptr<const SphereTree> tree;
-  std::string tree_source;  // e.g. "combined, branching 8, depth 3" or the .sph file
+  double volume = 0.0;                     // unit: m³
+  std::shared_ptr<const SphereTree> tree;  // in the body frame, shared by the shape's bodies
+  std::string tree_source;                 // e.g. "combined, branching 8, depth 3" or the .sph file
   // Largest distance of a vertex from the centre of mass. unit: m
   double max_vertex_distance = 0.0;
 };
 
+// A scene made into a world, with what the tools need to draw and report on its bodies.
 struct SimulationSetup {
-  std::unique_ptr<World> world;
+  std::unique_ptr<World> world;           // the scene's world, its bodies added, not yet stepped
   std::vector<BodyId> bodies;             // the scene's bodies, in order
   std::vector<std::uint32_t> body_shape;  // index into shapes, per scene body
-  std::vector<BodyShape> shapes;
-  std::optional<BodyId> ground;                   // the octree ground's static body, if any
+  std::vector<BodyShape> shapes;          // each distinct shape once
+  std::optional<BodyId> ground;           // the octree ground's static body, if any
   std::shared_ptr<const SphereTree> ground_tree;  // its sphere-tree
 };
 

@@ -23,6 +23,8 @@ void write_csv(const std::filesystem::path& path, std::span<const std::string> c
 
 // A cell of a table whose columns mix numbers and text (e.g. a benchmark's engine and machine).
 using CsvCell = std::variant<double, std::string>;
+// The same with cells of numbers or text: numbers written as above, text as it is (quoted when
+// it must be).
 void write_csv(const std::filesystem::path& path, std::span<const std::string> columns,
                std::span<const std::vector<CsvCell>> rows);
 

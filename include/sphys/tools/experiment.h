@@ -19,7 +19,7 @@ namespace sphys::tools {
 // The size of the frames `sphys experiment` draws (Figure 2 and --render). The paper does not
 // say its window's size; we presume 640 × 480. unit: pixels
 inline constexpr int kDrawnFrameWidth = 640;
-inline constexpr int kDrawnFrameHeight = 480;
+inline constexpr int kDrawnFrameHeight = 480;  // unit: pixels
 // `sphys experiment --render` draws and times every this many-th frame after its step (88 of the
 // paper's 880): drawing all 7,040 frames in software takes about ten minutes on two cores, the
 // physics seconds; the sample's mean drawing time stands for the frames not drawn. `--render-all`
@@ -33,15 +33,16 @@ struct ExperimentRow {
   int per_stack = 25;  // N
   // "d2-4x25": what --only accepts.
   [[nodiscard]] std::string id() const;
+  // The same depth, stacks and bodies per stack.
   friend bool operator==(const ExperimentRow&, const ExperimentRow&) = default;
 };
 
 // A row of the paper's Table 1.
 struct PaperRow {
-  ExperimentRow row;
-  double contacts_per_frame = 0.0;
-  double fps = 0.0;
-  double frame_time_sd_ms = 0.0;  // standard deviation of the time to generate a frame. unit: ms
+  ExperimentRow row;                // the experiment
+  double contacts_per_frame = 0.0;  // mean over the frames
+  double fps = 0.0;                 // frames per second as published. unit: 1/s
+  double frame_time_sd_ms = 0.0;    // standard deviation of the time to generate a frame. unit: ms
 };
 
 // The eight rows in the paper's printed order: d2-4x25, d2-4x50, d3-4x25, d3-4x50, then the same
@@ -52,23 +53,25 @@ struct PaperRow {
 // their standard deviations are across the rows. Correlations are Pearson's r across the rows
 // (NaN when fewer than two rows or no spread).
 struct ExperimentStatistics {
-  double contacts_fps_correlation = 0.0;
-  double contacts_frame_sd_correlation = 0.0;
-  double detection_share_mean = 0.0;  // unit: %
-  double detection_share_sd = 0.0;    // unit: percentage points
-  double response_share_mean = 0.0;   // unit: %
-  double response_share_sd = 0.0;     // unit: percentage points
-  double detection_share_contacts_correlation = 0.0;
-  double response_share_contacts_correlation = 0.0;
+  double contacts_fps_correlation = 0.0;              // contacts per frame against FPS
+  double contacts_frame_sd_correlation = 0.0;         // contacts per frame against frame time sd
+  double detection_share_mean = 0.0;                  // unit: %
+  double detection_share_sd = 0.0;                    // unit: percentage points
+  double response_share_mean = 0.0;                   // unit: %
+  double response_share_sd = 0.0;                     // unit: percentage points
+  double detection_share_contacts_correlation = 0.0;  // detection share against contacts
+  double response_share_contacts_correlation = 0.0;   // response share against contacts
 };
+// The statistics as the paper prints them (how we read its misprints: src/tools/experiment/
+// paper_table.cpp).
 [[nodiscard]] const ExperimentStatistics& paper_statistics();
 
 // What one run of one row measured, frame by frame.
 struct FrameSample {
-  double step_ms = 0.0;       // the whole physics step
-  double detection_ms = 0.0;  // broad phase, narrow phase and contacts
-  double response_ms = 0.0;
-  std::uint32_t contacts = 0;
+  double step_ms = 0.0;        // the whole physics step
+  double detection_ms = 0.0;   // broad phase, narrow phase and contacts
+  double response_ms = 0.0;    // the response's impulses (StepStats::response_ms). unit: ms
+  std::uint32_t contacts = 0;  // the response's contacts in the step (StepStats::contacts)
   // Drawing the frame after the step (`sphys experiment --render`); 0 when it was not drawn.
   // unit: ms
   double render_ms = 0.0;
@@ -85,8 +88,8 @@ struct Plausibility {
   int penetrating_frames = 0;  // frames with overlapping leaf pairs
   // At the end of the run: bodies that are not static, and those at rest or asleep among them.
   std::uint32_t movable_bodies = 0;
-  std::uint32_t bodies_at_rest = 0;
-  std::uint32_t bodies_asleep = 0;
+  std::uint32_t bodies_at_rest = 0;  // as StepStats::bodies_at_rest counts them
+  std::uint32_t bodies_asleep = 0;   // as StepStats::bodies_asleep counts them
   // The first frame (from 1) from which every moving body stayed at rest to the end; unset when
   // some body still moved in the last frame.
   std::optional<int> all_at_rest_frame;
@@ -102,7 +105,9 @@ inline constexpr std::size_t kJitterFrames = 60;
 // Gathers a run's Plausibility from the StepStats of each frame, in order.
 class PlausibilityMeter {
  public:
+  // Takes the next frame's figures.
   void add(const StepStats& stats);
+  // The figures of the frames added so far.
   [[nodiscard]] Plausibility result() const;
 
  private:
@@ -115,33 +120,35 @@ class PlausibilityMeter {
 
 // How the rows are run: the paper's response unless asked otherwise.
 struct ExperimentMode {
-  ResponseMode response = ResponseMode::kPaper;
+  ResponseMode response = ResponseMode::kPaper;  // the worlds' response mode
   // The contacts plausible mode responds to; paper mode responds to every leaf-pair contact.
   ContactSet contacts = SolverSettings{}.contacts;
 };
 
+// What running one row gave: its frames, its world's description and its end state.
 struct RowResult {
-  ExperimentRow row;
-  std::vector<FrameSample> frames;
-  std::string tree_builder;  // e.g. "combined, branching 8"
-  std::string ground;        // e.g. "octree of a 16 m box, 5 levels"
-  std::uint32_t bodies = 0;
+  ExperimentRow row;                     // the row run
+  std::vector<FrameSample> frames;       // one per frame stepped, in order
+  std::string tree_builder;              // e.g. "combined, branching 8"
+  std::string ground;                    // e.g. "octree of a 16 m box, 5 levels"
+  std::uint32_t bodies = 0;              // the scene's bodies
   std::uint32_t bodies_below_plane = 0;  // centre of mass below y = 0 at the end
   float lowest_center_y = 0.0f;          // lowest centre of mass at the end. unit: m
-  Plausibility plausibility;
-  bool stopped_non_finite = false;
+  Plausibility plausibility;             // over the frames stepped
+  bool stopped_non_finite = false;       // a body's state stopped being finite: the run ended there
   // Figure 2: the first and the last frame drawn (file names beside the report), or why they
   // could not be ("" when they were, or were not asked for).
   std::string first_picture;
-  std::string last_picture;
-  std::string pictures_missing;
+  std::string last_picture;      // the last frame's file name
+  std::string pictures_missing;  // why they could not be drawn; "" when drawn or not asked for
   // Frames timed with their drawing: every this many-th one (the frames at 1-based indices
   // n, 2n, ...; 1 is every frame), 0 when none were. unit: frames
   std::uint32_t drawn_every = 0;
 };
 
+// One row's figures as Table 1 gives them, from its frames (summarize).
 struct RowSummary {
-  ExperimentRow row;
+  ExperimentRow row;                // the row run
   double contacts_per_frame = 0.0;  // mean over frames
   double mean_frame_ms = 0.0;       // unit: ms
   double fps = 0.0;                 // 1000 / mean_frame_ms: physics only
@@ -152,16 +159,18 @@ struct RowSummary {
   // paper's frames did, and the drawing's share of that frame time (unit: %), the frames not drawn
   // counted at the drawn ones' mean. NaN when none was drawn.
   std::uint32_t frames_drawn = 0;  // the frames timed with their drawing
-  double fps_with_drawing = 0.0;
-  double drawing_share = 0.0;
+  double fps_with_drawing = 0.0;   // unit: 1/s
+  double drawing_share = 0.0;      // unit: %
   // Detection's and response's shares of the drawn frame's time, the paper's basis. unit: %
   double detection_share_drawn = 0.0;
-  double response_share_drawn = 0.0;
+  double response_share_drawn = 0.0;  // unit: %
 };
 
 // Figures a run cannot give are NaN: all of them without frames, the sd with fewer than two, FPS
 // and shares when no time was measured.
 [[nodiscard]] RowSummary summarize(const RowResult& result);
+// The §5 statistics across the rows' summaries (means, sample sds and correlations; NaN where
+// they cannot be computed).
 [[nodiscard]] ExperimentStatistics compute_statistics(std::span<const RowSummary> rows);
 // Pearson's correlation coefficient; NaN when sizes differ, fewer than two values, or either
 // sequence has no spread.
@@ -183,6 +192,7 @@ struct PlotFiles {
   std::string frame_time;  // step time per frame
   std::string contacts;    // contacts per frame
 };
+// The file names write_plots gives the row's plots.
 [[nodiscard]] PlotFiles plot_files(const ExperimentRow& row);
 // Whether write_plots can draw: gnuplot is on PATH.
 [[nodiscard]] bool plots_available();

@@ -14,14 +14,15 @@ namespace sphys::tools {
 
 // Which frames go in: first, first + every, ... up to last (inclusive).
 struct GltfExportOptions {
-  std::uint32_t first = 0;
+  std::uint32_t first = 0;            // the first frame exported, from 0
   std::optional<std::uint32_t> last;  // unset: the recording's last frame
-  std::uint32_t every = 1;
+  std::uint32_t every = 1;            // the step between frames exported, >= 1. unit: frames
 };
 
+// What write_gltf wrote.
 struct GltfExportSummary {
   std::uint32_t frames = 0;  // exported
-  std::uint32_t bodies = 0;
+  std::uint32_t bodies = 0;  // animated: every body of the recording
   std::uint32_t meshes = 0;  // distinct body meshes, the ground not counted
   std::uint64_t bytes = 0;   // of the file
 };

@@ -12,8 +12,11 @@ namespace sphys::tools {
 // "sphys: interrupted".
 class Interrupted : public std::exception {
  public:
+  // For the signal received (its number, e.g. SIGINT).
   explicit Interrupted(int signal) : signal_(signal) {}
+  // "interrupted".
   [[nodiscard]] const char* what() const noexcept override { return "interrupted"; }
+  // The signal's number.
   [[nodiscard]] int signal() const { return signal_; }
   // The exit code a shell expects of a program a signal ended: 128 + its number.
   [[nodiscard]] int exit_code() const { return 128 + signal_; }

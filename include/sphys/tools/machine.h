@@ -6,11 +6,13 @@
 
 namespace sphys::tools {
 
+// The processor a report's figures were measured on.
 struct Machine {
-  std::string cpu;  // the "model name" of the first processor in /proc/cpuinfo
-  unsigned hardware_threads = 0;
+  std::string cpu;                // the "model name" of the first processor in /proc/cpuinfo
+  unsigned hardware_threads = 0;  // std::thread::hardware_concurrency(); 0 when it cannot tell
 };
 
+// The machine this runs on; cpu "unknown processor" where /proc/cpuinfo does not say.
 [[nodiscard]] Machine this_machine();
 
 // E.g. "AMD EPYC 7B13, 2 hardware threads".

@@ -19,6 +19,7 @@ enum class MassMethod {
   WindingNumber,
 };
 
+// How compute_mass_properties integrates.
 struct MassPropertiesOptions {
   double density = 1000.0;  // unit: kg/m³ (mesh units taken as metres)
   // Polyhedral when the mesh is watertight, WindingNumber otherwise (holes, non-manifold or
@@ -31,13 +32,13 @@ struct MassPropertiesOptions {
 
 // Mass properties of a homogeneous solid, in the mesh's frame.
 struct MassProperties {
-  double volume = 0.0;                       // unit: m³
-  double mass = 0.0;                         // unit: kg
-  Vec3d center_of_mass = Vec3d::Zero();      // unit: m
-  Mat3d inertia = Mat3d::Zero();             // about the centre of mass, mesh axes. unit: kg·m²
-  Vec3d principal_moments = Vec3d::Zero();   // ascending. unit: kg·m²
-  Mat3d principal_axes = Mat3d::Identity();  // columns, right-handed, matching principal_moments
-  MassMethod method = MassMethod::Polyhedral;
+  double volume = 0.0;                         // unit: m³
+  double mass = 0.0;                           // unit: kg
+  Vec3d center_of_mass = Vec3d::Zero();        // unit: m
+  Mat3d inertia = Mat3d::Zero();               // about the centre of mass, mesh axes. unit: kg·m²
+  Vec3d principal_moments = Vec3d::Zero();     // ascending. unit: kg·m²
+  Mat3d principal_axes = Mat3d::Identity();    // columns, right-handed, matching principal_moments
+  MassMethod method = MassMethod::Polyhedral;  // how the integrals were taken
 };
 
 // Throws sphys::Error, naming the mesh, when the density is not positive and finite, the column

@@ -21,14 +21,20 @@ class MeshQuery {
   // triangle refers to a missing vertex.
   explicit MeshQuery(const TriangleMesh& mesh);
   ~MeshQuery();
+  // Takes over the other's state; the moved-from query may only be destroyed or assigned to.
   MeshQuery(MeshQuery&&) noexcept;
+  // As the move constructor.
   MeshQuery& operator=(MeshQuery&&) noexcept;
 
+  // The point of the mesh's surface nearest to `p`, in the mesh's units.
   [[nodiscard]] Vec3d closest_point(const Vec3d& p) const;
+  // Unsigned distance from `p` to the surface: |closest_point(p) - p|, in the mesh's units.
   [[nodiscard]] double distance(const Vec3d& p) const;
+  // Whether `p` is inside the solid (the class comment says how; the surface counts as inside).
   [[nodiscard]] bool inside(const Vec3d& p) const;
   // Negative inside, positive outside. unit: m
   [[nodiscard]] double signed_distance(const Vec3d& p) const;
+  // The query's own copy of the mesh.
   [[nodiscard]] const TriangleMesh& mesh() const;
 
  private:

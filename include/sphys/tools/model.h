@@ -12,7 +12,8 @@ namespace sphys::tools {
 // The default model: the Stanford bunny as Debian's glmark2-data ships it. The environment
 // variable SPHYS_BUNNY overrides the path.
 inline constexpr std::string_view kBunnyName = "bunny";
-inline constexpr std::size_t kBunnyDefaultTriangles = 2000;
+inline constexpr std::size_t kBunnyDefaultTriangles = 2000;  // what "bunny" is decimated to
+// SPHYS_BUNNY when set and not empty, else glmark2-data's /usr/share/glmark2/models/bunny.obj.
 [[nodiscard]] std::filesystem::path bunny_path();
 
 // Resolves what a user typed where a mesh is accepted: "bunny" is the default model decimated to

@@ -5,6 +5,7 @@
 
 namespace sphys::tools {
 
+// A mesh brought to a size and to its centre of mass (normalize), with the map that did it.
 struct NormalizedMesh {
   TriangleMesh mesh;                  // scaled and moved
   double scale = 1.0;                 // applied first, about the original origin

@@ -12,11 +12,13 @@
 
 namespace sphys::tools {
 
+// The deepest overlap of two leaf spheres found by deepest_overlap, and its bodies.
 struct Overlap {
   float depth = 0.0f;  // r_a + r_b − |c_a − c_b| of the deepest leaf pair; 0 when none. unit: m
   // The scene bodies (indices into SimulationSetup::bodies) of that pair; kGround for the ground.
   std::uint32_t body_a = 0;
-  std::uint32_t body_b = 0;
+  std::uint32_t body_b = 0;  // the pair's other body, or kGround
+  // The ground's stand-in for a scene body index (no body has it).
   static constexpr std::uint32_t kGround = std::numeric_limits<std::uint32_t>::max();
 };
 

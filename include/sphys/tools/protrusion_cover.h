@@ -30,7 +30,10 @@ class ProtrusionCover {
   // triangles or with a non-finite vertex.
   explicit ProtrusionCover(const TriangleMesh& mesh, double finest_bound = 0.0);
   ~ProtrusionCover();
+  // Takes over the other's state; the moved-from cover may only be destroyed or
+  // assigned to.
   ProtrusionCover(ProtrusionCover&&) noexcept;
+  // As the move constructor.
   ProtrusionCover& operator=(ProtrusionCover&&) noexcept;
 
   // The spheres for protrusion bound `max_protrusion` (unit: m; positive): the candidates

@@ -19,6 +19,7 @@ namespace sphys::tools {
 // The format version this build writes, and the only one it reads.
 inline constexpr std::uint32_t kRecordingVersion = 1;
 
+// Where one body is in one frame.
 struct BodyPose {
   Vec3 position = Vec3::Zero();         // of the centre of mass. unit: m
   Quat orientation = Quat::Identity();  // body to world; unit length
@@ -45,6 +46,7 @@ class RecordingWriter {
   // Stores the frame count in the header and moves the file into place, replacing an existing
   // one. Throws when called again.
   void finish();
+  // True once finish() has succeeded: the file is in place.
   [[nodiscard]] bool finished() const;
 
  private:
@@ -52,13 +54,14 @@ class RecordingWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+// A recording read whole (read_recording).
 struct Recording {
-  std::uint32_t version = kRecordingVersion;
-  double time_step = 0.0;  // between frames. unit: s
-  std::string metadata;
-  std::uint32_t body_count = 0;
-  std::uint32_t frame_count = 0;
-  std::vector<BodyPose> poses;  // frame after frame, body_count poses each
+  std::uint32_t version = kRecordingVersion;  // the file's format version
+  double time_step = 0.0;                     // between frames. unit: s
+  std::string metadata;                       // as the writer was given it: the scene as JSON
+  std::uint32_t body_count = 0;               // poses per frame
+  std::uint32_t frame_count = 0;              // frames recorded
+  std::vector<BodyPose> poses;                // frame after frame, body_count poses each
 
   // The poses of frame i (counting from 0; i < frame_count), in body order.
   [[nodiscard]] std::span<const BodyPose> frame(std::uint32_t i) const;

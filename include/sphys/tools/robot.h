@@ -16,12 +16,12 @@
 
 namespace sphys::tools {
 
-using Pose3d = Eigen::Isometry3d;
+using Pose3d = Eigen::Isometry3d;  // a rigid pose in double. unit: m
 
 // Where `package://NAME/...` mesh paths of the URDF point: NAME's directory.
 struct RobotPackage {
-  std::string name;
-  std::filesystem::path directory;
+  std::string name;                 // NAME in package://NAME/...
+  std::filesystem::path directory;  // where NAME's files are
 };
 
 // Reads "NAME=DIR" (the --package option); throws sphys::Error when either side is empty.
@@ -31,9 +31,9 @@ struct RobotPackage {
 // elements' origins and mesh scales applied), or every visual element when the link has no
 // collision element.
 struct LinkGeometry {
-  std::string link;
-  TriangleMesh mesh;  // unit: m
-  bool from_visual = false;
+  std::string link;          // the link's name
+  TriangleMesh mesh;         // unit: m
+  bool from_visual = false;  // the link had no collision element: its visual ones were taken
   // Boxes and meshes are exact; cylinders and spheres are meshed with their vertices on the true
   // surface, which then lies at most this far outside the mesh. Spheres covering the mesh cover
   // the true shape once grown by this much. unit: m
@@ -42,26 +42,28 @@ struct LinkGeometry {
   std::vector<std::string> sources;
 };
 
+// A joint of the URDF, as it declares it.
 struct RobotJoint {
-  std::string name;
-  std::string type;  // revolute, continuous, prismatic, fixed, floating or planar
-  std::string parent;
-  std::string child;
+  std::string name;                    // the joint's name
+  std::string type;                    // revolute, continuous, prismatic, fixed, floating or planar
+  std::string parent;                  // the parent link's name
+  std::string child;                   // the child link's name, the link the joint moves
   Pose3d origin = Pose3d::Identity();  // the child's frame in the parent's at joint value 0
   Vec3d axis = Vec3d::UnitX();         // unit vector in the child's frame
   // The limits of a revolute or prismatic joint (rad, m); infinite for a continuous one.
   double lower = 0.0;
-  double upper = 0.0;
+  double upper = 0.0;  // unit: rad or m
   std::string mimics;  // the joint it mimics, or empty
 };
 
+// A robot as load_robot reads it from its URDF.
 struct Robot {
-  std::string name;
-  std::filesystem::path file;
-  std::string root_link;
+  std::string name;                      // the URDF's robot name
+  std::filesystem::path file;            // the URDF read
+  std::string root_link;                 // the link that is no joint's child
   std::vector<LinkGeometry> links;       // the links that have geometry, by name
   std::vector<std::string> empty_links;  // links with neither collision nor visual geometry
-  std::vector<RobotJoint> joints;
+  std::vector<RobotJoint> joints;        // every joint of the URDF, by name
 };
 
 // Reads the URDF, resolving mesh files given as `package://NAME/...` (through `packages`), as

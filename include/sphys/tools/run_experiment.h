@@ -16,12 +16,13 @@ namespace sphys::tools {
 // A frame of a row as the frame callback sees it: the row's scene and world after `frame` steps
 // (0: before the first).
 struct ExperimentFrame {
-  const Scene& scene;
-  const SimulationSetup& setup;
-  int frame = 0;
-  bool last = false;  // no step follows
+  const Scene& scene;            // the row's scene
+  const SimulationSetup& setup;  // its world and shapes
+  int frame = 0;                 // steps taken
+  bool last = false;             // no step follows
 };
 
+// How run_experiment_row runs a row.
 struct ExperimentOptions {
   int frames = 880;  // the paper's run length
   // The paper's 5-level octree of a thin box (kOctreeBox), or the exact plane (kPlane) to see
@@ -29,7 +30,7 @@ struct ExperimentOptions {
   GroundSpec::Kind ground = GroundSpec::Kind::kOctreeBox;
   // The paper's response by default, so that the rows run as published.
   ExperimentMode mode;
-  std::optional<std::filesystem::path> cache_dir;
+  std::optional<std::filesystem::path> cache_dir;  // of built trees (BuildWorldOptions's)
   // Called with the fraction of the row simulated (0..1).
   std::function<void(double)> progress;
   // Called before the first step and after every step: `sphys experiment` draws frames with it

@@ -23,12 +23,12 @@ struct RunTotals {
   // Each phase's time summed over the frames, by the figure it is (step_figures(): the frames
   // CSV's times but the step's), and the steps'. unit: ms
   std::vector<std::pair<const StepFigure*, double>> phases;
-  double step = 0;
-  double contacts = 0;  // summed over the frames
-  std::uint32_t max_contacts = 0;
+  double step = 0;                         // the steps' time summed over the frames. unit: ms
+  double contacts = 0;                     // summed over the frames
+  std::uint32_t max_contacts = 0;          // in one frame
   double collision_passes = 0;             // summed over the frames
   std::uint32_t max_collision_passes = 0;  // in one frame
-  PlausibilityMeter plausibility;
+  PlausibilityMeter plausibility;          // fed every frame's StepStats
   // The lowest centre of mass of the scene's bodies over the frames. unit: m
   float lowest_center_y = std::numeric_limits<float>::infinity();
 

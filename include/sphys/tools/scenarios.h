@@ -16,7 +16,9 @@ namespace sphys::tools {
 // fixed, documented sequence, so every engine can rebuild the same layout.
 class SplitMix64 {
  public:
+  // The sequence that starts from `seed`.
   explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
+  // The next 64 random bits of the sequence.
   std::uint64_t next();
   // Uniform in [0, 1) with 53 random bits.
   double next_unit();

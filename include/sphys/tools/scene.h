@@ -20,9 +20,9 @@ namespace sphys::tools {
 // Where a body's sphere-tree comes from: a .sph file, or built from the body's mesh.
 struct TreeSpec {
   std::optional<std::filesystem::path> sph_file;  // in the body frame (centre of mass at 0)
-  BuildMethod method = BuildMethod::Combined;
-  int branching = 8;  // 2..8
-  int depth = 3;      // levels including the root, 1..6
+  BuildMethod method = BuildMethod::Combined;     // how it is built, without sph_file
+  int branching = 8;                              // 2..8
+  int depth = 3;                                  // levels including the root, 1..6
 };
 
 // Most bodies a scene may hold, in a file or a preset: a million bunnies is twenty times the
@@ -33,8 +33,9 @@ inline constexpr std::size_t kMaxSceneBodies = 1'000'000;
 // A body's mass, given or made from its density and volume: from a 1 mg grain to a 10⁹ kg
 // building (docs/scenes.md, "Values"). unit: kg
 inline constexpr double kMinBodyMass = 1e-6;
-inline constexpr double kMaxBodyMass = 1e9;
+inline constexpr double kMaxBodyMass = 1e9;  // unit: kg
 
+// One body of a scene: its mesh, size, tree, initial state and material.
 struct BodySpec {
   // "bunny" (the default model) or a mesh file (relative paths are relative to the scene file).
   std::string mesh = "bunny";
@@ -42,38 +43,40 @@ struct BodySpec {
   std::optional<std::size_t> triangles;
   // Longest side of the bounding box after uniform scaling; unset keeps the mesh's size. unit: m
   std::optional<double> size = 1.0;
-  TreeSpec tree;
-  Vec3 position = Vec3::Zero();  // of the centre of mass. unit: m
-  Quat orientation = Quat::Identity();
+  TreeSpec tree;                         // where its sphere-tree comes from
+  Vec3 position = Vec3::Zero();          // of the centre of mass. unit: m
+  Quat orientation = Quat::Identity();   // body frame to world; unit length
   Vec3 linear_velocity = Vec3::Zero();   // unit: m/s
   Vec3 angular_velocity = Vec3::Zero();  // unit: rad/s
   double density = 1000.0;               // unit: kg/m³
   std::optional<double> mass;            // overrides density·volume (inertia scales). unit: kg
-  float restitution = BodyDesc{}.restitution;
-  float friction = BodyDesc{}.friction;
-  bool is_static = false;
+  float restitution = BodyDesc{}.restitution;  // unit: dimensionless, 0..1
+  float friction = BodyDesc{}.friction;        // Coulomb coefficient. unit: dimensionless
+  bool is_static = false;                      // never moves (its mass is not used)
 };
 
+// What a scene stands on.
 struct GroundSpec {
+  // The ground's shape.
   enum class Kind {
-    kNone,
+    kNone,       // no ground
     kPlane,      // the exact half-space y <= height
     kOctreeBox,  // the paper's plane: a thin box's octree sphere-tree, top face at y = height
   };
-  Kind kind = Kind::kOctreeBox;
-  double height = 0.0;     // unit: m
-  double size = 16.0;      // side of the box's top face (kOctreeBox). unit: m
-  double thickness = 0.5;  // unit: m
-  int depth = 5;           // levels of the box's octree
-  float restitution = WorldSettings{}.ground_restitution;
-  float friction = WorldSettings{}.ground_friction;
+  Kind kind = Kind::kOctreeBox;  // the paper's ground by default
+  double height = 0.0;           // unit: m
+  double size = 16.0;            // side of the box's top face (kOctreeBox). unit: m
+  double thickness = 0.5;        // unit: m
+  int depth = 5;                 // levels of the box's octree
+  float restitution = WorldSettings{}.ground_restitution;  // unit: dimensionless, 0..1
+  float friction = WorldSettings{}.ground_friction;  // Coulomb coefficient. unit: dimensionless
 };
 
 // The friction and restitution of contacts between two of the scene's bodies
 // (World::set_pair_material), instead of the mix of their own.
 struct PairMaterialSpec {
   std::array<std::size_t, 2> bodies{};  // indices into Scene::bodies, different
-  PairMaterial material;
+  PairMaterial material;                // what their contacts use
 };
 
 // "paper", "plausible": the response modes by name, as scene files and the command line write
@@ -96,20 +99,22 @@ struct PairMaterialSpec {
 struct Scene {
   std::string name;                        // the file name or the preset, for reports
   Vec3 gravity = WorldSettings{}.gravity;  // unit: m/s²
-  double time_step = 1.0 / 60.0;           // unit: s
-  int frames = 880;                        // one step per frame
-  ResponseMode response = WorldSettings{}.response;
+  // Between frames, one step each. unit: s
+  double time_step = 1.0 / 60.0;
+  int frames = 880;                                  // one step per frame
+  ResponseMode response = WorldSettings{}.response;  // WorldSettings::response
+  // WorldSettings::paper_passes. unit: passes
   int paper_passes = static_cast<int>(WorldSettings{}.paper_passes);
   // WorldSettings' collision passes per frame, at least and at most, and the travel per pass
   // that decides between them (unit: bounding radii).
   int collision_passes = static_cast<int>(WorldSettings{}.collision_passes);
   int max_collision_passes = static_cast<int>(WorldSettings{}.max_collision_passes);  // at most
   float collision_pass_travel = WorldSettings{}.collision_pass_travel;  // unit: bounding radii
-  SolverSettings solver;  // plausible mode; solver.contacts is the scene's "contacts"
-  SleepSettings sleep;    // plausible mode
-  GroundSpec ground;
-  std::vector<BodySpec> bodies;
-  std::vector<PairMaterialSpec> pair_materials;
+  SolverSettings solver;         // plausible mode; solver.contacts is the scene's "contacts"
+  SleepSettings sleep;           // plausible mode
+  GroundSpec ground;             // what the bodies stand on
+  std::vector<BodySpec> bodies;  // at most kMaxSceneBodies
+  std::vector<PairMaterialSpec> pair_materials;  // pairs of bodies with their own material
   // Folder that relative mesh and .sph paths are taken from.
   std::filesystem::path base_directory;
 };

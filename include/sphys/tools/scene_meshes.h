@@ -16,6 +16,7 @@ namespace sphys::tools {
 // body frame. Throws sphys::Error for a mesh that cannot be loaded.
 [[nodiscard]] TriangleMesh body_frame_mesh(const Scene& scene, const BodySpec& body);
 
+// A scene's bodies' meshes, each distinct shape once (scene_meshes).
 struct SceneMeshes {
   std::vector<std::shared_ptr<const TriangleMesh>> shapes;  // body frame
   std::vector<std::uint32_t> body_shape;                    // index into shapes, per scene body

@@ -9,6 +9,7 @@
 
 namespace sphys::tools {
 
+// How a .sph file's spheres are placed when read.
 struct SphReadOptions {
   // Added to every centre after reading. Bradshaw's toolkit writes centres relative to the
   // input mesh's bounding-box centre; pass that centre (mesh.bounds().center()) here to get the
@@ -30,14 +31,16 @@ struct SphReadOptions {
 // measuring rather than simulating: the branching factor may exceed the 8 of a SphereTree. The
 // toolkit saves a flat set of N spheres as the header "2 N", a bounding sphere, then the N.
 struct SphSpheres {
-  int branching = 2;
-  std::vector<SphereTreeNode> nodes;
+  int branching = 2;                  // the file's, which may exceed 8
+  std::vector<SphereTreeNode> nodes;  // the used spheres, breadth-first, parents by index
 
   // The spheres of each level, the root's first.
   [[nodiscard]] std::vector<std::vector<Sphere>> levels() const;
 };
+// Reads a .sph file's used spheres; throws sphys::Error naming the file and line, as read_sph.
 [[nodiscard]] SphSpheres read_sph_spheres(const std::filesystem::path& path,
                                           const SphReadOptions& options = {});
+// The same from a stream; `name` is used in messages.
 [[nodiscard]] SphSpheres read_sph_spheres(std::istream& in, const std::filesystem::path& name,
                                           const SphReadOptions& options = {});
 
@@ -45,6 +48,8 @@ struct SphSpheres {
 // radius, centres as stored. The file is written whole or not at all (a temporary file renamed
 // into place). Throws sphys::Error if the file cannot be written.
 void write_sph(const std::filesystem::path& path, const SphereTree& tree);
+// The same to a stream, as it goes. Throws sphys::Error for an empty tree or one too large for
+// the format, as the file version does.
 void write_sph(std::ostream& out, const SphereTree& tree);
 
 }  // namespace sphys::tools

@@ -17,6 +17,7 @@
 
 namespace sphys::tools {
 
+// How many spheres spherize makes: set exactly one of total_spheres and max_protrusion.
 struct SpherizeOptions {
   // Spheres for the whole robot (at most), shared among the links through one protrusion bound
   // for all (ProtrusionCover), the tightest whose covers fit the budget.
@@ -29,15 +30,15 @@ struct SpherizeOptions {
 
 // The spheres of one link, in the link's frame. unit: m
 struct LinkSpheres {
-  std::string link;
+  std::string link;             // the link's name
   Sphere bounding;              // holds every sphere of `spheres`: the two-level form's root
   std::vector<Sphere> spheres;  // together they cover the link's whole surface
   // Measured on the link's mesh, not taken from the builder: the fraction of 100,000 surface
   // samples inside some sphere (1 where the certificate holds), the farthest the union of
   // spheres reaches out of the link's geometry (m), and the union's volume outside it (m³).
   double coverage = 0.0;
-  double worst_protrusion = 0.0;
-  double outside_volume = 0.0;
+  double worst_protrusion = 0.0;  // unit: m
+  double outside_volume = 0.0;    // unit: m³
 };
 
 // Throws sphys::Error when neither or both of the options are set, the total is below the number
@@ -48,7 +49,9 @@ struct LinkSpheres {
 // radius), with `bounding_spheres` beside it; Srdf: MoveIt's `link_sphere_approximation`
 // elements; Urdf: a copy of the robot's URDF whose collision elements are the spheres.
 enum class SphereFileFormat { Curobo, Srdf, Urdf };
+// "curobo", "srdf" or "urdf" to its format; throws sphys::Error listing them for another name.
 [[nodiscard]] SphereFileFormat parse_sphere_file_format(std::string_view name);
+// The format's name as parse_sphere_file_format reads it.
 [[nodiscard]] std::string_view format_name(SphereFileFormat format);
 
 // Writes the whole file or nothing (an existing file stays as it was when writing fails).

@@ -22,9 +22,10 @@ namespace sphys::tools {
                                                const TriangleMesh& mesh,
                                                const BuildOptions& options);
 
+// A tree, and whether the cache gave it.
 struct CachedTree {
-  SphereTree tree;
-  bool from_cache = false;
+  SphereTree tree;          // as built, or as stored by an earlier build
+  bool from_cache = false;  // read from the cache rather than built
 };
 
 // Loads the tree from the cache when it is there and passes every check (its checksum, what it
@@ -38,9 +39,9 @@ struct CachedTree {
 
 // One file of a cache folder, as `sphys cache --list` and `--verify` show it.
 struct CacheEntryCheck {
-  std::filesystem::path path;
-  std::uintmax_t bytes = 0;
-  std::string description;  // "octree, branching 8, depth 3 (73 spheres)", when it decodes
+  std::filesystem::path path;  // the entry's file
+  std::uintmax_t bytes = 0;    // its size. unit: bytes
+  std::string description;     // "octree, branching 8, depth 3 (73 spheres)", when it decodes
   std::optional<std::string> problem;  // why it would not be used
 };
 

@@ -21,8 +21,8 @@ namespace sphys::tools {
 // underestimate, by at most about radius · (1 - cos sqrt(4π / boundary_samples))). A point on the
 // union's boundary is one that no other sphere holds strictly inside.
 struct LevelQuality {
-  int level = 0;  // 0 = root
-  std::size_t spheres = 0;
+  int level = 0;                  // 0 = root
+  std::size_t spheres = 0;        // in the level
   double coverage = 0.0;          // fraction of surface samples inside some sphere (want 1)
   double worst_gap = 0.0;         // largest distance from an uncovered sample to the nearest sphere
   double outside_volume = 0.0;    // volume of the union of spheres outside the mesh / mesh volume
@@ -30,9 +30,10 @@ struct LevelQuality {
                                   // to the mesh surface
   // The last two in metres and cubic metres, for users who need absolute figures (a robot link).
   double outside_volume_m3 = 0.0;
-  double worst_protrusion_m = 0.0;
+  double worst_protrusion_m = 0.0;  // unit: m
 };
 
+// How many samples measure_level takes, and from which seed.
 struct QualityOptions {
   std::size_t surface_samples = 100000;  // for coverage and gap. unit: count
   std::size_t volume_samples = 400000;   // Monte Carlo points for the outside volume. unit: count
