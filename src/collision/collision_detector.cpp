@@ -52,6 +52,10 @@ void CollisionDetector::set_settings(const DetectorSettings& settings) {
   const BroadPhaseKind kept = settings_.broad_phase;
   settings_ = settings;
   settings_.broad_phase = kept;
+  // The bounds level may have changed: every body's bound at its pose again.
+  for (std::uint32_t slot = 0; slot < bodies_.size(); ++slot) {
+    if (bodies_[slot].tree) bound_at_pose(slot);
+  }
   std::visit(
       [&](auto& broad_phase) { broad_phase.set_crowd_limit(settings_.crowd_pairs_per_body); },
       broad_phase_);
@@ -81,6 +85,7 @@ void CollisionDetector::add_body(std::uint32_t slot, std::shared_ptr<const Spher
   Body& body = bodies_[slot];
   body = Body{};
   body.tree = std::move(tree);
+  bound_at_pose(slot);
   const ProxyKind kind = store_->is_static(slot) ? ProxyKind::kStatic : ProxyKind::kDynamic;
   const Aabb box = broad_phase_box(slot);
   body.proxy =
@@ -106,6 +111,11 @@ void CollisionDetector::paired_bodies(std::uint32_t slot, std::vector<std::uint3
   }
 }
 
+void CollisionDetector::bound_at_pose(std::uint32_t slot) {
+  Body& body = bodies_[slot];
+  body.pose_box = world_bounds(*body.tree, pose_of(slot), settings_.bounds_level);
+}
+
 void CollisionDetector::set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach) {
   Body& body = bodies_[slot];
   body.displacement = displacement;
@@ -118,7 +128,7 @@ Aabb CollisionDetector::broad_phase_box(std::uint32_t slot) const {
   const Body& body = bodies_[slot];
   float grow = 0.5f * settings_.contact_margin;
   if (settings_.speculative) grow += body.displacement.norm() + body.turn_reach;
-  Aabb box = world_bounds(*body.tree, pose_of(slot), settings_.bounds_level);
+  Aabb box = body.pose_box;
   box.min.array() -= grow;
   box.max.array() += grow;
   return box;

@@ -69,6 +69,11 @@ class CollisionDetector final : public SlotArrays {
   // Appends the bodies paired with a body in the last broad phase (within the contact margin of
   // it, or about to be), asleep ones included.
   void paired_bodies(std::uint32_t slot, std::vector<std::uint32_t>& out) const;
+  // The body's bound at its pose in the store (the tree's spheres at CollisionSettings::
+  // bounds_level) for the next detections, which grow it by the motion: whoever moves a body
+  // bounds it again, once (the world's finalize pass). Touches the body's own entry alone, so
+  // bodies may be bounded on several threads.
+  void bound_at_pose(std::uint32_t slot);
   // How far a body may move in the coming step, for speculative contacts: its centre of mass by
   // `displacement` and any of its points by up to `turn_reach` more from turning. unit: m
   void set_motion(std::uint32_t slot, const Vec3& displacement, float turn_reach);
@@ -121,6 +126,7 @@ class CollisionDetector final : public SlotArrays {
     ProxyId proxy = 0;
     Vec3 displacement = Vec3::Zero();
     float turn_reach = 0.0f;
+    Aabb pose_box;             // the tree's bound at the body's pose (bound_at_pose)
     bool ground_done = false;  // its ground plane pair had its narrow phase in this step
   };
 

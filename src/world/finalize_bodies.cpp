@@ -17,7 +17,7 @@ void finalize_bodies(PassContext& pass) {
   const SleepSettings& sleep = world.settings.sleep;
   const std::uint32_t failed = first_failed_awake_body(
       store.awake(), world.parallel, world.non_finite_in_run, [&](std::uint32_t i) {
-        if (!finalize_body(store, i)) return false;
+        if (!finalize_body(world, i)) return false;
         world.sleep.count_still_time(i, pass.pass_dt, sleep);
         return true;
       });

@@ -22,7 +22,7 @@ void integrate_positions(PassContext& pass) {
       store.awake(), world.parallel, world.non_finite_in_run, [&](std::uint32_t i) {
         integrate_position(poses[i], linear[i], angular[i], store.inertias_body()[i],
                            store.inverse_inertias_body()[i], pass.pass_dt);
-        return finalize_body(store, i);
+        return finalize_body(world, i);
       });
   pass.stats.integration_ms += elapsed_ms(start);
   if (failed != kNoFailedBody) {

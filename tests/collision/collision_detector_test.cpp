@@ -158,6 +158,7 @@ TEST(CollisionDetector, ContactsEqualBruteForceOverManySteps) {
               (pose.rotation * Quat::Identity().slerp(0.05f, nudge.rotation)).normalized();
         }
         detection.store.poses()[ids[i]] = pose;
+        detection.detector.bound_at_pose(ids[i]);
       }
       const CollisionStats& stats = detect_into(detector, contacts);
       const std::set<Key> expected = brute_force(scene, depth, settings.ground_plane_height);
@@ -204,6 +205,7 @@ TEST(CollisionDetector, ReusedPairsMissNoLeafPairWithinTheGap) {
       pose.rotation =
           (pose.rotation * Quat(Eigen::AngleAxisf(0.001f * u(rng), Vec3::UnitY()))).normalized();
       detection.store.poses()[ids[i]] = pose;
+      detection.detector.bound_at_pose(ids[i]);
     }
     const CollisionStats& stats = detect_into(detector, contacts);
     reused += stats.reused_pairs;
@@ -388,6 +390,7 @@ TEST(CollisionDetector, CountsDynamicPairsThatPart) {
   // Bounds still overlapping (the boxes' spheres stick out), leaf spheres apart: the narrow
   // phase parts them.
   detection.store.poses()[b].translation.x() = 1.5f;
+  detection.detector.bound_at_pose(b);
   const CollisionStats parted = detector.detect();
   EXPECT_EQ(parted.parted_pairs, 1u);
   // Every pair of the three still a candidate, and descended: a and b are apart by their leaves.
@@ -395,12 +398,15 @@ TEST(CollisionDetector, CountsDynamicPairsThatPart) {
   EXPECT_EQ(parted.descended_pairs, 3u);
   EXPECT_EQ(detector.detect().parted_pairs, 0u);  // counted once
   detection.store.poses()[b].translation.x() = 0.9f;
+  detection.detector.bound_at_pose(b);
   EXPECT_EQ(detector.detect().parted_pairs, 0u);
   // Far apart: the broad phase drops the pair.
   detection.store.poses()[b].translation.x() = 5.0f;
+  detection.detector.bound_at_pose(b);
   EXPECT_EQ(detector.detect().parted_pairs, 1u);
   // Body a leaves the static box below it: no island joined them.
   detection.store.poses()[a].translation.y() = 5.0f;
+  detection.detector.bound_at_pose(a);
   EXPECT_EQ(detector.detect().parted_pairs, 0u);
 }
 
