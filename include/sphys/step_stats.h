@@ -62,7 +62,8 @@ struct StepStats : DetectionCounters {
     return broad_phase_ms + narrow_phase_ms + contacts_ms;
   }
 
-  // The detection counters are summed over the step's detections (DetectionCounters).
+  // Bodies in the broad phase at the step's last detection, static ones included. (The detection
+  // counters, DetectionCounters, are summed over the step's detections.)
   std::uint32_t bodies = 0;
   std::uint32_t contacts = 0;         // the response's contacts (after reduction, when reduced)
   std::uint32_t impulses = 0;         // paper mode: eq. 4's impulses applied, over all passes
