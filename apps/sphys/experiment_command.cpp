@@ -161,7 +161,8 @@ void run(const ExperimentCommandOptions& options) {
   std::vector<fs::path> plots;
   if (!options.no_plots) plots = tools::write_plots(out, results);
   const fs::path report = out / "report.md";
-  tools::write_text_file(report, tools::markdown_report(results, machine(), experiment.mode));
+  tools::write_text_file(report,
+                         tools::markdown_report(results, machine(), experiment.mode, plots));
 
   if (options.json) {
     nlohmann::ordered_json json;

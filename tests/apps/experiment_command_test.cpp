@@ -47,6 +47,9 @@ TEST(ExperimentCommand, OneRowPrintsThePapersFiguresAndWritesTheReport) {
   report << report_file.rdbuf();
   EXPECT_THAT(report.str(), HasSubstr("d2-8x10"));
   EXPECT_THAT(report.str(), HasSubstr("16381.50"));
+  // --no-plots drew none, and the report links none.
+  EXPECT_THAT(report.str(), Not(HasSubstr("## Plots")));
+  EXPECT_THAT(report.str(), Not(HasSubstr("-frame-time.png")));
   // The paper's response unless asked otherwise, and the report says so at the top.
   EXPECT_THAT(r.out, testing::StartsWith("Response: paper ("));
   EXPECT_THAT(report.str(), HasSubstr("\n\nResponse: paper ("));

@@ -181,9 +181,11 @@ struct RowSummary {
 [[nodiscard]] std::string comparison_text(std::span<const RowResult> results,
                                           const ExperimentMode& mode);
 // The same as a Markdown report (with the machine description and notes), for report.md. It links
-// the plots by file name (plot_files), so it belongs in the directory given to write_plots.
+// by file name the plots write_plots drew (`plots`, as it returned them; none: no plots section),
+// so it belongs in the directory given to write_plots.
 [[nodiscard]] std::string markdown_report(std::span<const RowResult> results,
-                                          const std::string& machine, const ExperimentMode& mode);
+                                          const std::string& machine, const ExperimentMode& mode,
+                                          std::span<const std::filesystem::path> plots);
 // Per-frame CSV of one row: frame (from 1), step_ms, detection_ms, response_ms, contacts,
 // render_ms.
 void write_row_csv(const std::filesystem::path& path, const RowResult& result);

@@ -368,15 +368,25 @@ std::string figure2_section(std::span<const RowResult> results) {
          out;
 }
 
-std::string plots_section(std::span<const RowResult> results) {
+// The plots drawn, each row's under its name: a run without plots (--no-plots, or no gnuplot)
+// links none.
+std::string plots_section(std::span<const RowResult> results,
+                          std::span<const std::filesystem::path> plots) {
+  const auto drawn = [&](const std::string& file) {
+    return std::any_of(plots.begin(), plots.end(),
+                       [&](const std::filesystem::path& plot) { return plot.filename() == file; });
+  };
   std::string out;
   for (const RowResult* result : in_paper_order(results)) {
-    if (result->frames.empty()) continue;  // write_plots draws nothing for it
     const std::string id = result->row.id();
     const PlotFiles files = plot_files(result->row);
-    out += "\n### " + id + "\n\n";
-    out += "![" + id + ": frame time per frame](" + files.frame_time + ")\n";
-    out += "![" + id + ": contacts per frame](" + files.contacts + ")\n";
+    std::string links;
+    if (drawn(files.frame_time)) {
+      links += "![" + id + ": frame time per frame](" + files.frame_time + ")\n";
+    }
+    if (drawn(files.contacts))
+      links += "![" + id + ": contacts per frame](" + files.contacts + ")\n";
+    if (!links.empty()) out += "\n### " + id + "\n\n" + links;
   }
   if (out.empty()) return out;
   return "\n## Plots\n\nThe physics step's time (ms) and the contacts, frame by frame.\n" + out;
@@ -413,7 +423,8 @@ std::string comparison_text(std::span<const RowResult> results, const Experiment
 }
 
 std::string markdown_report(std::span<const RowResult> results, const std::string& machine,
-                            const ExperimentMode& mode) {
+                            const ExperimentMode& mode,
+                            std::span<const std::filesystem::path> plots) {
   std::string out = "# Table 1 of Rocha & Rodrigues (SAC 2008), reproduced\n\n";
   out += "Machine: " + machine + "\n\n";
   out += mode_lines(mode) + "\n";
@@ -443,7 +454,7 @@ std::string markdown_report(std::span<const RowResult> results, const std::strin
   out += "\n## Runs\n\n" + markdown_table(runs_table(results));
   out += below_plane_note(results);
   out += figure2_section(results);
-  out += plots_section(results);
+  out += plots_section(results, plots);
   return out;
 }
 

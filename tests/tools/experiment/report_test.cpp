@@ -222,7 +222,7 @@ TEST(ExperimentComparison, WritesNaForStatisticsItCannotCompute) {
 }
 
 TEST(ExperimentMarkdown, HasTheMachineTheNotesAndBothTables) {
-  const std::string md = markdown_report(sample_results(), "Test machine: 2 cores", {});
+  const std::string md = markdown_report(sample_results(), "Test machine: 2 cores", {}, {});
   EXPECT_THAT(md, StartsWith("# "));
   EXPECT_THAT(md, HasSubstr("\nMachine: Test machine: 2 cores\n"));
   EXPECT_THAT(md, AllOf(HasSubstr("physics step alone"), HasSubstr("included rendering")));
@@ -248,7 +248,7 @@ TEST(ExperimentMarkdown, HasTheMachineTheNotesAndBothTables) {
 
 TEST(ExperimentMarkdown, StatesTheResponseModeAndTheContactsInItsHeader) {
   const auto header = [](const ExperimentMode& mode) {
-    const std::string md = markdown_report(sample_results(), "m", mode);
+    const std::string md = markdown_report(sample_results(), "m", mode, {});
     return md.substr(0, md.find("\n## Table 1"));
   };
   // The paper's response sees every leaf pair, whatever the contacts setting says.
@@ -265,7 +265,7 @@ TEST(ExperimentMarkdown, StatesTheResponseModeAndTheContactsInItsHeader) {
 }
 
 TEST(ExperimentMarkdown, ReportsEachRunsBuilderAndEndState) {
-  const std::string md = markdown_report(sample_results(), "m", {});
+  const std::string md = markdown_report(sample_results(), "m", {}, {});
   EXPECT_THAT(md, HasSubstr("\n## Runs\n"));
   // '|' in a builder's name is escaped so that it does not split the cell.
   EXPECT_THAT(md, HasSubstr("\n| d2-4x25 | octree \\| branching 8 | exact plane | 2 | yes | "
@@ -284,14 +284,16 @@ TEST(ExperimentMarkdown, SaysNothingOfAnEdgeWhenNoBunnyFellOffOne) {
   std::vector<RowResult> results = sample_results();
   // The same loss on the exact plane (which has no edge), and none on the octree.
   results[1].ground = "exact plane";
-  EXPECT_THAT(markdown_report(results, "m", {}), Not(HasSubstr("octree ground's edge")));
+  EXPECT_THAT(markdown_report(results, "m", {}, {}), Not(HasSubstr("octree ground's edge")));
   results[1].ground = "octree of a 16 m box, 5 levels";
   results[1].bodies_below_plane = 0;
-  EXPECT_THAT(markdown_report(results, "m", {}), Not(HasSubstr("octree ground's edge")));
+  EXPECT_THAT(markdown_report(results, "m", {}, {}), Not(HasSubstr("octree ground's edge")));
 }
 
 TEST(ExperimentMarkdown, LinksThePlotsWritePlotsDraws) {
-  const std::string md = markdown_report(sample_results(), "m", {});
+  const std::vector<std::filesystem::path> drawn = {
+      "out/d2-4x25-frame-time.png", "out/d2-4x25-contacts.png", "out/d3-8x20-frame-time.png"};
+  const std::string md = markdown_report(sample_results(), "m", {}, drawn);
   const PlotFiles files = plot_files({2, 4, 25});
   EXPECT_EQ(files.frame_time, "d2-4x25-frame-time.png");
   EXPECT_EQ(files.contacts, "d2-4x25-contacts.png");
@@ -301,6 +303,10 @@ TEST(ExperimentMarkdown, LinksThePlotsWritePlotsDraws) {
   // A row without frames has no plots.
   EXPECT_THAT(md, Not(HasSubstr("d4-2x3-frame-time.png")));
   EXPECT_LT(md.find("## Plots"), md.find("d2-4x25-frame-time.png"));
+  // A plot not drawn is not linked; without plots (--no-plots, no gnuplot) there is no section.
+  EXPECT_THAT(md, Not(HasSubstr("d3-8x20-contacts.png")));
+  EXPECT_THAT(markdown_report(sample_results(), "m", {}, {}), Not(HasSubstr("## Plots")));
+  EXPECT_THAT(markdown_report(sample_results(), "m", {}, {}), Not(HasSubstr("frame-time.png")));
 }
 
 TEST(ExperimentMarkdown, FramesDrawnEveryStepAndFigureTwo) {
@@ -319,7 +325,7 @@ TEST(ExperimentMarkdown, FramesDrawnEveryStepAndFigureTwo) {
   EXPECT_DOUBLE_EQ(summary.response_share_drawn, 100.0 * 3.0 / 12.0);
   EXPECT_TRUE(std::isnan(summarize(missing).fps_with_drawing));
   EXPECT_TRUE(std::isnan(summarize(missing).drawing_share));
-  const std::string md = markdown_report(std::vector{drawn, missing}, "m", {});
+  const std::string md = markdown_report(std::vector{drawn, missing}, "m", {}, {});
   EXPECT_THAT(md, HasSubstr("\n## Frames drawn\n"));
   EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | 2 of 2 | 333.33 | 166.67 | 50.0 | 12.5 | 25.0 |\n"));
   EXPECT_THAT(md, Not(HasSubstr("\n| d3-8x10 | 1000.00 |")));
@@ -344,7 +350,7 @@ TEST(ExperimentMarkdown, AFixedSampleOfFramesDrawnStandsForTheFramesNotDrawn) {
   EXPECT_DOUBLE_EQ(summary.drawing_share, 80.0);
   EXPECT_DOUBLE_EQ(summary.detection_share_drawn, 5.0);
   EXPECT_DOUBLE_EQ(summary.response_share_drawn, 10.0);
-  const std::string md = markdown_report(std::vector{sampled}, "m", {});
+  const std::string md = markdown_report(std::vector{sampled}, "m", {}, {});
   EXPECT_THAT(md, HasSubstr("\n| d2-8x10 | 2 of 4 | 1000.00 | 200.00 | 80.0 | 5.0 | 10.0 |\n"));
   // A frame of the sample left undrawn (a broken run): no figure rather than a wrong one.
   sampled.frames[3].render_ms = 0.0;
