@@ -149,7 +149,7 @@ const CollisionStats& CollisionDetector::detect() {
   stats_.bodies = static_cast<std::uint32_t>(
       std::visit([](const auto& broad_phase) { return broad_phase.size(); }, broad_phase_));
 
-  const StepClock::time_point broad_start = StepClock::now();
+  const PhaseClock broad_clock(parallel_);
   std::visit(
       [&](auto& broad_phase) {
         for (const std::uint32_t slot : store_->awake()) {
@@ -174,7 +174,7 @@ const CollisionStats& CollisionDetector::detect() {
   stats_.parted_pairs += cache_.follow(
       pairs, [&](const PairRecord& record) { return links_dynamic_bodies(record); }, parallel_);
   stats_.candidate_pairs = static_cast<std::uint32_t>(pairs.size());
-  stats_.broad_phase_ms = elapsed_ms(broad_start);
+  broad_clock.add_to(stats_.broad_phase_ms, stats_.broad_phase_serial_ms);
 
   cache_.begin_narrow_phase();
 
@@ -265,15 +265,16 @@ void CollisionDetector::run_jobs(std::size_t base) {
     for_each_on(parallel_, chunks_.size(), [&](std::size_t c) { fn(*chunks_[c]); });
   };
 
-  const StepClock::time_point narrow_start = StepClock::now();
+  const PhaseClock narrow_clock(parallel_);
+  const StepClock::time_point narrow_start = StepClock::now();  // for the narrow phase's budget
   if (settings_.has_budget()) {
     for (std::size_t c = 0; c < chunks_.size(); ++c) narrow_phase(*chunks_[c], narrow_start);
   } else {
     for_each_chunk([&](NarrowChunk& chunk) { narrow_phase(chunk, narrow_start); });
   }
-  stats_.narrow_phase_ms = elapsed_ms(narrow_start);
+  narrow_clock.add_to(stats_.narrow_phase_ms, stats_.narrow_phase_serial_ms);
 
-  const StepClock::time_point contacts_start = StepClock::now();
+  const PhaseClock contacts_clock(parallel_);
   for_each_chunk([&](NarrowChunk& chunk) { make_contacts(chunk); });
   // Each chunk's contacts follow those of the chunks before it, in the jobs' order.
   std::size_t total = base;
@@ -291,7 +292,7 @@ void CollisionDetector::run_jobs(std::size_t base) {
     stats_.penetrating_contacts += chunk->penetrating_contacts;
   }
   stats_.contacts = static_cast<std::uint32_t>(total);
-  stats_.contacts_ms = elapsed_ms(contacts_start);
+  contacts_clock.add_to(stats_.contacts_ms, stats_.contacts_serial_ms);
 }
 
 // A chunk's contacts and shapes into their place in the detector's, their warm-start memory

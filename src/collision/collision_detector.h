@@ -45,6 +45,10 @@ struct CollisionStats : DetectionCounters {
   // Contact data from the leaf pairs (eq. 1-3), the reduction to manifolds and the carrying over
   // of each contact's memory. unit: ms
   double contacts_ms = 0.0;
+  // Of each, the time outside the threads' loops (StepStats::serial_ms). unit: ms
+  double broad_phase_serial_ms = 0.0;
+  double narrow_phase_serial_ms = 0.0;
+  double contacts_serial_ms = 0.0;
 };
 
 class ContactReducer;

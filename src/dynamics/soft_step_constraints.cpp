@@ -189,13 +189,7 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
       });
   // Two serial jobs on the constraints as made, neither needing the other: the support levels
   // (for the masses next) and the manifolds' colours (for the packing), side by side.
-  parallel.for_each(2, [&](std::size_t job) {
-    if (job == 0) {
-      find_support_levels();
-    } else {
-      colour_manifolds();
-    }
-  });
+  parallel.side_by_side([&] { find_support_levels(); }, [&] { colour_manifolds(); });
   parallel.for_each_run(constraints_.size(), kConstraintsPerRun,
                         [&](std::size_t begin, std::size_t end) {
                           for (std::size_t j = begin; j < end; ++j) {

@@ -49,9 +49,9 @@ std::uint32_t adaptive_collision_passes(const WorldState& world, float dt) {
 
 // Islands whose bodies parted in the last step are built afresh, once a step.
 void split_islands(WorldState& world, StepStats& stats) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&world.parallel);
   world.sleep.split_islands(world.detector.contacts());
-  stats.sleep_ms += elapsed_ms(start);
+  clock.add_to(stats.sleep_ms, stats.sleep_serial_ms);
 }
 
 constexpr Pipeline kPlausible{
