@@ -179,26 +179,7 @@ const CollisionStats& CollisionDetector::detect() {
   cache_.begin_narrow_phase();
 
   // Pairs with no moving body make no contacts; their records keep the last ones asleep.
-  jobs_.clear();
-  const std::span<PairRecord> records = cache_.records();
-  for (std::size_t p = 0; p < records.size(); ++p) {
-    PairRecord& record = records[p];
-    record.done = false;
-    if (moves(body_of_proxy_[record.proxies.a]) || moves(body_of_proxy_[record.proxies.b])) {
-      jobs_.push_back({static_cast<std::uint32_t>(p), false});
-    } else {
-      cache_.keep_asleep(record);
-    }
-  }
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    bodies_[i].ground_done = false;
-    if (!settings_.ground_plane_height) continue;
-    if (moves(i)) {
-      jobs_.push_back({i, true});
-    } else if (store_->alive(i)) {
-      cache_.keep_asleep(cache_.ground_record(i));
-    }
-  }
+  list_jobs();
   cache_.compact_asleep();
   run_jobs(0);
   return stats_;
@@ -215,6 +196,7 @@ const CollisionStats& CollisionDetector::detect_woken() {
       jobs_.push_back({static_cast<std::uint32_t>(p), false});
     }
   }
+  pair_jobs_ = jobs_.size();
   if (settings_.ground_plane_height) {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
       if (!bodies_[i].ground_done && moves(i)) jobs_.push_back({i, true});
@@ -232,10 +214,10 @@ void CollisionDetector::plan_chunks() {
   std::size_t plane_used = 0;
   const bool one_run = settings_.has_budget();
   for (std::size_t begin = 0; begin < jobs_.size();) {
-    const bool plane = jobs_[begin].plane;
+    // The pairs' jobs come first, then the plane's.
+    const bool plane = begin >= pair_jobs_;
     const std::size_t length = plane ? kBodiesPerChunk : (one_run ? jobs_.size() : kPairsPerChunk);
-    std::size_t end = begin;
-    while (end < jobs_.size() && end - begin < length && jobs_[end].plane == plane) ++end;
+    const std::size_t end = std::min(begin + length, plane ? jobs_.size() : pair_jobs_);
     // Pair runs and plane runs each keep their own chunks, whose buffers then grow to one kind
     // of work.
     std::vector<std::unique_ptr<NarrowChunk>>& pool = plane ? plane_chunks_ : pair_chunks_;

@@ -174,6 +174,10 @@ class CollisionDetector final : public SlotArrays {
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
   [[nodiscard]] float descent_gap(float margin) const;
+  // This detection's jobs_ (narrow_jobs.cpp): the candidate pairs with a moving body, then the
+  // moving bodies against the ground plane, each in order; every record and body marked undone,
+  // and the records of the others kept asleep.
+  void list_jobs();
   // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();
@@ -196,6 +200,9 @@ class CollisionDetector final : public SlotArrays {
   bool crowd_ = false;  // the broad phase's last update found a crowd
   PairCache cache_;
   std::vector<Job> jobs_;
+  std::size_t pair_jobs_ = 0;                 // jobs_'s pairs, which come before its bodies
+  std::vector<std::uint32_t> newly_resting_;  // list_jobs()'s records that only now rest
+  std::vector<std::uint32_t> run_first_;      // place_in_runs()'s scratch
   std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;
   std::vector<std::unique_ptr<NarrowChunk>> plane_chunks_;
   std::vector<NarrowChunk*> chunks_;  // the planned runs, in order
