@@ -160,6 +160,10 @@ class Parallel {
   mutable std::atomic<std::uint32_t> loops_running_{0};  // loops begun and not ended
 };
 
+// `parallel`, or where there is none the caller's thread alone (a detector or a sleep tracker
+// used without a world).
+[[nodiscard]] const Parallel& threads_or_caller(const Parallel* parallel);
+
 // Parallel::for_each on `parallel`'s threads, or in order on the caller's thread where there is
 // none (a detector or broad phase used without a world).
 template <class Fn>

@@ -13,16 +13,10 @@ namespace {
 // Records or bodies per item of the threaded loops. unit: items
 constexpr std::size_t kItemsPerRun = 256;
 
-// The loops' threads: the detector's, or the caller's alone for a detector used without a world.
-const Parallel& threads_of(const Parallel* parallel) {
-  static const Parallel kCallersThread(1);
-  return parallel != nullptr ? *parallel : kCallersThread;
-}
-
 }  // namespace
 
 void CollisionDetector::list_jobs() {
-  const Parallel& parallel = threads_of(parallel_);
+  const Parallel& parallel = threads_or_caller(parallel_);
   const std::span<PairRecord> records = cache_.records();
   const auto pair_moves = [&](std::size_t p) {
     return moves(body_of_proxy_[records[p].proxies.a]) ||
