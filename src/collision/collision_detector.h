@@ -178,6 +178,14 @@ class CollisionDetector final : public SlotArrays {
   // moving bodies against the ground plane, each in order; every record and body marked undone,
   // and the records of the others kept asleep.
   void list_jobs();
+  // Where a run's items go in jobs_ and newly_resting_, or how many it lists (list_in_runs()).
+  struct RunLists {
+    std::uint32_t jobs = 0;
+    std::uint32_t newly_resting = 0;
+  };
+  template <class Moving, class Resting, class RecordOf>
+  std::size_t list_in_runs(const Parallel& parallel, std::size_t count, bool plane, RunLists first,
+                           const Moving& moving, const Resting& resting, const RecordOf& record);
   // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();
@@ -202,7 +210,7 @@ class CollisionDetector final : public SlotArrays {
   std::vector<Job> jobs_;
   std::size_t pair_jobs_ = 0;                 // jobs_'s pairs, which come before its bodies
   std::vector<std::uint32_t> newly_resting_;  // list_jobs()'s records that only now rest
-  std::vector<std::uint32_t> run_first_;      // place_in_runs()'s scratch
+  std::vector<RunLists> run_lists_;           // list_in_runs()'s scratch, per run
   std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;
   std::vector<std::unique_ptr<NarrowChunk>> plane_chunks_;
   std::vector<NarrowChunk*> chunks_;  // the planned runs, in order

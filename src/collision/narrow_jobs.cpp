@@ -1,11 +1,14 @@
 // A detection's jobs: the candidate pairs and the bodies against the ground plane that have a
 // moving body, listed in order on the threads; the records of the others keep their contacts
-// asleep.
+// asleep. Two passes over the records and two over the bodies, a scan as place_in_runs does it
+// (core/place_in_runs.h) with two lists at once: each run marks its records and counts its jobs
+// and its newly resting records, a sum over the runs places them, each run writes its own.
 
+#include <algorithm>
 #include <atomic>
 
 #include "collision/collision_detector.h"
-#include "core/place_in_runs.h"
+#include "core/buffers.h"
 
 namespace sphys {
 namespace {
@@ -15,78 +18,85 @@ constexpr std::size_t kItemsPerRun = 256;
 
 }  // namespace
 
+// `moving(k)`: item k is a job; `resting(k)`: its record rests, `record(k)` (a PairRecord&).
+// Lists the jobs {k, plane} in jobs_ from `first.jobs` on and the newly resting items in
+// newly_resting_ from `first.newly_resting` on, each in order, sizing each to its end; returns
+// the resting records' live contacts.
+template <class Moving, class Resting, class RecordOf>
+std::size_t CollisionDetector::list_in_runs(const Parallel& parallel, std::size_t count, bool plane,
+                                            RunLists first, const Moving& moving,
+                                            const Resting& resting, const RecordOf& record) {
+  const std::size_t runs = (count + kItemsPerRun - 1) / kItemsPerRun;
+  resize_buffer(run_lists_, runs + 1);
+  run_lists_[0] = first;
+  std::atomic<std::size_t> live_asleep{0};
+  parallel.for_each_run(count, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    RunLists taken;
+    std::size_t live = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (moving(k)) {
+        ++taken.jobs;
+      } else if (resting(k)) {
+        PairRecord& rests = record(k);
+        live += PairCache::rest(rests);
+        if (!rests.kept_asleep) ++taken.newly_resting;
+      }
+    }
+    run_lists_[begin / kItemsPerRun + 1] = taken;
+    live_asleep.fetch_add(live, std::memory_order_relaxed);
+  });
+  for (std::size_t r = 0; r < runs; ++r) {
+    run_lists_[r + 1].jobs += run_lists_[r].jobs;
+    run_lists_[r + 1].newly_resting += run_lists_[r].newly_resting;
+  }
+  resize_buffer(jobs_, run_lists_[runs].jobs);
+  resize_buffer(newly_resting_, run_lists_[runs].newly_resting);
+  parallel.for_each_run(count, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    RunLists next = run_lists_[begin / kItemsPerRun];
+    for (std::size_t k = begin; k < end; ++k) {
+      if (moving(k)) {
+        jobs_[next.jobs++] = {static_cast<std::uint32_t>(k), plane};
+      } else if (resting(k) && !record(k).kept_asleep) {
+        newly_resting_[next.newly_resting++] = static_cast<std::uint32_t>(k);
+      }
+    }
+  });
+  return live_asleep.load();
+}
+
 void CollisionDetector::list_jobs() {
   const Parallel& parallel = threads_or_caller(parallel_);
   const std::span<PairRecord> records = cache_.records();
-  const auto pair_moves = [&](std::size_t p) {
-    return moves(body_of_proxy_[records[p].proxies.a]) ||
-           moves(body_of_proxy_[records[p].proxies.b]);
-  };
+  // Every record and body starts undone (marked by `moving`, twice over).
+  std::size_t live_asleep = list_in_runs(
+      parallel, records.size(), false, {},
+      [&](std::size_t p) {
+        records[p].done = false;
+        return moves(body_of_proxy_[records[p].proxies.a]) ||
+               moves(body_of_proxy_[records[p].proxies.b]);
+      },
+      [](std::size_t) { return true; }, [&](std::size_t p) -> PairRecord& { return records[p]; });
+  pair_jobs_ = jobs_.size();
+  const std::size_t resting_pairs = newly_resting_.size();
   const bool plane = settings_.ground_plane_height.has_value();
-  const auto plane_rests = [&](std::size_t i) {
-    return plane && !moves(static_cast<std::uint32_t>(i)) &&
-           store_->alive(static_cast<std::uint32_t>(i));
-  };
-  // Each record and body starts undone; a resting one's record keeps its contacts asleep.
-  std::atomic<std::size_t> live_asleep{0};
-  parallel.for_each_run(records.size(), kItemsPerRun, [&](std::size_t begin, std::size_t end) {
-    std::size_t live = 0;
-    for (std::size_t p = begin; p < end; ++p) {
-      records[p].done = false;
-      if (!pair_moves(p)) live += PairCache::rest(records[p]);
-    }
-    live_asleep.fetch_add(live, std::memory_order_relaxed);
-  });
-  parallel.for_each_run(bodies_.size(), kItemsPerRun, [&](std::size_t begin, std::size_t end) {
-    std::size_t live = 0;
-    for (std::size_t i = begin; i < end; ++i) {
-      bodies_[i].ground_done = false;
-      if (plane_rests(i))
-        live += PairCache::rest(cache_.ground_record(static_cast<std::uint32_t>(i)));
-    }
-    live_asleep.fetch_add(live, std::memory_order_relaxed);
-  });
-  cache_.count_live_asleep(live_asleep.load());
-
-  // The jobs: the moving pairs in the records' order, then the moving bodies against the plane.
-  pair_jobs_ = compact_in_runs(
-      parallel, records.size(), kItemsPerRun, pair_moves,
-      [&](std::size_t count) { resize_buffer(jobs_, count); },
-      [&](std::size_t position, std::size_t p) {
-        jobs_[position] = {static_cast<std::uint32_t>(p), false};
+  live_asleep += list_in_runs(
+      parallel, bodies_.size(), true,
+      {static_cast<std::uint32_t>(pair_jobs_), static_cast<std::uint32_t>(resting_pairs)},
+      [&](std::size_t i) {
+        bodies_[i].ground_done = false;
+        return plane && moves(static_cast<std::uint32_t>(i));
       },
-      run_first_);
-  compact_in_runs(
-      parallel, plane ? bodies_.size() : 0, kItemsPerRun,
-      [&](std::size_t i) { return moves(static_cast<std::uint32_t>(i)); },
-      [&](std::size_t count) { resize_buffer(jobs_, pair_jobs_ + count); },
-      [&](std::size_t position, std::size_t i) {
-        jobs_[pair_jobs_ + position] = {static_cast<std::uint32_t>(i), true};
-      },
-      run_first_);
-
+      [&](std::size_t i) { return plane && store_->alive(static_cast<std::uint32_t>(i)); },
+      [&](std::size_t i) -> PairRecord& {
+        return cache_.ground_record(static_cast<std::uint32_t>(i));
+      });
+  cache_.count_live_asleep(live_asleep);
   // The records that only now rest, kept in the sleeping pairs' store in order: the pairs', then
   // the plane's.
-  compact_in_runs(
-      parallel, records.size(), kItemsPerRun,
-      [&](std::size_t p) { return !pair_moves(p) && !records[p].kept_asleep; },
-      [&](std::size_t count) { resize_buffer(newly_resting_, count); },
-      [&](std::size_t position, std::size_t p) {
-        newly_resting_[position] = static_cast<std::uint32_t>(p);
-      },
-      run_first_);
-  for (const std::uint32_t p : newly_resting_) cache_.keep_asleep(records[p]);
-  compact_in_runs(
-      parallel, bodies_.size(), kItemsPerRun,
-      [&](std::size_t i) {
-        return plane_rests(i) && !cache_.ground_record(static_cast<std::uint32_t>(i)).kept_asleep;
-      },
-      [&](std::size_t count) { resize_buffer(newly_resting_, count); },
-      [&](std::size_t position, std::size_t i) {
-        newly_resting_[position] = static_cast<std::uint32_t>(i);
-      },
-      run_first_);
-  for (const std::uint32_t i : newly_resting_) cache_.keep_asleep(cache_.ground_record(i));
+  for (std::size_t k = 0; k < newly_resting_.size(); ++k) {
+    const std::uint32_t item = newly_resting_[k];
+    cache_.keep_asleep(k < resting_pairs ? records[item] : cache_.ground_record(item));
+  }
 }
 
 }  // namespace sphys

@@ -71,6 +71,7 @@ std::uint32_t SleepTracker::island(std::uint32_t body) {
     if (up == body) return body;
     // Path halving: the parent skips to the grandparent, unless another thread moved it first.
     const std::uint32_t grand = Slot(island_parent_[up]).load(std::memory_order_relaxed);
+    if (grand == up) return up;
     parent.compare_exchange_weak(up, grand, std::memory_order_relaxed);
     body = grand;
   }
