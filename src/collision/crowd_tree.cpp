@@ -25,7 +25,10 @@ void CrowdTree::clear() {
 void CrowdTree::add(ProxyId id, const BoxBounds& box, bool is_static) {
   Item item;
   item.box = box;
-  for (int k = 0; k < 3; ++k) item.centre[k] = 0.5f * (box[k] + box[k + 3]);
+  for (int k = 0; k < 3; ++k) {
+    item.centre[k] = 0.5f * (box[k] + box[k + 3]);
+    item.largest[k] = std::max(std::abs(box[k]), std::abs(box[k + 3]));
+  }
   item.id = id;
   item.is_static = is_static;
   items_.push_back(item);
@@ -77,6 +80,7 @@ void CrowdTree::bound_node(Node& node) const {
   node.shared = first.box;
   node.centre_min = first.centre;
   node.centre_max = first.centre;
+  node.largest = first.largest;
   node.dynamic = 0;
   for (std::uint32_t i = node.begin; i < node.end; ++i) {
     const Item& item = items_[i];
@@ -87,6 +91,7 @@ void CrowdTree::bound_node(Node& node) const {
       node.shared[k + 3] = std::min(node.shared[k + 3], item.box[k + 3]);
       node.centre_min[k] = std::min(node.centre_min[k], item.centre[k]);
       node.centre_max[k] = std::max(node.centre_max[k], item.centre[k]);
+      node.largest[k] = std::max(node.largest[k], item.largest[k]);
     }
     node.dynamic += item.is_static ? 0 : 1;
   }
@@ -136,8 +141,7 @@ float CrowdTree::distance2_bound(const Node& node, const Item& query) const {
   float bound = 0.0f;
   for (int k = 0; k < 3; ++k) {
     const float c = query.centre[k];
-    const float largest = std::max({std::abs(node.reach[k]), std::abs(node.reach[k + 3]),
-                                    std::abs(query.box[k]), std::abs(query.box[k + 3])});
+    const float largest = std::max(node.largest[k], query.largest[k]);
     const float gap = std::max({node.centre_min[k] - c, c - node.centre_max[k], 0.0f});
     const float sure_gap = std::max(0.0f, gap - kCentreSlack * largest);
     bound += sure_gap * sure_gap;
@@ -147,26 +151,31 @@ float CrowdTree::distance2_bound(const Node& node, const Item& query) const {
 
 void CrowdTree::nearest(ProxyId id, std::size_t count, std::vector<CrowdPartner>& nearest) const {
   nearest.clear();
-  if (!nodes_.empty() && count > 0) nearest_in(nodes_[0], item(id), count, nearest);
+  if (nodes_.empty() || count == 0) return;
+  const Item& query = item(id);
+  const Node& root = nodes_[0];
+  nearest_in(root, {distance2_bound(root, query), root.lowest_marked}, query, count, nearest);
 }
 
 // A bounded max-heap of the nearest so far; a subtree is skipped when none of its boxes can come
-// before the farthest kept, by distance or, at equal distance, by id.
-void CrowdTree::nearest_in(const Node& node, const Item& query, std::size_t count,
-                           std::vector<CrowdPartner>& heap) const {
+// before the farthest kept, by distance or, at equal distance, by id: when `bound` (no box of
+// the node nearer, none of a lower id) does not come before it.
+void CrowdTree::nearest_in(const Node& node, const CrowdPartner& bound, const Item& query,
+                           std::size_t count, std::vector<CrowdPartner>& heap) const {
   if (node.lowest_marked == kNone || !boxes_overlap(node.reach, query.box)) return;
-  if (heap.size() == count &&
-      !(CrowdPartner{distance2_bound(node, query), node.lowest_marked} < heap.front())) {
-    return;
-  }
+  if (heap.size() == count && !(bound < heap.front())) return;
   if (node.children != 0) {
     const Node& first = nodes_[node.children];
     const Node& second = nodes_[node.children + 1];
     const CrowdPartner first_bound{distance2_bound(first, query), first.lowest_marked};
     const CrowdPartner second_bound{distance2_bound(second, query), second.lowest_marked};
-    const bool second_first = second_bound < first_bound;
-    nearest_in(second_first ? second : first, query, count, heap);
-    nearest_in(second_first ? first : second, query, count, heap);
+    if (second_bound < first_bound) {
+      nearest_in(second, second_bound, query, count, heap);
+      nearest_in(first, first_bound, query, count, heap);
+    } else {
+      nearest_in(first, first_bound, query, count, heap);
+      nearest_in(second, second_bound, query, count, heap);
+    }
     return;
   }
   for (std::uint32_t i = node.begin; i < node.end; ++i) {

@@ -71,6 +71,7 @@ class CrowdTree {
   struct Item {
     BoxBounds box{};
     std::array<float, 3> centre{};
+    std::array<float, 3> largest{};  // the largest coordinate's magnitude, per axis
     ProxyId id = 0;
     bool is_static = false;
     bool marked = false;
@@ -80,7 +81,8 @@ class CrowdTree {
     BoxBounds shared{};  // max of the mins, min of the maxes: what every box of it reaches
     std::array<float, 3> centre_min{};
     std::array<float, 3> centre_max{};
-    std::uint32_t begin = 0;  // items_[begin, end)
+    std::array<float, 3> largest{};  // the largest coordinate's magnitude, per axis
+    std::uint32_t begin = 0;         // items_[begin, end)
     std::uint32_t end = 0;
     std::uint32_t children = 0;     // the first of two, in nodes_; 0 for a leaf
     std::uint32_t dynamic = 0;      // dynamic boxes among them
@@ -98,7 +100,7 @@ class CrowdTree {
   // A lower bound of centre_distance2 from `query` to every box of the node, whatever the
   // rounding. unit: m²
   [[nodiscard]] float distance2_bound(const Node& node, const Item& query) const;
-  void nearest_in(const Node& node, const Item& query, std::size_t count,
+  void nearest_in(const Node& node, const CrowdPartner& bound, const Item& query, std::size_t count,
                   std::vector<CrowdPartner>& heap) const;
 
   std::vector<Item> items_;
