@@ -68,6 +68,7 @@ class CrowdTree {
  private:
   static constexpr ProxyId kNone = ~ProxyId{0};
 
+  // Lengths in m.
   struct Item {
     BoxBounds box{};
     std::array<float, 3> centre{};
@@ -76,6 +77,7 @@ class CrowdTree {
     bool is_static = false;
     bool marked = false;
   };
+  // Lengths in m.
   struct Node {
     BoxBounds reach{};   // min of the mins, max of the maxes: what some box of it reaches
     BoxBounds shared{};  // max of the mins, min of the maxes: what every box of it reaches
