@@ -3,7 +3,8 @@ N icospheres of radius 5 cm (a 2-subdivision icosphere's default sphere-tree, 1,
 at one point 1 m above the exact ground plane, then stepped at 60 steps per second in the
 plausible response with default settings.
 
-Prints, as JSON: the first step's wall time, the wall time of the first 60 steps, the fastest
+Prints, as JSON: the wall time of the first step, of the first three and of the first 60 (the
+steps alone, not the measuring between them), the fastest
 body speed seen over the run (|v| of the centre plus |w| times the radius), the deepest overlap
 of two balls (2r minus the distance of their centres, which bounds the overlap of their meshes)
 every `--check-every` steps, the first time it stays under 1 mm, the lowest centre, and the
@@ -68,15 +69,20 @@ def main():
     fastest = 0.0
     separated_at = None
     overlaps = []
+    stepping_s = 0.0
     start = time.perf_counter()
     for step in range(1, steps + 1):
+        step_start = time.perf_counter()
         stats = world.step(DT)
+        stepping_s += time.perf_counter() - step_start
         if step == 1:
-            result["first_step_s"] = time.perf_counter() - start
+            result["first_step_s"] = stepping_s
             result["first_step_stats"] = {k: v for k, v in stats.to_dict().items()
                                           if not k.endswith("_ms") and v is not None}
+        if step == 3:
+            result["first_3_steps_s"] = stepping_s
         if step == 60:
-            result["first_60_steps_s"] = time.perf_counter() - start
+            result["first_60_steps_s"] = stepping_s
         velocities = world.velocities()
         speeds = (np.linalg.norm(velocities[:, :3], axis=1)
                   + RADIUS * np.linalg.norm(velocities[:, 3:], axis=1))

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision/broad_phase.h"
+#include "collision/crowd_tree.h"
 #include "sphys/sphere_tree.h"
 
 namespace sphys {
@@ -40,50 +41,44 @@ class Crowd {
     return limit_ > 0 && pairs > crowd_pairs(1.0, boxes);
   }
 
-  // The keys of the pairs to list, appended to `listed` (unsorted, each once). Out of a crowd, one
-  // sweep lists the pairs while they are few and counts every box's overlaps; past the limit, a
-  // second chooses the nearest. In a crowd, one sweep counts and chooses at once by the last
-  // listing's crowded boxes; a second lists all the pairs only when the crowd has thinned out
-  // below L/2. O(p) per sweep for p overlapping pairs, and memory for the listed pairs only.
-  // `boxes` shows the broad phase's boxes: ids() (ids in use, alive or not), live() (boxes
-  // alive), is_static(id), distance2(a, b) (of two boxes' centres, squared; unit: m²) and
-  // sweep(found) (hands each overlapping pair's key to `found`).
+  // The keys of the pairs to list, into `listed` (empty before; unsorted, each once). Out of a
+  // crowd, one sweep lists the pairs while they are few and stops at the first past the limit. In a
+  // crowd, or one forming, no overlap is listed before the rule has cut them: a tree over the boxes
+  // (CrowdTree) counts each box's overlaps, lists those of the boxes not crowded, and finds each
+  // crowded box's nearest. O(n log n + listed) for n boxes where they pile up, whatever the
+  // count of their overlaps; the sweep lists every pair once more only when the crowd has
+  // thinned out below L/2. `boxes` shows the broad phase's boxes: ids() (ids in use, alive or
+  // not), live() (boxes alive), alive(id), bounds(id) (a BoxBounds; unit: m), is_static(id) and
+  // sweep(found) (hands each overlapping pair's key to `found`, which returns false to stop).
   template <class Boxes>
   void list(const Boxes& boxes, std::vector<std::uint64_t>& listed);
 
  private:
-  // A crowded box's partner, ordered by distance (squared, of the boxes' centres; unit: m²), then
-  // id.
-  struct Partner {
-    float distance2 = 0.0f;
-    ProxyId other = 0;
-    friend auto operator<=>(const Partner&, const Partner&) = default;
-  };
-
   // The pair count past which `boxes` boxes are a crowd: L n / 2, times `share`.
   [[nodiscard]] std::uint64_t crowd_pairs(double share, std::size_t boxes) const {
     return static_cast<std::uint64_t>(share * 0.5 * limit_ * static_cast<double>(boxes));
   }
-  // The crowded boxes whose pairs a crowd's sweep chooses among: dynamic boxes that overlapped
-  // more than L others at the last sweep.
+  // The crowded boxes whose pairs a crowd's listing chooses among: dynamic boxes that overlapped
+  // more than L others at the last count.
   template <class Boxes>
   void mark_choosing(const Boxes& boxes);
   [[nodiscard]] std::size_t nearest_kept() const;
-  void begin_nearest(std::size_t ids, std::vector<std::uint64_t>& listed);
-  void offer_nearest(ProxyId id, const Partner& partner);
-  // Every crowded box's nearest partners into `listed`, sorted and each once.
-  void list_nearest(std::uint64_t overlapping, std::vector<std::uint64_t>& listed);
+  // Each box's overlaps counted by the tree, into overlaps_; returns the overlapping pairs.
+  std::uint64_t count_overlaps(std::size_t ids);
+  // The pairs of the boxes not choosing, and every choosing box's nearest choosing partners,
+  // into `listed`, sorted and each once.
+  void list_chosen(std::vector<std::uint64_t>& listed);
 
   std::uint32_t limit_ = 0;  // unit: overlapping boxes per box; 0: no limit
   bool crowded_ = false;
   std::uint64_t pairs_deferred_ = 0;     // overlapping pairs the last listing left out
-  std::vector<std::uint32_t> overlaps_;  // per id: boxes it overlapped at the last listing
-  // Per id: 1 for the crowded boxes whose pairs a crowd's sweep chooses among: what crowded()
+  std::vector<std::uint32_t> overlaps_;  // per id: boxes it overlapped at the last count
+  // Per id: 1 for the crowded boxes whose pairs a crowd's listing chooses among: what crowded()
   // reports.
   std::vector<std::uint8_t> choosing_;
-  // Per id, L/2 slots: a crowded box's nearest partners, and how many it has.
-  std::vector<Partner> nearest_;
-  std::vector<std::uint32_t> nearest_count_;
+  CrowdTree tree_;                     // the boxes of a crowd's listing
+  std::vector<ProxyId> alive_;         // their ids, ascending
+  std::vector<CrowdPartner> nearest_;  // one box's nearest, list_chosen()'s working list
 };
 
 // Crowds over the cells of a broad phase by cells (CellSweepAndPrune), each cell's Sweep & Prune
@@ -129,54 +124,46 @@ inline float crowd_contact_depth(float depth, const Sphere& root_a, const Sphere
 template <class Boxes>
 void Crowd::list(const Boxes& boxes, std::vector<std::uint64_t>& listed) {
   pairs_deferred_ = 0;
+  const auto list_all = [&] {
+    boxes.sweep([&](std::uint64_t key) {
+      listed.push_back(key);
+      return true;
+    });
+  };
   if (limit_ == 0) {
-    boxes.sweep([&](std::uint64_t key) { listed.push_back(key); });
+    list_all();
     return;
   }
   const bool was_crowded = crowded_;
-  if (was_crowded) mark_choosing(boxes);
-  overlaps_.assign(boxes.ids(), 0);
   const std::uint64_t limit = crowd_pairs(was_crowded ? 0.5 : 1.0, boxes.live());
-  std::uint64_t overlapping = 0;
-  const auto count = [&](const ProxyPair& pair) {
-    ++overlapping;
-    ++overlaps_[pair.a];
-    ++overlaps_[pair.b];
-  };
-  // A pair is listed if a box of it is not among the choosing boxes, else offered to each box's
-  // nearest partners.
-  const auto choose = [&](std::uint64_t key, const ProxyPair& pair) {
-    if (choosing_[pair.a] != 0 && choosing_[pair.b] != 0) {
-      const float distance2 = boxes.distance2(pair.a, pair.b);
-      offer_nearest(pair.a, {distance2, pair.b});
-      offer_nearest(pair.b, {distance2, pair.a});
-    } else {
-      listed.push_back(key);
-    }
-  };
-  if (was_crowded) {
-    begin_nearest(boxes.ids(), listed);
+  if (!was_crowded) {
+    bool past_limit = false;
     boxes.sweep([&](std::uint64_t key) {
-      const ProxyPair pair = pair_of(key);
-      count(pair);
-      choose(key, pair);
+      past_limit = listed.size() == limit;
+      if (!past_limit) listed.push_back(key);
+      return !past_limit;
     });
-  } else {
-    boxes.sweep([&](std::uint64_t key) {
-      count(pair_of(key));
-      if (listed.size() <= limit) listed.push_back(key);
-    });
+    if (!past_limit) return;
   }
+  tree_.clear();
+  alive_.clear();
+  for (ProxyId id = 0; id < boxes.ids(); ++id) {
+    if (!boxes.alive(id)) continue;
+    tree_.add(id, boxes.bounds(id), boxes.is_static(id));
+    alive_.push_back(id);
+  }
+  tree_.build();
+  if (was_crowded) mark_choosing(boxes);  // by the last listing's counts
+  const std::uint64_t overlapping = count_overlaps(boxes.ids());
   crowded_ = overlapping > limit;
-  if (crowded_ && !was_crowded) {
-    mark_choosing(boxes);
-    begin_nearest(boxes.ids(), listed);
-    boxes.sweep([&](std::uint64_t key) { choose(key, pair_of(key)); });
-  } else if (!crowded_ && was_crowded) {
-    listed.clear();
-    boxes.sweep([&](std::uint64_t key) { listed.push_back(key); });
+  listed.clear();
+  if (!crowded_) {
+    list_all();
+    return;
   }
-  if (crowded_) list_nearest(overlapping, listed);
+  if (!was_crowded) mark_choosing(boxes);
+  list_chosen(listed);
+  pairs_deferred_ = overlapping - listed.size();
 }
 
 template <class Boxes>

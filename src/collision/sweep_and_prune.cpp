@@ -49,15 +49,11 @@ ProxyId endpoint_id(std::uint64_t key) { return static_cast<ProxyId>(key & kIdMa
 bool is_max(std::uint64_t key) { return (key & kMaxBit) != 0; }
 
 // Closed-interval overlap of two boxes on two axes (the third is the one being swept).
-bool overlap_on(const std::array<float, 6>& p, const std::array<float, 6>& q, int u, int v) {
+bool overlap_on(const BoxBounds& p, const BoxBounds& q, int u, int v) {
   return p[u] <= q[u + 3] && q[u] <= p[u + 3] && p[v] <= q[v + 3] && q[v] <= p[v + 3];
 }
 
-bool overlap(const std::array<float, 6>& p, const std::array<float, 6>& q) {
-  return p[0] <= q[3] && q[0] <= p[3] && overlap_on(p, q, 1, 2);
-}
-
-std::array<float, 6> to_bounds(const Aabb& box) {
+BoxBounds to_bounds(const Aabb& box) {
   return {box.min.x(), box.min.y(), box.min.z(), box.max.x(), box.max.y(), box.max.z()};
 }
 
@@ -97,7 +93,7 @@ void SweepAndPrune::store(ProxyId id, const Aabb& box) {
 }
 
 Aabb SweepAndPrune::box(ProxyId id) const {
-  const std::array<float, 6>& b = bounds_[id].now;
+  const BoxBounds& b = bounds_[id].now;
   return {Vec3(b[0], b[1], b[2]), Vec3(b[3], b[4], b[5])};
 }
 
@@ -208,7 +204,7 @@ void SweepAndPrune::on_max_passes_min(int axis, ProxyId a, ProxyId b) {
 void SweepAndPrune::integrate_added() {
   for (const ProxyId id : waiting_) {
     if ((flags_[id] & kAlive) == 0) continue;
-    const std::array<float, 6>& b = bounds_[id].now;
+    const BoxBounds& b = bounds_[id].now;
     for (int axis = 0; axis < 3; ++axis) {
       std::vector<std::uint64_t>& keys = endpoints_[axis];
       for (const std::uint64_t key :
@@ -222,7 +218,7 @@ void SweepAndPrune::integrate_added() {
       const std::uint8_t f = flags_[other];
       if ((f & (kAlive | kWaiting)) != kAlive || other == id) continue;
       if (is_static && (f & kStatic) != 0) continue;
-      if (!overlap(b, bounds_[other].now)) continue;
+      if (!boxes_overlap(b, bounds_[other].now)) continue;
       const std::uint64_t key = pair_key(id, other);
       if (pair_set_.insert(key)) added_.push_back(key);
     }
@@ -253,7 +249,8 @@ void SweepAndPrune::undo_changes() {
 }
 
 // The boxes whose interval on `axis` is open as the sorted endpoints pass, each opening box
-// tested against them: O(p) for p overlapping intervals on that axis.
+// tested against them: O(p) for p overlapping intervals on that axis, less when `found` stops it
+// by returning false.
 template <class Found>
 void SweepAndPrune::sweep(int axis, const Found& found) const {
   // The open boxes, with their bounds on the other two axes copied so that the inner loop reads
@@ -276,12 +273,13 @@ void SweepAndPrune::sweep(int axis, const Found& found) const {
       open.pop_back();
       continue;
     }
-    const std::array<float, 6>& b = bounds_[id].now;
+    const BoxBounds& b = bounds_[id].now;
     const Open box{b[u], b[u + 3], b[v], b[v + 3], id, (flags_[id] & kStatic) != 0};
     for (const Open& other : open) {
       if (box.min_u <= other.max_u && other.min_u <= box.max_u && box.min_v <= other.max_v &&
-          other.min_v <= box.max_v && !(box.is_static && other.is_static)) {
-        found(pair_key(id, other.id));
+          other.min_v <= box.max_v && !(box.is_static && other.is_static) &&
+          !found(pair_key(id, other.id))) {
+        return;
       }
     }
     open_slot[id] = static_cast<std::uint32_t>(open.size());
@@ -295,17 +293,9 @@ struct SweepAndPrune::CrowdBoxes {
 
   [[nodiscard]] std::size_t ids() const { return boxes.bounds_.size(); }
   [[nodiscard]] std::size_t live() const { return boxes.live_count_; }
+  [[nodiscard]] bool alive(ProxyId id) const { return (boxes.flags_[id] & kAlive) != 0; }
   [[nodiscard]] bool is_static(ProxyId id) const { return (boxes.flags_[id] & kStatic) != 0; }
-  [[nodiscard]] float distance2(ProxyId a, ProxyId b) const {
-    const std::array<float, 6>& p = boxes.bounds_[a].now;
-    const std::array<float, 6>& q = boxes.bounds_[b].now;
-    float distance2 = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-      const float d = 0.5f * (p[k] + p[k + 3] - q[k] - q[k + 3]);
-      distance2 += d * d;
-    }
-    return distance2;
-  }
+  [[nodiscard]] const BoxBounds& bounds(ProxyId id) const { return boxes.bounds_[id].now; }
   template <class Found>
   void sweep(const Found& found) const {
     boxes.sweep(axis, found);

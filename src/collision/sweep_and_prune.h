@@ -61,8 +61,9 @@ class SweepAndPrune {
 
   // Crowds (collision/crowd.h, Crowd; docs/collision.md, "Crowds"): with a limit L (0: none) of
   // overlapping boxes per box, an update() in a crowd lists each crowded box's pairs with its L/2
-  // nearest crowded partners only. Such an update() rebuilds everything: O(n log n + p) time for
-  // p overlapping pairs, and memory for the listed pairs only. Deterministic, as without a limit.
+  // nearest crowded partners only. Such an update() rebuilds everything without listing the
+  // overlaps first: O(n log n + listed) time where boxes pile up, however many overlap, and memory
+  // for the boxes and the listed pairs only. Deterministic, as without a limit.
   void set_crowd_limit(std::uint32_t pairs_per_box) { crowd_.set_limit(pairs_per_box); }
   // Whether the last update() paired the proxy only with its nearest (Crowd::crowded).
   [[nodiscard]] bool crowded(ProxyId id) const { return crowd_.crowded(id); }
@@ -78,7 +79,7 @@ class SweepAndPrune {
   void store(ProxyId id, const Aabb& box);
   void rebuild();
   // rebuild()'s sweep along one axis of sorted endpoints: hands each overlapping pair's key to
-  // `found`.
+  // `found` until it returns false.
   template <class Found>
   void sweep(int axis, const Found& found) const;
   // Back to the pairs before this update's incremental changes, for a rebuild that replaces them.
@@ -94,8 +95,8 @@ class SweepAndPrune {
   // branch; the box now and as of the last update(), together in one cache line, since the swaps
   // of the sort read both at random.
   struct alignas(64) Bounds {
-    std::array<float, 6> now;
-    std::array<float, 6> before;
+    BoxBounds now;
+    BoxBounds before;
   };
 
   // Per id.

@@ -234,5 +234,55 @@ TEST(CellSweepAndPruneCrowd, KeepsEveryPairOfABoxOutsideTheCrowdAndEndsWithEvery
   EXPECT_EQ(runs[0], runs[1]);
 }
 
+// Boxes at one point, as a game spawns bodies: every pair overlaps at distance 0, so each box's
+// nearest are the L/2 lowest ids but its own, and the pairs listed are those of a box among the
+// first L/2 ids. 5,000 boxes overlap in 12,497,500 pairs, which the rule cuts before listing any.
+constexpr ProxyId kBoxesAtOnePoint = 5000;
+constexpr std::uint32_t kDefaultLimit = 32;  // overlapping boxes per box
+
+std::vector<ProxyPair> pairs_of_the_lowest_ids() {
+  std::vector<ProxyPair> pairs;
+  for (ProxyId a = 0; a < kDefaultLimit / 2; ++a) {
+    for (ProxyId b = a + 1; b < kBoxesAtOnePoint; ++b) pairs.push_back({a, b});
+  }
+  return pairs;
+}
+
+constexpr std::uint64_t kPairsAtOnePoint =
+    std::uint64_t{kBoxesAtOnePoint} * (kBoxesAtOnePoint - 1) / 2;
+
+TEST(SweepAndPruneCrowd, BoxesAtOnePointPairWithTheLowestIds) {
+  SweepAndPrune sap;
+  sap.set_crowd_limit(kDefaultLimit);
+  for (ProxyId id = 0; id < kBoxesAtOnePoint; ++id) {
+    (void)sap.add(box_at(0.0f, 1.0f, 0.0f, 0.05f), ProxyKind::kDynamic);
+  }
+  const std::vector<ProxyPair> expected = pairs_of_the_lowest_ids();
+  for (int update = 0; update < 2; ++update) {  // as the crowd forms, and in it
+    sap.update();
+    ASSERT_EQ(pairs_of(sap), expected) << "update " << update;
+    EXPECT_EQ(sap.pairs_deferred(), kPairsAtOnePoint - expected.size());
+    for (ProxyId id = 0; id < kBoxesAtOnePoint; ++id) ASSERT_TRUE(sap.crowded(id)) << id;
+  }
+}
+
+// Per cell, on a corner of four cells: each cell lists the same pairs, and leaves out as many;
+// the same on one thread, two and four.
+TEST(CellSweepAndPruneCrowd, BoxesAtOnePointPairWithTheLowestIdsOnAnyThreads) {
+  const std::vector<ProxyPair> expected = pairs_of_the_lowest_ids();
+  for (const std::uint32_t threads : {1u, 2u, 4u}) {
+    const Parallel parallel(threads);
+    CellSweepAndPrune cells(1.0f);
+    cells.set_crowd_limit(kDefaultLimit);
+    for (ProxyId id = 0; id < kBoxesAtOnePoint; ++id) {
+      (void)cells.add(box_at(0.0f, 0.5f, 0.0f, 0.05f), ProxyKind::kDynamic);
+    }
+    cells.update(&parallel);
+    ASSERT_EQ(pairs_of(cells), expected) << threads << " threads";
+    EXPECT_EQ(cells.pairs_deferred(), 4 * (kPairsAtOnePoint - expected.size()));
+    EXPECT_EQ(cells.cell_count(), 4u);
+  }
+}
+
 }  // namespace
 }  // namespace sphys::test

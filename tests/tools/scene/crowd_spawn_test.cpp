@@ -99,5 +99,11 @@ TEST(CrowdSpawn, FourThousandBallsAtOnePointMakeABoundedFirstStep) {
   expect_bounded_first_step(world, 4000);
 }
 
+// 20,000 at one point: 199,990,000 overlapping pairs, cut before any is listed.
+TEST(CrowdSpawn, TwentyThousandBallsAtOnePointMakeABoundedFirstStep) {
+  World world = crowd(20000);
+  expect_bounded_first_step(world, 20000);
+}
+
 }  // namespace
 }  // namespace sphys::crowd_spawn_test
