@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "core/buffers.h"
 #include "sphys/error.h"
 
 namespace sphys {
@@ -123,26 +124,82 @@ void PairCounts::grow() {
   }
 }
 
-void merge_touched_pairs(std::vector<ProxyPair>& pairs, std::span<const std::uint64_t> touched,
-                         const PairCounts& table, std::vector<ProxyPair>& scratch,
-                         std::vector<ProxyPair>& entered, std::vector<ProxyPair>& left) {
-  if (touched.empty()) return;
-  scratch.clear();
-  std::size_t old_i = 0;
-  std::size_t touched_i = 0;
-  while (old_i < pairs.size() || touched_i < touched.size()) {
-    const std::uint64_t from_old = old_i < pairs.size() ? pair_key(pairs[old_i]) : kEmpty;
-    const std::uint64_t from_touched = touched_i < touched.size() ? touched[touched_i] : kEmpty;
+namespace {
+
+// Old pairs per run of the merge. unit: pairs
+constexpr std::size_t kPairsPerMergeRun = 2048;
+
+// The merge of old pairs [old_i, old_end) with touched keys [touched_i, touched_end), in key
+// order: emit(key, listed, entered, left) for each key of either.
+template <class Emit>
+void merge_run(std::span<const ProxyPair> pairs, std::size_t old_i, std::size_t old_end,
+               std::span<const std::uint64_t> touched, std::size_t touched_i,
+               std::size_t touched_end, const PairCounts& table, const Emit& emit) {
+  while (old_i < old_end || touched_i < touched_end) {
+    const std::uint64_t from_old = old_i < old_end ? pair_key(pairs[old_i]) : kEmpty;
+    const std::uint64_t from_touched = touched_i < touched_end ? touched[touched_i] : kEmpty;
     const std::uint64_t key = std::min(from_old, from_touched);
     if (from_old == key) ++old_i;
     if (from_touched == key) ++touched_i;
     const bool was_in = from_old == key;
     const bool is_in = from_touched != key || table.contains(key);
-    if (is_in) scratch.push_back(pair_of(key));
-    if (is_in && !was_in) entered.push_back(pair_of(key));
-    if (was_in && !is_in) left.push_back(pair_of(key));
+    emit(key, is_in, is_in && !was_in, was_in && !is_in);
   }
-  pairs.swap(scratch);
+}
+
+}  // namespace
+
+void merge_touched_pairs(std::vector<ProxyPair>& pairs, std::span<const std::uint64_t> touched,
+                         const PairCounts& table, PairMerge& work, std::vector<ProxyPair>& entered,
+                         std::vector<ProxyPair>& left, const Parallel* parallel) {
+  if (touched.empty()) return;
+  // Run r takes its old pairs and the touched keys from its first old pair's on (the first run
+  // from the first), up to the next run's first old pair (the last run to the end).
+  const std::size_t runs =
+      std::max<std::size_t>(1, (pairs.size() + kPairsPerMergeRun - 1) / kPairsPerMergeRun);
+  const auto old_begin = [&](std::size_t r) {
+    return std::min(pairs.size(), r * kPairsPerMergeRun);
+  };
+  const auto touched_begin = [&](std::size_t r) -> std::size_t {
+    if (r == 0) return 0;
+    if (r == runs) return touched.size();
+    return static_cast<std::size_t>(
+        std::lower_bound(touched.begin(), touched.end(), pair_key(pairs[old_begin(r)])) -
+        touched.begin());
+  };
+  const auto merge = [&](std::size_t r, const auto& emit) {
+    merge_run(pairs, old_begin(r), old_begin(r + 1), touched, touched_begin(r),
+              touched_begin(r + 1), table, emit);
+  };
+  resize_buffer(work.runs, runs + 1);
+  work.runs[0] = {0, static_cast<std::uint32_t>(entered.size()),
+                  static_cast<std::uint32_t>(left.size())};
+  for_each_on(parallel, runs, [&](std::size_t r) {
+    PairMerge::Run taken;
+    merge(r, [&](std::uint64_t, bool listed, bool came, bool went) {
+      taken.listed += listed ? 1 : 0;
+      taken.entered += came ? 1 : 0;
+      taken.left += went ? 1 : 0;
+    });
+    work.runs[r + 1] = taken;
+  });
+  for (std::size_t r = 0; r < runs; ++r) {
+    work.runs[r + 1].listed += work.runs[r].listed;
+    work.runs[r + 1].entered += work.runs[r].entered;
+    work.runs[r + 1].left += work.runs[r].left;
+  }
+  resize_buffer(work.merged, work.runs[runs].listed);
+  resize_buffer(entered, work.runs[runs].entered);
+  resize_buffer(left, work.runs[runs].left);
+  for_each_on(parallel, runs, [&](std::size_t r) {
+    PairMerge::Run next = work.runs[r];
+    merge(r, [&](std::uint64_t key, bool listed, bool came, bool went) {
+      if (listed) work.merged[next.listed++] = pair_of(key);
+      if (came) entered[next.entered++] = pair_of(key);
+      if (went) left[next.left++] = pair_of(key);
+    });
+  });
+  pairs.swap(work.merged);
 }
 
 }  // namespace sphys

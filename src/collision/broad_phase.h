@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sphys/math.h"
+#include "sphys/parallel.h"
 
 namespace sphys {
 
@@ -76,12 +77,25 @@ class PairCounts {
   int shift_ = 64;  // 64 - log2(keys_.size())
 };
 
+// merge_touched_pairs()'s working memory, kept from update to update.
+struct PairMerge {
+  // What a run of old pairs lists, came in and went out, then where its lists begin.
+  struct Run {
+    std::uint32_t listed = 0;
+    std::uint32_t entered = 0;
+    std::uint32_t left = 0;
+  };
+  std::vector<ProxyPair> merged;  // the next pair list
+  std::vector<Run> runs;
+};
+
 // Brings a sorted pair list up to date after an update touched some keys (`touched`: sorted,
 // unique): an untouched pair stays, a touched key is listed if `table` holds it. Only the touched
-// keys are looked up, the rest are copied: O(pairs + touched). The pairs that came in and went
-// out are appended, sorted, to `entered` and `left`. `scratch` is working memory.
+// keys are looked up, the rest are copied: O(pairs + touched), in runs of old pairs on
+// `parallel`'s threads (none: the caller's), with the same result. The pairs that came in and
+// went out are appended, sorted, to `entered` and `left`.
 void merge_touched_pairs(std::vector<ProxyPair>& pairs, std::span<const std::uint64_t> touched,
-                         const PairCounts& table, std::vector<ProxyPair>& scratch,
-                         std::vector<ProxyPair>& entered, std::vector<ProxyPair>& left);
+                         const PairCounts& table, PairMerge& work, std::vector<ProxyPair>& entered,
+                         std::vector<ProxyPair>& left, const Parallel* parallel);
 
 }  // namespace sphys

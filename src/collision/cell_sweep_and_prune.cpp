@@ -90,7 +90,7 @@ void CellSweepAndPrune::update(const Parallel* parallel) {
   mark_crowded();
   update_wide();
   release_empty_cells();
-  merge_changes();
+  merge_changes(parallel);
   // Every cell has dropped the removed proxies' pairs now, so their ids may be given out again.
   free_ids_.insert(free_ids_.end(), retired_.begin(), retired_.end());
   retired_.clear();
@@ -349,10 +349,10 @@ void CellSweepAndPrune::count_pair(ProxyId a, ProxyId b, bool entered) {
 }
 
 // pairs_ becomes the pairs counted in some cell.
-void CellSweepAndPrune::merge_changes() {
+void CellSweepAndPrune::merge_changes(const Parallel* parallel) {
   std::sort(touched_.begin(), touched_.end());
   touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-  merge_touched_pairs(pairs_, touched_, counts_, merged_, entered_, left_);
+  merge_touched_pairs(pairs_, touched_, counts_, merge_, entered_, left_, parallel);
 }
 
 }  // namespace sphys

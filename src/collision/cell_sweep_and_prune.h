@@ -115,7 +115,7 @@ class CellSweepAndPrune {
   void release_empty_cells();
   void count_pair(ProxyId a, ProxyId b, bool entered);
   void mark_crowded();
-  void merge_changes();
+  void merge_changes(const Parallel* parallel);
 
   float cell_size_ = 0.0f;  // unit: m
   // Per proxy id. The boxes apart, as the cells read them at random.
@@ -145,7 +145,7 @@ class CellSweepAndPrune {
   PairCounts counts_;                   // per pair: the cells (and wide tests) in which it overlaps
   std::vector<std::uint64_t> touched_;  // pair keys whose count changed in this update()
   std::vector<ProxyPair> pairs_;
-  std::vector<ProxyPair> merged_;
+  PairMerge merge_;  // merge_changes()'s working memory
   std::vector<ProxyPair> entered_;
   std::vector<ProxyPair> left_;
   std::uint64_t swaps_last_update_ = 0;

@@ -232,17 +232,17 @@ void SweepAndPrune::merge_changes() {
   added_.insert(added_.end(), removed_.begin(), removed_.end());
   std::sort(added_.begin(), added_.end());
   added_.erase(std::unique(added_.begin(), added_.end()), added_.end());
-  merge_touched_pairs(pairs_, added_, pair_set_, merged_, entered_, left_);
+  merge_touched_pairs(pairs_, added_, pair_set_, merge_, entered_, left_, nullptr);
   added_.clear();
   removed_.clear();
 }
 
 void SweepAndPrune::undo_changes() {
-  merged_.clear();
+  merge_.merged.clear();
   std::set_difference(pairs_.begin(), pairs_.end(), entered_.begin(), entered_.end(),
-                      std::back_inserter(merged_));
+                      std::back_inserter(merge_.merged));
   pairs_.clear();
-  std::merge(merged_.begin(), merged_.end(), left_.begin(), left_.end(),
+  std::merge(merge_.merged.begin(), merge_.merged.end(), left_.begin(), left_.end(),
              std::back_inserter(pairs_));
   entered_.clear();
   left_.clear();
@@ -341,16 +341,16 @@ void SweepAndPrune::rebuild() {
 
   std::sort(added_.begin(), added_.end());
   pair_set_.clear();
-  merged_.clear();
+  merge_.merged.clear();
   for (const std::uint64_t key : added_) {
     pair_set_.insert(key);
-    merged_.push_back(pair_of(key));
+    merge_.merged.push_back(pair_of(key));
   }
-  std::set_difference(merged_.begin(), merged_.end(), pairs_.begin(), pairs_.end(),
+  std::set_difference(merge_.merged.begin(), merge_.merged.end(), pairs_.begin(), pairs_.end(),
                       std::back_inserter(entered_));
-  std::set_difference(pairs_.begin(), pairs_.end(), merged_.begin(), merged_.end(),
+  std::set_difference(pairs_.begin(), pairs_.end(), merge_.merged.begin(), merge_.merged.end(),
                       std::back_inserter(left_));
-  pairs_.swap(merged_);
+  pairs_.swap(merge_.merged);
   added_.clear();
   removed_.clear();
 }

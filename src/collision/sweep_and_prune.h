@@ -108,12 +108,12 @@ class SweepAndPrune {
   // Per axis: the endpoints of the boxes taking part, sorted (see the key layout in the source).
   std::array<std::vector<std::uint64_t>, 3> endpoints_;
 
-  PairCounts pair_set_;                 // the keys of pairs_ (and of changes during an update())
-  std::vector<ProxyPair> pairs_;        // sorted; what pairs() shows
-  std::vector<ProxyPair> entered_;      // sorted; what pairs_entered() shows
-  std::vector<ProxyPair> left_;         // sorted; what pairs_left() shows
-  std::vector<ProxyPair> merged_;       // the next pairs_, built by merge_changes()
-  std::vector<std::uint64_t> added_;    // keys that entered pair_set_ in this update()
+  PairCounts pair_set_;               // the keys of pairs_ (and of changes during an update())
+  std::vector<ProxyPair> pairs_;      // sorted; what pairs() shows
+  std::vector<ProxyPair> entered_;    // sorted; what pairs_entered() shows
+  std::vector<ProxyPair> left_;       // sorted; what pairs_left() shows
+  PairMerge merge_;                   // merge_changes()'s working memory, its list the next pairs_
+  std::vector<std::uint64_t> added_;  // keys that entered pair_set_ in this update()
   std::vector<std::uint64_t> removed_;  // keys that left pair_set_ in this update()
 
   std::vector<ProxyId> waiting_;  // added since the last update(), in the order of add()

@@ -16,6 +16,7 @@
 
 #include "sphys/contact.h"
 #include "sphys/error.h"
+#include "support/vec_near.h"
 
 namespace sphys {
 namespace {
@@ -92,12 +93,6 @@ void expect_identical(std::span<const Contact> actual, std::span<const Contact> 
   for (std::size_t i = 0; i < actual.size(); ++i) {
     EXPECT_TRUE(identical(actual[i], expected[i])) << "contact " << i;
   }
-}
-
-void expect_vec_near(const Vec3& actual, const Vec3& expected, float tolerance) {
-  EXPECT_NEAR(actual.x(), expected.x(), tolerance);
-  EXPECT_NEAR(actual.y(), expected.y(), tolerance);
-  EXPECT_NEAR(actual.z(), expected.z(), tolerance);
 }
 
 std::string error_message(std::uint32_t max_points) {

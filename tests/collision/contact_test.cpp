@@ -5,15 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "collision/broad_phase.h"
+#include "support/vec_near.h"
 
 namespace sphys {
 namespace {
-
-void expect_vec_near(const Vec3& actual, const Vec3& expected, float tolerance = 1e-6f) {
-  EXPECT_NEAR(actual.x(), expected.x(), tolerance);
-  EXPECT_NEAR(actual.y(), expected.y(), tolerance);
-  EXPECT_NEAR(actual.z(), expected.z(), tolerance);
-}
 
 Contact contact_of(const Sphere& a, const Sphere& b, bool expect_coincident = false) {
   Contact contact;

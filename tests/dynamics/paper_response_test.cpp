@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "support/float_limits.h"
+#include "support/vec_near.h"
 
 namespace sphys {
 namespace {
@@ -24,12 +25,6 @@ using test::kFloatEpsilon;
 // 16 ε · 4 m/s = 7.6e-6 m/s of the hand computation. A wrong lever arm or inertia moves them by
 // 0.1 or more.
 constexpr float kHandTolerance = 16.0f * kFloatEpsilon * 4.0f;
-
-void expect_vec_near(const Vec3& actual, const Vec3& expected, float tolerance) {
-  EXPECT_NEAR(actual.x(), expected.x(), tolerance);
-  EXPECT_NEAR(actual.y(), expected.y(), tolerance);
-  EXPECT_NEAR(actual.z(), expected.z(), tolerance);
-}
 
 // A solid box of full sides 2 × 0.5 × 1 m and mass 12 kg: I = m/12 (b² + c², a² + c², a² + b²)
 // = (1.25, 5, 4.25) kg·m².
