@@ -139,6 +139,27 @@ Aabb CollisionDetector::bounds(std::uint32_t slot) const {
                     broad_phase_);
 }
 
+void CollisionDetector::set_unpaired(
+    std::span<const std::pair<std::uint32_t, std::uint32_t>> body_pairs) {
+  unpaired_.clear();
+  for (const auto& [a, b] : body_pairs) {
+    unpaired_.push_back(pair_key(bodies_[a].proxy, bodies_[b].proxy));
+  }
+  std::sort(unpaired_.begin(), unpaired_.end());
+}
+
+bool CollisionDetector::drop_unpaired(PairRecord& record) const {
+  if (unpaired_.empty() || !std::binary_search(unpaired_.begin(), unpaired_.end(),
+                                               pair_key(record.proxies.a, record.proxies.b))) {
+    return false;
+  }
+  record.count = 0;
+  record.kept_asleep = false;
+  record.descent_margin = -1.0f;
+  record.done = true;
+  return true;
+}
+
 bool CollisionDetector::links_dynamic_bodies(const PairRecord& record) const {
   return record.count > 0 && store_->dynamic()[body_of_proxy_[record.proxies.a]] != 0 &&
          store_->dynamic()[body_of_proxy_[record.proxies.b]] != 0;
@@ -184,6 +205,7 @@ const CollisionStats& CollisionDetector::detect() {
   for (std::size_t p = 0; p < records.size(); ++p) {
     PairRecord& record = records[p];
     record.done = false;
+    if (drop_unpaired(record)) continue;
     if (moves(body_of_proxy_[record.proxies.a]) || moves(body_of_proxy_[record.proxies.b])) {
       jobs_.push_back({static_cast<std::uint32_t>(p), false});
     } else {

@@ -74,6 +74,9 @@ void SleepTracker::link_islands(std::span<const Contact> contacts) {
       join(contact.body_a, contact.body_b);
     }
   }
+  for (const auto& [a, b] : joined_) {
+    if (dynamic[a] != 0 && dynamic[b] != 0) join(a, b);
+  }
 }
 
 void SleepTracker::split_islands(std::span<const Contact> contacts) {
@@ -107,11 +110,44 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
     if (wakes(a, b)) note_woken(a, settings, woken);
     if (wakes(b, a)) note_woken(b, settings, woken);
   }
+  // A joint wakes its sleeping body whatever the speed of the other: a sleeping body counts as
+  // static in the solve, and would hold an awake one where it fell asleep.
+  for (const auto& [a, b] : joined_) {
+    if (store_->asleep(a) && store_->moving()[b] != 0) note_woken(a, settings, woken);
+    if (store_->asleep(b) && store_->moving()[a] != 0) note_woken(b, settings, woken);
+  }
   // A body touching several moving ones was listed once per contact.
   const auto listed = woken.begin() + static_cast<std::ptrdiff_t>(first);
   std::sort(listed, woken.end());
   woken.erase(std::unique(listed, woken.end()), woken.end());
   store_->set_asleep(std::span(woken).subspan(first), false);
+}
+
+void SleepTracker::settle_joined() {
+  if (joined_.empty()) return;
+  const std::span<const std::uint8_t> dynamic = store_->dynamic();
+  joined_group_.resize(settles_.size());
+  std::iota(joined_group_.begin(), joined_group_.end(), 0u);
+  const auto group = [&](std::uint32_t body) {
+    while (joined_group_[body] != body) {
+      joined_group_[body] = joined_group_[joined_group_[body]];  // path halving
+      body = joined_group_[body];
+    }
+    return body;
+  };
+  for (const auto& [a, b] : joined_) {
+    if (dynamic[a] == 0 || dynamic[b] == 0) continue;
+    const std::uint32_t ga = group(a);
+    const std::uint32_t gb = group(b);
+    if (ga != gb) joined_group_[std::max(ga, gb)] = std::min(ga, gb);
+  }
+  joined_awake_.assign(settles_.size(), 0);
+  for (std::uint32_t i = 0; i < settles_.size(); ++i) {
+    if (dynamic[i] != 0 && !store_->asleep(i) && settles_[i] == 0) joined_awake_[group(i)] = 1;
+  }
+  for (std::uint32_t i = 0; i < settles_.size(); ++i) {
+    if (settles_[i] != 0 && joined_awake_[group(i)] != 0) settles_[i] = 0;
+  }
 }
 
 std::uint32_t SleepTracker::update(std::span<const Contact> contacts, const SleepSettings& settings,
@@ -142,6 +178,7 @@ std::uint32_t SleepTracker::update(std::span<const Contact> contacts, const Slee
     if (restless(contact.body_b, settings)) settles_[contact.body_a] = 0;
     if (restless(contact.body_a, settings)) settles_[contact.body_b] = 0;
   }
+  settle_joined();
   const std::size_t first = fell_asleep.size();
   for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
     if (settles_[i] != 0) fell_asleep.push_back(i);
