@@ -19,7 +19,7 @@ using test::ball_body;
 using test::joint_at;
 using test::rod_body;
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kDt;
 constexpr double kGravity = 9.81;
 constexpr double kPi = std::numbers::pi;
 
