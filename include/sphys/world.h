@@ -192,10 +192,11 @@ class World {
   // What the joint did in the last step that solved it: its position, speed, gap, force and
   // torque.
   [[nodiscard]] JointState joint_state(JointId joint) const;
-  // The joint's motor, limits or spring from the next step on; its bodies wake. Checked as
-  // add_joint checks them.
+  // The joint's motor from the next step on; its bodies wake. Checked as add_joint checks it.
   void set_joint_motor(JointId joint, const JointMotor& motor);
+  // The joint's limits from the next step on, as set_joint_motor.
   void set_joint_limit(JointId joint, const JointLimit& limit);
+  // The joint's spring from the next step on, as set_joint_motor.
   void set_joint_spring(JointId joint, const JointSpring& spring);
   // The joints the last remove_body removed with its body (stale ids now), in slot order.
   [[nodiscard]] std::span<const JointId> joints_removed() const;

@@ -208,5 +208,57 @@ TEST(JointsPhysics, AMotorStallsWhenTheLoadNeedsMoreTorque) {
   EXPECT_NEAR(world.joint_state(a.hinge).torque.z(), load, 0.02f * load);
 }
 
+// 6. A ball on a distance spring of 2 Hz to the world, undamped, in zero gravity: the spring's
+// stiffness is the ball's mass times (2π 2 Hz)², so it swings with a period of 0.5 s.
+TEST(JointsPhysics, ADistanceSpringSwingsAtItsFrequency) {
+  WorldSettings settings = no_sleep();
+  settings.gravity = Vec3::Zero();
+  World world(settings);
+  const BodyId ball = world.add_body(ball_body(0.05f, 1.0f, Vec3(1.1f, 0.0f, 0.0f)));
+  JointDesc spring;
+  spring.type = JointType::kDistance;
+  spring.body_b = ball;
+  spring.length = 1.0f;
+  spring.spring = {.enabled = true, .hertz = 2.0f, .damping_ratio = 0.0f};
+  const JointId joint = world.add_joint(spring);
+  // Times at which the length passes its rest length growing, interpolated in the step.
+  std::vector<double> crossings;
+  float stretch = 0.1f;  // as placed
+  for (int step = 1; step <= 60 * 3; ++step) {
+    world.step(kDt);
+    const float next = world.joint_state(joint).position - 1.0f;
+    if (stretch < 0.0f && next >= 0.0f) {
+      crossings.push_back(kDt * (static_cast<double>(step - 1) + stretch / (stretch - next)));
+    }
+    stretch = next;
+  }
+  ASSERT_GE(crossings.size(), 4u);
+  const double period = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+  std::cout << "distance spring period " << period << " s, expected 0.5 s\n";
+  EXPECT_NEAR(period, 0.5, 0.01);
+}
+
+// 7. A rod hanging from a ball joint with a swing cone of 0.3 rad, struck sideways hard: its
+// axis never leaves the cone by more than a degree.
+TEST(JointsPhysics, ABallJointsConeHoldsTheSwing) {
+  World world(no_sleep());
+  BodyDesc desc = rod_body(1.0f, 0.05f, 1.0f, Vec3(0.0f, -0.5f, 0.0f));
+  desc.pose.rotation = Quat::FromTwoVectors(Vec3::UnitX(), -Vec3::UnitY());
+  desc.linear_velocity = Vec3(3.0f, 0.0f, 1.0f);
+  const BodyId rod = world.add_body(desc);
+  JointDesc ball = joint_at(world, JointType::kBall, BodyId{}, rod, Vec3::Zero(), -Vec3::UnitY());
+  ball.cone = {.enabled = true, .angle = 0.3f};
+  world.add_joint(ball);
+  float widest = 0.0f;
+  for (int step = 0; step < 180; ++step) {
+    world.step(kDt);
+    const Vec3 axis = world.body(rod).pose.rotation * Vec3::UnitX();
+    widest = std::max(widest, std::acos(std::clamp(axis.dot(-Vec3::UnitY()), -1.0f, 1.0f)));
+  }
+  std::cout << "ball joint's swing at most " << widest << " rad in a cone of 0.3 rad\n";
+  EXPECT_GT(widest, 0.25f) << "the blow did not reach the cone";
+  EXPECT_LT(widest, 0.3f + static_cast<float>(kPi / 180.0));
+}
+
 }  // namespace
 }  // namespace sphys
