@@ -29,7 +29,7 @@ import traceback
 from . import _sphys
 
 #: Summary figures that measure time: they differ from run to run, the others never do.
-TIMING_KEYS = ("wall_s", "steps_per_s", "step_ms", "time_share_percent")
+TIMING_KEYS = ("wall_s", "steps_per_s", "step_ms", "time_share_percent", "serial_share_percent")
 
 
 def table1_scenes():

@@ -148,16 +148,16 @@ void CollisionDetector::set_unpaired(
   std::sort(unpaired_.begin(), unpaired_.end());
 }
 
-bool CollisionDetector::drop_unpaired(PairRecord& record) const {
-  if (unpaired_.empty() || !std::binary_search(unpaired_.begin(), unpaired_.end(),
-                                               pair_key(record.proxies.a, record.proxies.b))) {
-    return false;
-  }
+bool CollisionDetector::unpaired(const PairRecord& record) const {
+  return !unpaired_.empty() && std::binary_search(unpaired_.begin(), unpaired_.end(),
+                                                  pair_key(record.proxies.a, record.proxies.b));
+}
+
+void CollisionDetector::drop_contacts(PairRecord& record) {
   record.count = 0;
   record.kept_asleep = false;
   record.descent_margin = -1.0f;
   record.done = true;
-  return true;
 }
 
 bool CollisionDetector::links_dynamic_bodies(const PairRecord& record) const {
@@ -170,7 +170,7 @@ const CollisionStats& CollisionDetector::detect() {
   stats_.bodies = static_cast<std::uint32_t>(
       std::visit([](const auto& broad_phase) { return broad_phase.size(); }, broad_phase_));
 
-  const StepClock::time_point broad_start = StepClock::now();
+  const PhaseClock broad_clock(parallel_);
   std::visit(
       [&](auto& broad_phase) {
         for (const std::uint32_t slot : store_->awake()) {
@@ -195,32 +195,12 @@ const CollisionStats& CollisionDetector::detect() {
   stats_.parted_pairs += cache_.follow(
       pairs, [&](const PairRecord& record) { return links_dynamic_bodies(record); }, parallel_);
   stats_.candidate_pairs = static_cast<std::uint32_t>(pairs.size());
-  stats_.broad_phase_ms = elapsed_ms(broad_start);
+  broad_clock.add_to(stats_.broad_phase_ms, stats_.broad_phase_serial_ms);
 
   cache_.begin_narrow_phase();
 
   // Pairs with no moving body make no contacts; their records keep the last ones asleep.
-  jobs_.clear();
-  const std::span<PairRecord> records = cache_.records();
-  for (std::size_t p = 0; p < records.size(); ++p) {
-    PairRecord& record = records[p];
-    record.done = false;
-    if (drop_unpaired(record)) continue;
-    if (moves(body_of_proxy_[record.proxies.a]) || moves(body_of_proxy_[record.proxies.b])) {
-      jobs_.push_back({static_cast<std::uint32_t>(p), false});
-    } else {
-      cache_.keep_asleep(record);
-    }
-  }
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
-    bodies_[i].ground_done = false;
-    if (!settings_.ground_plane_height) continue;
-    if (moves(i)) {
-      jobs_.push_back({i, true});
-    } else if (store_->alive(i)) {
-      cache_.keep_asleep(cache_.ground_record(i));
-    }
-  }
+  list_jobs();
   cache_.compact_asleep();
   run_jobs(0);
   return stats_;
@@ -237,6 +217,7 @@ const CollisionStats& CollisionDetector::detect_woken() {
       jobs_.push_back({static_cast<std::uint32_t>(p), false});
     }
   }
+  pair_jobs_ = jobs_.size();
   if (settings_.ground_plane_height) {
     for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
       if (!bodies_[i].ground_done && moves(i)) jobs_.push_back({i, true});
@@ -254,10 +235,10 @@ void CollisionDetector::plan_chunks() {
   std::size_t plane_used = 0;
   const bool one_run = settings_.has_budget();
   for (std::size_t begin = 0; begin < jobs_.size();) {
-    const bool plane = jobs_[begin].plane;
+    // The pairs' jobs come first, then the plane's.
+    const bool plane = begin >= pair_jobs_;
     const std::size_t length = plane ? kBodiesPerChunk : (one_run ? jobs_.size() : kPairsPerChunk);
-    std::size_t end = begin;
-    while (end < jobs_.size() && end - begin < length && jobs_[end].plane == plane) ++end;
+    const std::size_t end = std::min(begin + length, plane ? jobs_.size() : pair_jobs_);
     // Pair runs and plane runs each keep their own chunks, whose buffers then grow to one kind
     // of work.
     std::vector<std::unique_ptr<NarrowChunk>>& pool = plane ? plane_chunks_ : pair_chunks_;
@@ -287,15 +268,16 @@ void CollisionDetector::run_jobs(std::size_t base) {
     for_each_on(parallel_, chunks_.size(), [&](std::size_t c) { fn(*chunks_[c]); });
   };
 
-  const StepClock::time_point narrow_start = StepClock::now();
+  const PhaseClock narrow_clock(parallel_);
+  const StepClock::time_point narrow_start = StepClock::now();  // for the narrow phase's budget
   if (settings_.has_budget()) {
     for (std::size_t c = 0; c < chunks_.size(); ++c) narrow_phase(*chunks_[c], narrow_start);
   } else {
     for_each_chunk([&](NarrowChunk& chunk) { narrow_phase(chunk, narrow_start); });
   }
-  stats_.narrow_phase_ms = elapsed_ms(narrow_start);
+  narrow_clock.add_to(stats_.narrow_phase_ms, stats_.narrow_phase_serial_ms);
 
-  const StepClock::time_point contacts_start = StepClock::now();
+  const PhaseClock contacts_clock(parallel_);
   for_each_chunk([&](NarrowChunk& chunk) { make_contacts(chunk); });
   // Each chunk's contacts follow those of the chunks before it, in the jobs' order.
   std::size_t total = base;
@@ -313,7 +295,7 @@ void CollisionDetector::run_jobs(std::size_t base) {
     stats_.penetrating_contacts += chunk->penetrating_contacts;
   }
   stats_.contacts = static_cast<std::uint32_t>(total);
-  stats_.contacts_ms = elapsed_ms(contacts_start);
+  contacts_clock.add_to(stats_.contacts_ms, stats_.contacts_serial_ms);
 }
 
 // A chunk's contacts and shapes into their place in the detector's, their warm-start memory

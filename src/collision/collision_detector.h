@@ -46,6 +46,10 @@ struct CollisionStats : DetectionCounters {
   // Contact data from the leaf pairs (eq. 1-3), the reduction to manifolds and the carrying over
   // of each contact's memory. unit: ms
   double contacts_ms = 0.0;
+  // Of each, the time outside the threads' loops (StepStats::serial_ms). unit: ms
+  double broad_phase_serial_ms = 0.0;
+  double narrow_phase_serial_ms = 0.0;
+  double contacts_serial_ms = 0.0;
 };
 
 class ContactReducer;
@@ -171,13 +175,18 @@ class CollisionDetector final : public SlotArrays {
 
   // Whether a record joined two dynamic bodies by contacts in its last narrow phase.
   [[nodiscard]] bool links_dynamic_bodies(const PairRecord& record) const;
-  // A record of an unpaired body pair (set_unpaired) is left with no contacts and done; false
-  // for any other.
-  [[nodiscard]] bool drop_unpaired(PairRecord& record) const;
+  // Whether a record's body pair is unpaired (set_unpaired): it makes no contacts.
+  [[nodiscard]] bool unpaired(const PairRecord& record) const;
+  // An unpaired record is left with no contacts, and done for the step.
+  static void drop_contacts(PairRecord& record);
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
   [[nodiscard]] float descent_gap(float margin) const;
+  // This detection's jobs_ (narrow_jobs.cpp): the candidate pairs with a moving body, then the
+  // moving bodies against the ground plane, each in order; every record and body marked undone,
+  // and the records of the others kept asleep.
+  void list_jobs();
   // The narrow phase and contacts of jobs_, placed in the cache's contacts from `base` on.
   void run_jobs(std::size_t base);
   void plan_chunks();
@@ -200,6 +209,9 @@ class CollisionDetector final : public SlotArrays {
   bool crowd_ = false;  // the broad phase's last update found a crowd
   PairCache cache_;
   std::vector<Job> jobs_;
+  std::size_t pair_jobs_ = 0;                 // jobs_'s pairs, which come before its bodies
+  std::vector<std::uint32_t> newly_resting_;  // list_jobs()'s records that only now rest
+  std::vector<std::uint32_t> run_first_;      // place_in_runs()'s scratch
   std::vector<std::unique_ptr<NarrowChunk>> pair_chunks_;
   std::vector<std::unique_ptr<NarrowChunk>> plane_chunks_;
   std::vector<NarrowChunk*> chunks_;  // the planned runs, in order

@@ -89,15 +89,16 @@ std::uint32_t PairCache::append_range(const std::vector<Contact>& contacts,
   return first;
 }
 
-void PairCache::keep_asleep(Record& record) {
+std::uint32_t PairCache::rest(Record& record) {
   // Kept contacts are matched again by leaf pair only: the pair descends anew when it wakes.
   record.descent_margin = -1.0f;
-  if (!record.kept_asleep) {
-    record.first = append_range(previous_contacts_, previous_memory_, record, asleep_contacts_,
-                                asleep_memory_);
-    record.kept_asleep = true;
-  }
-  live_asleep_ += record.count;
+  return record.count;
+}
+
+void PairCache::keep_asleep(Record& record) {
+  record.first =
+      append_range(previous_contacts_, previous_memory_, record, asleep_contacts_, asleep_memory_);
+  record.kept_asleep = true;
 }
 
 void PairCache::compact_asleep() {

@@ -85,6 +85,12 @@ class PairCache {
   void begin_narrow_phase();
   // A record whose bodies both stopped moving (asleep, or asleep and static) keeps its contacts
   // and their memory in the sleeping pairs' store, so that the pair warm starts when it wakes.
+  // In parts, so that the records may be gone through on the threads: rest() for every such
+  // record, on any thread (it writes the record alone), which returns its contacts;
+  // count_live_asleep() with their sum; and keep_asleep(), in the records' order, for those not
+  // yet kept (Record::kept_asleep), which copies their contacts into the store.
+  static std::uint32_t rest(Record& record);
+  void count_live_asleep(std::size_t contacts) { live_asleep_ = contacts; }
   void keep_asleep(Record& record);
   // Once less than half of the sleeping pairs' store is live, it is rebuilt from the live records.
   void compact_asleep();

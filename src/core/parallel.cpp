@@ -29,6 +29,11 @@ Parallel::Parallel(std::uint32_t threads)
 
 Parallel::~Parallel() = default;
 
+const Parallel& threads_or_caller(const Parallel* parallel) {
+  static const Parallel kCallersThread(1);
+  return parallel != nullptr ? *parallel : kCallersThread;
+}
+
 void Parallel::run(std::size_t count, void (*item)(const void*, std::size_t),
                    const void* fn) const {
   arena_->arena.execute([&] {

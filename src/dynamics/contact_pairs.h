@@ -1,8 +1,8 @@
 #pragma once
 
 // A contact as the solver's constraint: its bodies' slots, whether each moves, its anchors and
-// normal; and whether two constraints share their body pair. Templates over the solver's
-// own constraint type, which names these fields.
+// normal (a template over the solver's own constraint type, which names these fields); and
+// whether two contacts share their body pair.
 
 #include <cstdint>
 #include <vector>
@@ -38,10 +38,10 @@ void place_constraint(const Contact& contact, std::uint32_t ground,
   c.normal = contact.normal;
 }
 
-// Whether two constraints act between the same two bodies (the same body pair).
-template <class Constraint>
-bool same_bodies(const Constraint& x, const Constraint& y) {
-  return x.a == y.a && x.b == y.b;
+// Whether two contacts are between the same two bodies, in the same order (a body pair's
+// contacts come one after another, its first body first).
+inline bool same_pair(const Contact& x, const Contact& y) {
+  return x.body_a == y.body_a && x.body_b == y.body_b;
 }
 
 }  // namespace sphys

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/buffers.h"
+#include "core/place_in_runs.h"
 #include "dynamics/contact_pairs.h"
 #include "dynamics/group_by.h"
 #include "dynamics/soft_step_solver.h"
@@ -194,23 +195,45 @@ void SoftStepSolver::pack_lane(std::uint32_t index, const PairMaterial& material
   block.anchor_impulse_scale[lane] = 1.0f / (1.0f + spring);
 }
 
+// A body pair's contacts come one after another (the detector and the reducer emit them by pair):
+// the pairs listed where their contacts begin, and cut into manifolds of at most kManifoldPoints
+// each, in order, on the threads.
+void SoftStepSolver::cut_manifolds(const Parallel& parallel) {
+  const std::size_t count = constraints_.size();
+  const std::size_t pairs = compact_in_runs(
+      parallel, count, kConstraintsPerRun, [&](std::size_t j) { return pair_starts_[j] != 0; },
+      [&](std::size_t kept) {
+        resize_buffer(pair_first_, kept);
+        resize_buffer(pairs_, kept);
+      },
+      [&](std::size_t position, std::size_t j) {
+        pair_first_[position] = static_cast<std::uint32_t>(j);
+        pairs_[position] = {constraints_[j].a, constraints_[j].b};
+      },
+      run_first_);
+  const auto points_of = [&](std::size_t p) {
+    return (p + 1 < pairs ? pair_first_[p + 1] : static_cast<std::uint32_t>(count)) -
+           pair_first_[p];
+  };
+  place_in_runs(
+      parallel, pairs, kConstraintsPerRun,
+      [&](std::size_t p) { return (points_of(p) + kManifoldPoints - 1) / kManifoldPoints; },
+      [&](std::size_t manifolds) {
+        resize_buffer(manifolds_, manifolds);
+        resize_buffer(manifold_bodies_, manifolds);
+      },
+      [&](std::size_t first, std::size_t p) {
+        const Constraint& c = constraints_[pair_first_[p]];
+        for (std::uint32_t done = 0; done < points_of(p); done += kManifoldPoints, ++first) {
+          manifolds_[first] = {pair_first_[p] + done,
+                               std::min<std::uint32_t>(kManifoldPoints, points_of(p) - done)};
+          manifold_bodies_[first] = {c.a, c.b, c.a_moves, c.b_moves};
+        }
+      },
+      run_first_);
+}
+
 void SoftStepSolver::colour_manifolds() {
-  // A body pair's contacts come one after another (the detector and the reducer emit them by
-  // pair), cut into manifolds of at most kManifoldPoints.
-  manifolds_.clear();
-  manifold_bodies_.clear();
-  for (std::size_t first = 0; first < constraints_.size();) {
-    const Constraint& c = constraints_[first];
-    std::size_t end = first + 1;
-    while (end < constraints_.size() && end - first < kManifoldPoints &&
-           same_bodies(constraints_[end], c)) {
-      ++end;
-    }
-    manifolds_.push_back(
-        {static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(end - first)});
-    manifold_bodies_.push_back({c.a, c.b, c.a_moves, c.b_moves});
-    first = end;
-  }
   colouring_.colour(manifold_bodies_, velocity_.size(), colours_);
   // By colour, and within a colour by point count, most first: a block's lanes then hold
   // manifolds of one count, and no lane idles through points past its manifold's last. A

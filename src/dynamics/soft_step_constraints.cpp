@@ -6,6 +6,7 @@
 #include <atomic>
 
 #include "core/buffers.h"
+#include "core/place_in_runs.h"
 #include "dynamics/contact_pairs.h"
 #include "dynamics/soft_step_solver.h"
 #include "dynamics/solver_bodies.h"
@@ -67,12 +68,6 @@ void SoftStepSolver::find_support_levels() {
   const std::size_t slots = velocity_.size();
   fill_buffer(immovable_, slots, std::uint8_t{0});
   for (std::size_t i = 0; i < slots; ++i) immovable_[i] = inverse_mass_[i] > 0.0f ? 0 : 1;
-  pairs_.clear();
-  for (std::size_t k = 0; k < constraints_.size(); ++k) {
-    if (k == 0 || !same_bodies(constraints_[k], constraints_[k - 1])) {
-      pairs_.emplace_back(constraints_[k].a, constraints_[k].b);
-    }
-  }
   support_level_ = levels_.compute(immovable_, pairs_);
 }
 
@@ -139,27 +134,35 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
   // The impulse that holds up a kilogram against gravity for a substep. unit: N s / kg
   const float weight_per_substep = context.gravity.norm() * substep_dt;
   const bool warm = context.warm_starting;
-  // The contacts with a moving body, in order, each named by a constraint that is then made on
-  // the threads.
-  resize_buffer(constraints_, contacts.size());
+  // The contacts with a moving body, in order (constrained_), each then made a constraint on the
+  // threads, which marks where a body pair's constraints begin.
   fill_buffer(pushed_out_, velocity_.size(), std::uint8_t{0});
   const float pushed_depth = kPushedDepthPerSlop * context.lanes.linear_slop;
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    if (!constrains(contacts[k], ground, inverse_mass_)) continue;
-    constraints_[count++].contact = static_cast<std::uint32_t>(k);
-    if (warm && memory[k].solved) ++stats.warm_started;
-  }
-  resize_buffer(constraints_, count);
+  compact_in_runs(
+      parallel, contacts.size(), kConstraintsPerRun,
+      [&](std::size_t k) { return constrains(contacts[k], ground, inverse_mass_); },
+      [&](std::size_t kept) {
+        resize_buffer(constrained_, kept);
+        resize_buffer(constraints_, kept);
+        resize_buffer(pair_starts_, kept);
+      },
+      [&](std::size_t position, std::size_t k) {
+        constrained_[position] = static_cast<std::uint32_t>(k);
+      },
+      run_first_);
+  std::atomic<std::uint32_t> warm_started{0};
   parallel.for_each_run(
       constraints_.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
+        std::uint32_t run_warm_started = 0;
         for (std::size_t j = begin; j < end; ++j) {
-          const std::uint32_t k = constraints_[j].contact;
+          const std::uint32_t k = constrained_[j];
           const Contact& contact = contacts[k];
+          pair_starts_[j] = j == 0 || !same_pair(contacts[constrained_[j - 1]], contact) ? 1 : 0;
           Constraint c;
           place_constraint(contact, ground, inverse_mass_, position_, c);
           const ContactMemory& kept = memory[k];
           if (warm && kept.solved) {
+            ++run_warm_started;
             c.normal_impulse = rescale * kept.normal_impulse;
             c.friction_impulse = rescale * kept.friction_impulse;
             c.twist_impulse = rescale * kept.twist_impulse;
@@ -186,16 +189,13 @@ void SoftStepSolver::prepare(std::span<const Contact> contacts,
           }
           constraints_[j] = c;
         }
+        warm_started.fetch_add(run_warm_started, std::memory_order_relaxed);
       });
-  // Two serial jobs on the constraints as made, neither needing the other: the support levels
-  // (for the masses next) and the manifolds' colours (for the packing), side by side.
-  parallel.for_each(2, [&](std::size_t job) {
-    if (job == 0) {
-      find_support_levels();
-    } else {
-      colour_manifolds();
-    }
-  });
+  stats.warm_started += warm_started.load();
+  cut_manifolds(parallel);
+  // Two serial jobs on the manifolds, neither needing the other: the support levels (for the
+  // masses next) and the manifolds' colours (for the packing), side by side.
+  parallel.side_by_side([&] { find_support_levels(); }, [&] { colour_manifolds(); });
   parallel.for_each_run(constraints_.size(), kConstraintsPerRun,
                         [&](std::size_t begin, std::size_t end) {
                           for (std::size_t j = begin; j < end; ++j) {

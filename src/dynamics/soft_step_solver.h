@@ -134,8 +134,10 @@ class SoftStepSolver {
   void set_masses(Constraint& c, const SoftStepContext& context) const;
   void prepare(std::span<const Contact> contacts, std::span<const ContactMemory> memory,
                const SoftStepContext& context, SoftStepStats& stats);
-  // The constraints cut into manifolds (a body pair's, kManifoldPoints at most), coloured and
-  // listed by colour, and each colour's blocks counted.
+  // The constraints' body pairs (pair_first_, pairs_) and their manifolds (a body pair's,
+  // kManifoldPoints at most: manifolds_, manifold_bodies_).
+  void cut_manifolds(const Parallel& parallel);
+  // The manifolds coloured and listed by colour, and each colour's blocks counted.
   void colour_manifolds();
   // Where colour c's manifolds start in by_colour_ (c up to kOverflowColour + 1, their end).
   [[nodiscard]] std::uint32_t colour_first(std::uint32_t colour) const {
@@ -177,7 +179,11 @@ class SoftStepSolver {
   std::span<const std::uint32_t> support_level_;                // per slot, levels_'s, this step's
   std::vector<std::uint8_t> immovable_;                         // per slot, for levels_
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;  // the constraints' body pairs
-  std::vector<std::uint32_t> colours_;                          // per manifold
+  std::vector<std::uint32_t> constrained_;  // per constraint, its contact (as Constraint::contact)
+  std::vector<std::uint8_t> pair_starts_;   // per constraint, 1 where a body pair's begin
+  std::vector<std::uint32_t> pair_first_;   // where each body pair's constraints begin
+  std::vector<std::uint32_t> run_first_;    // place_in_runs()'s scratch
+  std::vector<std::uint32_t> colours_;      // per manifold
   // Where each (colour, point count) group of manifolds starts in by_colour_, as group_by lists
   // them: by colour, and within a colour by point count, most first.
   std::vector<std::uint32_t> count_begin_;

@@ -9,7 +9,7 @@
 namespace sphys {
 
 void apply_paper_impulses(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   const std::span<const Contact> contacts = world.detector.contacts();
   const PaperResponseStats response = apply_paper_response(
@@ -17,7 +17,7 @@ void apply_paper_impulses(PassContext& pass) {
   pass.stats.impulses += response.impulses;
   pass.stats.response_passes += response.passes;
   pass.stats.contacts += static_cast<std::uint32_t>(contacts.size());
-  pass.stats.response_ms += elapsed_ms(start);
+  clock.add_to(pass.stats.response_ms, pass.stats.response_serial_ms);
 }
 
 }  // namespace sphys

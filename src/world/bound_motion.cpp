@@ -25,7 +25,7 @@ bool bound_body_motion(WorldState& world, std::uint32_t body, float pass_dt) {
 }
 
 void bound_motion(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   // A body whose motion is not finite stops the step at the first such in the awake order.
   const std::uint32_t failed = first_failed_awake_body(
@@ -36,7 +36,7 @@ void bound_motion(PassContext& pass) {
     world.stopped = true;
     return;
   }
-  pass.stats.integration_ms += elapsed_ms(start);
+  clock.add_to(pass.stats.integration_ms, pass.stats.integration_serial_ms);
 }
 
 }  // namespace sphys

@@ -10,6 +10,9 @@ void add_detection(const WorldState& world, const CollisionStats& detection, Ste
   stats.broad_phase_ms += detection.broad_phase_ms;
   stats.narrow_phase_ms += detection.narrow_phase_ms;
   stats.contacts_ms += detection.contacts_ms;
+  stats.broad_phase_serial_ms += detection.broad_phase_serial_ms;
+  stats.narrow_phase_serial_ms += detection.narrow_phase_serial_ms;
+  stats.contacts_serial_ms += detection.contacts_serial_ms;
   stats += static_cast<const DetectionCounters&>(detection);
   stats.crowded_bodies = std::max(stats.crowded_bodies, detection.crowded_bodies);
   if (!world.settings.plausibility_figures) return;

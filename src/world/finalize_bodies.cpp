@@ -11,7 +11,7 @@
 namespace sphys {
 
 void finalize_bodies(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   BodyStore& store = world.store;
   const SleepSettings& sleep = world.settings.sleep;
@@ -21,7 +21,7 @@ void finalize_bodies(PassContext& pass) {
         world.sleep.count_still_time(i, pass.pass_dt, sleep);
         return true;
       });
-  pass.stats.integration_ms += elapsed_ms(start);
+  clock.add_to(pass.stats.integration_ms, pass.stats.integration_serial_ms);
   if (failed != kNoFailedBody) {
     pass.stats.non_finite_body = failed;
     world.stopped = true;

@@ -10,7 +10,7 @@
 namespace sphys {
 
 void integrate_positions(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   BodyStore& store = world.store;
   const std::span<Transform> poses = store.poses();
@@ -24,7 +24,7 @@ void integrate_positions(PassContext& pass) {
                            store.inverse_inertias_body()[i], pass.pass_dt);
         return finalize_body(world, i);
       });
-  pass.stats.integration_ms += elapsed_ms(start);
+  clock.add_to(pass.stats.integration_ms, pass.stats.integration_serial_ms);
   if (failed != kNoFailedBody) {
     pass.stats.non_finite_body = failed;
     world.stopped = true;

@@ -9,7 +9,7 @@
 namespace sphys {
 
 void integrate_velocities(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   BodyStore& store = world.store;
   const std::span<Vec3> linear = store.linear_velocities();
@@ -23,7 +23,7 @@ void integrate_velocities(PassContext& pass) {
           angular[body] += applied.spin_gained;
         }
       });
-  pass.stats.integration_ms += elapsed_ms(start);
+  clock.add_to(pass.stats.integration_ms, pass.stats.integration_serial_ms);
 }
 
 }  // namespace sphys

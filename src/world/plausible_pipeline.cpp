@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 #include "core/stopwatch.h"
+#include "world/awake_runs.h"
 #include "world/pipeline.h"
 #include "world/stages.h"
 #include "world/world_state.h"
@@ -31,27 +33,39 @@ std::uint32_t adaptive_collision_passes(const WorldState& world, float dt) {
   if (most == fewest) return fewest;
   // The speed at the end of the step under gravity alone, an upper bound for a falling body.
   const float gravity_speed = settings.gravity.norm() * dt;
-  float needed = 0.0f;  // collision passes, fractional
   const std::span<const float> extents = world.store.extents();
   const std::span<const float> speeds = world.store.fastest_point_speeds();
-  for (const std::uint32_t i : world.store.awake()) {
-    // A crowded body's pairs are overlaps served at its root (CollisionSettings::
-    // crowd_pairs_per_body): there is nothing for it to pass through unseen, and a crowd parting
-    // would otherwise run every pass of the step for all its bodies.
-    if (!(extents[i] > 0.0f) || world.detector.crowded(i)) continue;
-    const float travel = (speeds[i] + gravity_speed) * dt;
-    needed = std::max(needed, travel / (settings.collision_pass_travel * extents[i]));
-  }
+  const std::span<const std::uint32_t> awake = world.store.awake();
+  // Collision passes, fractional: the largest of the runs' largest, the same whichever thread
+  // finds which.
+  std::atomic<float> needed{0.0f};
+  world.parallel.for_each_run(
+      awake.size(), kAwakeBodiesPerRun, [&](std::size_t begin, std::size_t end) {
+        float run_needed = 0.0f;
+        for (std::size_t k = begin; k < end; ++k) {
+          const std::uint32_t i = awake[k];
+          // A crowded body's pairs are overlaps served at its root (CollisionSettings::
+          // crowd_pairs_per_body): there is nothing for it to pass through unseen, and a crowd
+          // parting would otherwise run every pass of the step for all its bodies.
+          if (!(extents[i] > 0.0f) || world.detector.crowded(i)) continue;
+          const float travel = (speeds[i] + gravity_speed) * dt;
+          run_needed = std::max(run_needed, travel / (settings.collision_pass_travel * extents[i]));
+        }
+        float seen = needed.load(std::memory_order_relaxed);
+        while (seen < run_needed && !needed.compare_exchange_weak(seen, run_needed)) {
+        }
+      });
   // A non-finite speed is left to the step to find and report.
-  if (!(needed <= static_cast<float>(most))) return needed > 0.0f ? most : fewest;
-  return std::clamp(static_cast<std::uint32_t>(std::ceil(needed)), fewest, most);
+  const float passes = needed.load();
+  if (!(passes <= static_cast<float>(most))) return passes > 0.0f ? most : fewest;
+  return std::clamp(static_cast<std::uint32_t>(std::ceil(passes)), fewest, most);
 }
 
 // Islands whose bodies parted in the last step are built afresh, once a step.
 void split_islands(WorldState& world, StepStats& stats) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&world.parallel);
   world.sleep.split_islands(world.detector.contacts());
-  stats.sleep_ms += elapsed_ms(start);
+  clock.add_to(stats.sleep_ms, stats.sleep_serial_ms);
 }
 
 constexpr Pipeline kPlausible{

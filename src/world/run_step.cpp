@@ -9,7 +9,7 @@
 namespace sphys {
 
 StepStats run_step(WorldState& world, float dt) {
-  const StepClock::time_point step_start = StepClock::now();
+  const PhaseClock step_clock(&world.parallel);
   StepStats stats;
   const Pipeline& pipeline = *world.pipeline;
   const std::uint32_t passes = pipeline.collision_passes(world, dt);
@@ -27,7 +27,9 @@ StepStats run_step(WorldState& world, float dt) {
   stats.bodies_asleep =
       stats.movable_bodies - static_cast<std::uint32_t>(world.store.awake().size());
   if (world.settings.plausibility_figures) measure_rest(world, stats);
-  stats.step_ms = elapsed_ms(step_start);
+  const PhaseTime spent = step_clock.elapsed();
+  stats.step_ms = spent.ms;
+  stats.serial_ms = spent.serial_ms;
   return stats;
 }
 

@@ -1,8 +1,12 @@
 #include "world/sleep_tracker.h"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <numeric>
+
+#include "core/buffers.h"
+#include "core/place_in_runs.h"
 
 namespace sphys {
 namespace {
@@ -17,6 +21,16 @@ constexpr float kPatience = 2.0f;
 constexpr float kWokenStillShare = 0.5f;
 // The speed of a body set moving from outside until count_still_time() counts it: moving. unit: m/s
 constexpr float kUnmeasured = std::numeric_limits<float>::infinity();
+
+// Contacts or body slots per item of the threaded loops. unit: items
+constexpr std::size_t kItemsPerRun = 256;
+
+using Slot = std::atomic_ref<std::uint32_t>;
+
+// Stores 1 in a byte that other threads may store the same into.
+void mark(std::uint8_t& flag, std::uint8_t value) {
+  std::atomic_ref<std::uint8_t>(flag).store(value, std::memory_order_relaxed);
+}
 
 }  // namespace
 
@@ -33,17 +47,16 @@ void SleepTracker::grow_slots(std::uint32_t slots) {
   }
 }
 
-void SleepTracker::note_woken(std::uint32_t body, const SleepSettings& settings,
-                              std::vector<std::uint32_t>& woken) {
+void SleepTracker::note_woken(std::uint32_t body, const SleepSettings& settings) {
   still_time_[body] = std::min(still_time_[body], kWokenStillShare * settings.time);
   speed_[body] = 0.0f;  // it slept at rest
-  woken.push_back(body);
 }
 
 void SleepTracker::wake(std::uint32_t body, const SleepSettings& settings,
                         std::vector<std::uint32_t>& woken) {
   if (!store_->asleep(body)) return;
-  note_woken(body, settings, woken);
+  note_woken(body, settings);
+  woken.push_back(body);
   store_->set_asleep(body, false);
 }
 
@@ -53,27 +66,45 @@ void SleepTracker::unsettle(std::uint32_t body) {
 }
 
 std::uint32_t SleepTracker::island(std::uint32_t body) {
-  while (island_parent_[body] != body) {
-    island_parent_[body] = island_parent_[island_parent_[body]];  // path halving
-    body = island_parent_[body];
+  for (;;) {
+    Slot parent(island_parent_[body]);
+    std::uint32_t up = parent.load(std::memory_order_relaxed);
+    if (up == body) return body;
+    // Path halving: the parent skips to the grandparent, unless another thread moved it first.
+    const std::uint32_t grand = Slot(island_parent_[up]).load(std::memory_order_relaxed);
+    parent.compare_exchange_weak(up, grand, std::memory_order_relaxed);
+    body = grand;
   }
-  return body;
 }
 
+// The larger root joins the smaller, once it is still a root when it does: each set's root is
+// then its smallest slot, in whatever order the joins came.
 void SleepTracker::join(std::uint32_t a, std::uint32_t b) {
-  const std::uint32_t ra = island(a);
-  const std::uint32_t rb = island(b);
-  if (ra != rb) island_parent_[std::max(ra, rb)] = std::min(ra, rb);
+  for (;;) {
+    std::uint32_t larger = island(a);
+    std::uint32_t smaller = island(b);
+    if (larger == smaller) return;
+    if (larger < smaller) std::swap(larger, smaller);
+    std::uint32_t expected = larger;
+    if (Slot(island_parent_[larger])
+            .compare_exchange_strong(expected, smaller, std::memory_order_relaxed)) {
+      return;
+    }
+  }
 }
 
 void SleepTracker::link_islands(std::span<const Contact> contacts) {
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
-  for (const Contact& contact : contacts) {
-    if (contact.body_a == kGroundPlaneBody) continue;
-    if (dynamic[contact.body_a] != 0 && dynamic[contact.body_b] != 0) {
-      join(contact.body_a, contact.body_b);
-    }
-  }
+  threads_or_caller(parallel_).for_each_run(
+      contacts.size(), kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const Contact& contact = contacts[k];
+          if (contact.body_a == kGroundPlaneBody) continue;
+          if (dynamic[contact.body_a] != 0 && dynamic[contact.body_b] != 0) {
+            join(contact.body_a, contact.body_b);
+          }
+        }
+      });
   for (const auto& [a, b] : joined_) {
     if (dynamic[a] != 0 && dynamic[b] != 0) join(a, b);
   }
@@ -82,7 +113,12 @@ void SleepTracker::link_islands(std::span<const Contact> contacts) {
 void SleepTracker::split_islands(std::span<const Contact> contacts) {
   if (!split_) return;
   split_ = false;
-  std::iota(island_parent_.begin(), island_parent_.end(), 0u);
+  threads_or_caller(parallel_).for_each_run(island_parent_.size(), kItemsPerRun,
+                                            [&](std::size_t begin, std::size_t end) {
+                                              for (std::size_t i = begin; i < end; ++i) {
+                                                island_parent_[i] = static_cast<std::uint32_t>(i);
+                                              }
+                                            });
   link_islands(contacts);
 }
 
@@ -98,28 +134,37 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
   // woken in the pass wakes no other in it: its speed is 0 until count_still_time() counts one,
   // slower than any positive sleep.speed (with sleep.speed 0 it wakes its neighbours in the world's
   // next round of waking instead).
+  // Marked on the threads (who wakes depends on the store and the moving bodies' speeds alone,
+  // which waking changes only after the pass), then listed in slot order.
+  const Parallel& parallel = threads_or_caller(parallel_);
   const std::size_t first = woken.size();
   const auto wakes = [&](std::uint32_t sleeper, std::uint32_t other) {
     return store_->asleep(sleeper) && store_->moving()[other] != 0 &&
            speed_[other] >= settings.speed;
   };
-  for (const Contact& contact : contacts) {
-    if (contact.body_a == kGroundPlaneBody) continue;
-    const std::uint32_t a = contact.body_a;
-    const std::uint32_t b = contact.body_b;
-    if (wakes(a, b)) note_woken(a, settings, woken);
-    if (wakes(b, a)) note_woken(b, settings, woken);
-  }
+  fill_buffer(woken_, island_parent_.size(), std::uint8_t{0});
+  parallel.for_each_run(contacts.size(), kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Contact& contact = contacts[k];
+      if (contact.body_a == kGroundPlaneBody) continue;
+      if (wakes(contact.body_a, contact.body_b)) mark(woken_[contact.body_a], 1);
+      if (wakes(contact.body_b, contact.body_a)) mark(woken_[contact.body_b], 1);
+    }
+  });
   // A joint wakes its sleeping body whatever the speed of the other: a sleeping body counts as
   // static in the solve, and would hold an awake one where it fell asleep.
   for (const auto& [a, b] : joined_) {
-    if (store_->asleep(a) && store_->moving()[b] != 0) note_woken(a, settings, woken);
-    if (store_->asleep(b) && store_->moving()[a] != 0) note_woken(b, settings, woken);
+    if (store_->asleep(a) && store_->moving()[b] != 0) woken_[a] = 1;
+    if (store_->asleep(b) && store_->moving()[a] != 0) woken_[b] = 1;
   }
-  // A body touching several moving ones was listed once per contact.
-  const auto listed = woken.begin() + static_cast<std::ptrdiff_t>(first);
-  std::sort(listed, woken.end());
-  woken.erase(std::unique(listed, woken.end()), woken.end());
+  compact_in_runs(
+      parallel, woken_.size(), kItemsPerRun, [&](std::size_t i) { return woken_[i] != 0; },
+      [&](std::size_t count) { woken.resize(first + count); },
+      [&](std::size_t position, std::size_t i) {
+        woken[first + position] = static_cast<std::uint32_t>(i);
+      },
+      run_first_);
+  for (std::size_t k = first; k < woken.size(); ++k) note_woken(woken[k], settings);
   store_->set_asleep(std::span(woken).subspan(first), false);
 }
 
@@ -152,39 +197,60 @@ void SleepTracker::settle_joined() {
 
 std::uint32_t SleepTracker::update(std::span<const Contact> contacts, const SleepSettings& settings,
                                    std::vector<std::uint32_t>& fell_asleep) {
+  const Parallel& parallel = threads_or_caller(parallel_);
   const std::span<const std::uint8_t> dynamic = store_->dynamic();
-  std::uint32_t islands = 0;
-  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
-    if (dynamic[i] != 0 && island(i) == i) ++islands;
-  }
-  if (!settings.enabled) return islands;
+  const std::size_t slots = island_parent_.size();
+  // An island's root is its own parent.
+  std::atomic<std::uint32_t> islands{0};
+  parallel.for_each_run(slots, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    std::uint32_t roots = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (dynamic[i] != 0 && island_parent_[i] == i) ++roots;
+    }
+    islands.fetch_add(roots, std::memory_order_relaxed);
+  });
+  if (!settings.enabled) return islands.load();
   // Who settles: awake, still for long enough and touching no restless body. A restless body
   // keeps its neighbours awake, so that what it pushes against yields; beyond them a heap sleeps
   // (1,000 bunnies in one heap stayed awake for 7 s while a few of them rocked). In an island
   // with a restless body a body waits kPatience times longer: time for its contacts to settle
   // under the load of what still moves above it.
-  std::fill(has_restless_.begin(), has_restless_.end(), std::uint8_t{0});
-  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
-    if (restless(i, settings)) has_restless_[island(i)] = 1;
-  }
-  settles_.assign(island_parent_.size(), 0);
-  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
-    if (dynamic[i] == 0 || store_->asleep(i)) continue;
-    const float patience = has_restless_[island(i)] != 0 ? kPatience : 1.0f;
-    settles_[i] = still_time_[i] >= patience * settings.time ? 1 : 0;
-  }
-  for (const Contact& contact : contacts) {
-    if (contact.body_a == kGroundPlaneBody) continue;
-    if (restless(contact.body_b, settings)) settles_[contact.body_a] = 0;
-    if (restless(contact.body_a, settings)) settles_[contact.body_b] = 0;
-  }
+  fill_buffer(has_restless_, slots, std::uint8_t{0});
+  parallel.for_each_run(slots, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const auto body = static_cast<std::uint32_t>(i);
+      if (restless(body, settings)) mark(has_restless_[island(body)], 1);
+    }
+  });
+  resize_buffer(settles_, slots);
+  parallel.for_each_run(slots, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const auto body = static_cast<std::uint32_t>(i);
+      settles_[i] = 0;
+      if (dynamic[i] == 0 || store_->asleep(body)) continue;
+      const float patience = has_restless_[island(body)] != 0 ? kPatience : 1.0f;
+      settles_[i] = still_time_[i] >= patience * settings.time ? 1 : 0;
+    }
+  });
+  parallel.for_each_run(contacts.size(), kItemsPerRun, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Contact& contact = contacts[k];
+      if (contact.body_a == kGroundPlaneBody) continue;
+      if (restless(contact.body_b, settings)) mark(settles_[contact.body_a], 0);
+      if (restless(contact.body_a, settings)) mark(settles_[contact.body_b], 0);
+    }
+  });
   settle_joined();
   const std::size_t first = fell_asleep.size();
-  for (std::uint32_t i = 0; i < island_parent_.size(); ++i) {
-    if (settles_[i] != 0) fell_asleep.push_back(i);
-  }
+  compact_in_runs(
+      parallel, slots, kItemsPerRun, [&](std::size_t i) { return settles_[i] != 0; },
+      [&](std::size_t count) { fell_asleep.resize(first + count); },
+      [&](std::size_t position, std::size_t i) {
+        fell_asleep[first + position] = static_cast<std::uint32_t>(i);
+      },
+      run_first_);
   store_->set_asleep(std::span(fell_asleep).subspan(first), true);
-  return islands;
+  return islands.load();
 }
 
 }  // namespace sphys

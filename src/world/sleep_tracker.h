@@ -12,6 +12,7 @@
 
 #include "sphys/body_store.h"
 #include "sphys/contact.h"
+#include "sphys/parallel.h"
 #include "sphys/world.h"
 
 namespace sphys {
@@ -23,6 +24,9 @@ class SleepTracker final : public SlotArrays {
   explicit SleepTracker(BodyStore& bodies);
 
   void grow_slots(std::uint32_t slots) override;
+  // The threads its loops run on (none: the caller's alone), the same results whatever their
+  // number. `parallel` must outlive the tracker's use or be replaced first.
+  void use_threads(const Parallel* parallel) { parallel_ = parallel; }
   // Wakes a sleeping body, appending it to `woken`. Being asleep is being still: it keeps its
   // still time, up to half of settings.time, so that it sleeps again after half the sleep time
   // still rather than a whole one (or twice that while its island holds a restless body,
@@ -39,10 +43,12 @@ class SleepTracker final : public SlotArrays {
   }
 
   // Islands: dynamic bodies touching by a contact or joined by a joint share one; a sleeping body
-  // is in one of its own. Static bodies and the ground join nothing. They persist from step to
-  // step: link_islands() merges the islands that contacts join, and an island whose bodies may have
-  // parted stays whole until split_islands() builds them afresh, so an island may join more
-  // bodies than touch (a coarser grouping, which the solver and sleep allow).
+  // is in one of its own. Static bodies and the ground join nothing. An island's name is its
+  // smallest slot, whatever order its bodies were joined in, so joining on the threads names it as
+  // one thread does. They persist from step to step: link_islands() merges the islands that
+  // contacts join, and an island whose bodies may have parted stays whole until split_islands()
+  // builds them afresh, so an island may join more bodies than touch (a coarser grouping, which the
+  // solver and sleep allow).
   void link_islands(std::span<const Contact> contacts);
   // Two dynamic bodies that touched have parted, or a body left: split at the next
   // split_islands().
@@ -72,22 +78,24 @@ class SleepTracker final : public SlotArrays {
                        std::vector<std::uint32_t>& fell_asleep);
 
  private:
-  // Union-find over body slots: path halving, the smaller slot the root of a set.
+  // Union-find over body slots, the smaller slot the root of a set: the root of the body's set,
+  // halving its path (on any thread: each parent is changed by a compare-and-swap, to an
+  // ancestor); and the union of two sets, on any thread.
   [[nodiscard]] std::uint32_t island(std::uint32_t body);
   void join(std::uint32_t a, std::uint32_t b);
   // Bodies joined (transitively) to one that may not fall asleep may not either: settles_ per
-  // group of joined bodies.
+  // group of joined bodies. One thread, in the joints' order.
   void settle_joined();
-  // A sleeping body about to wake: keeps its still time (see wake()), counts it as measured at
-  // rest and appends it to `woken`; the caller wakes it in the store.
-  void note_woken(std::uint32_t body, const SleepSettings& settings,
-                  std::vector<std::uint32_t>& woken);
+  // A sleeping body about to wake: keeps its still time (see wake()) and counts it as measured
+  // at rest; the caller wakes it in the store.
+  void note_woken(std::uint32_t body, const SleepSettings& settings);
   // An awake dynamic body not still for settings.time yet.
   [[nodiscard]] bool restless(std::uint32_t body, const SleepSettings& settings) const {
     return store_->moving()[body] != 0 && still_time_[body] < settings.time;
   }
 
   BodyStore* store_;
+  const Parallel* parallel_ = nullptr;
   std::vector<std::uint32_t> island_parent_;  // the islands
   bool split_ = false;
   std::vector<std::uint32_t> island_;  // islands(), scratch
@@ -97,6 +105,8 @@ class SleepTracker final : public SlotArrays {
   std::vector<float> speed_;
   std::vector<std::uint8_t> has_restless_;  // per island root, scratch
   std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch
+  std::vector<std::uint8_t> woken_;         // per body: wakes in wake_disturbed(), scratch
+  std::vector<std::uint32_t> run_first_;    // place_in_runs()'s scratch
   std::vector<std::pair<std::uint32_t, std::uint32_t>> joined_;  // set_joined()'s
   std::vector<std::uint32_t> joined_group_;  // settle_joined()'s union-find, scratch
   std::vector<std::uint8_t> joined_awake_;   // per group root: a member stays awake, scratch

@@ -10,7 +10,7 @@
 namespace sphys {
 
 void solve_contacts(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   const std::span<const Contact> contacts = world.detector.contacts();
   mix_materials(world);
@@ -29,7 +29,7 @@ void solve_contacts(PassContext& pass) {
   stats.bounces += solved.bounces;
   stats.response_passes += 2 * solver.soft_substeps;  // a solve and a relax pass per substep
   stats.contacts += static_cast<std::uint32_t>(contacts.size());
-  stats.response_ms += elapsed_ms(start);
+  clock.add_to(stats.response_ms, stats.response_serial_ms);
 }
 
 }  // namespace sphys

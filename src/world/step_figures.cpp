@@ -46,6 +46,13 @@ constexpr auto kFigures = std::to_array<StepFigure>({
     figure<&Step::warm_started>("warm_started", "", kCsv),
     figure<&Step::islands>("islands", "", kCsv),
     figure<&Step::collision_passes>("collision_passes", "", kCsv),
+    figure<&Step::serial_ms>("serial_ms", "ms", kCsv),
+    figure<&Step::broad_phase_serial_ms>("broad_phase_serial_ms", "ms", kCsv),
+    figure<&Step::narrow_phase_serial_ms>("narrow_phase_serial_ms", "ms", kCsv),
+    figure<&Step::contacts_serial_ms>("contacts_serial_ms", "ms", kCsv),
+    figure<&Step::response_serial_ms>("response_serial_ms", "ms", kCsv),
+    figure<&Step::integration_serial_ms>("integration_serial_ms", "ms", kCsv),
+    figure<&Step::sleep_serial_ms>("sleep_serial_ms", "ms", kCsv),
     // The rest.
     {.name = "detection_ms",
      .unit = "ms",

@@ -8,13 +8,13 @@
 namespace sphys {
 
 void update_sleep(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
+  const PhaseClock clock(&pass.world.parallel);
   WorldState& world = pass.world;
   // The bodies that fall asleep stop there, in the store.
   world.sleep_changes.clear();
   pass.stats.islands =
       world.sleep.update(world.detector.contacts(), world.settings.sleep, world.sleep_changes);
-  pass.stats.sleep_ms += elapsed_ms(start);
+  clock.add_to(pass.stats.sleep_ms, pass.stats.sleep_serial_ms);
 }
 
 }  // namespace sphys

@@ -4,6 +4,8 @@
 // wakes those it touches in turn, until nothing more wakes. Then the islands that this pass's
 // contacts join merge (they split once a step, plausible_pipeline.cpp).
 
+#include <algorithm>
+
 #include "core/stopwatch.h"
 #include "world/stages.h"
 #include "world/world_state.h"
@@ -11,9 +13,10 @@
 namespace sphys {
 
 void wake_touched(PassContext& pass) {
-  const StepClock::time_point start = StepClock::now();
   WorldState& world = pass.world;
-  double woken_detection_ms = 0.0;  // counted in the narrow phase's and contacts' times
+  const PhaseClock clock(&world.parallel);
+  // Counted in the narrow phase's and contacts' times. unit: ms
+  PhaseTime woken_detection;
   for (;;) {
     world.sleep_changes.clear();
     world.sleep.wake_disturbed(world.detector.contacts(), world.settings.sleep,
@@ -27,12 +30,15 @@ void wake_touched(PassContext& pass) {
       static_cast<void>(bound_body_motion(world, body, pass.pass_dt));
     }
     const CollisionStats& woken = world.detector.detect_woken();
-    woken_detection_ms += woken.narrow_phase_ms + woken.contacts_ms;
+    woken_detection.ms += woken.narrow_phase_ms + woken.contacts_ms;
+    woken_detection.serial_ms += woken.narrow_phase_serial_ms + woken.contacts_serial_ms;
     add_detection(world, woken, pass.stats);
     if (woken.parted_pairs > 0) world.sleep.parted();
   }
   world.sleep.link_islands(world.detector.contacts());
-  pass.stats.sleep_ms += elapsed_ms(start) - woken_detection_ms;
+  const PhaseTime spent = clock.elapsed();
+  pass.stats.sleep_ms += spent.ms - woken_detection.ms;
+  pass.stats.sleep_serial_ms += std::max(0.0, spent.serial_ms - woken_detection.serial_ms);
 }
 
 }  // namespace sphys

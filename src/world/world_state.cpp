@@ -45,6 +45,7 @@ WorldState::WorldState(const WorldSettings& world_settings)
       sleep(store) {
   solver.use_lanes(solver_lanes);
   detector.set_parallel(&parallel);
+  sleep.use_threads(&parallel);
   detector.set_bodies(store);
 }
 

@@ -25,6 +25,14 @@ namespace sphys {
 
 struct Pipeline;
 
+// A run of slots' share of the rest figures at the end of a step (measure_rest).
+struct RestSums {
+  double kinetic_energy = 0.0;  // unit: J
+  double jitter = 0.0;          // the resting bodies' fastest point speeds summed. unit: m/s
+  std::uint32_t at_rest = 0;    // bodies at rest (StepStats::bodies_at_rest)
+  std::uint32_t resting = 0;    // bodies that should be resting, whose speeds are jitter
+};
+
 struct WorldState {
   // Throws sphys::Error for settings out of their ranges (check_world_settings).
   explicit WorldState(const WorldSettings& world_settings);
@@ -63,6 +71,7 @@ struct WorldState {
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials;
   std::vector<PairMaterial> materials;            // per contact, plausible mode's response
   std::vector<std::uint8_t> touching;             // measure_rest's scratch, per slot
+  std::vector<RestSums> rest_sums;                // measure_rest's scratch, per run of slots
   std::vector<std::uint32_t> sleep_changes;       // bodies woken or fallen asleep, scratch
   std::vector<std::uint32_t> non_finite_in_run;   // the awake loops' scratch, per run
   std::vector<std::uint32_t> removed_neighbours;  // remove_body's scratch

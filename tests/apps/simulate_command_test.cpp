@@ -65,9 +65,12 @@ TEST(SimulateCommand, PresetRunWritesFramesAndRecording) {
   const std::vector<std::string> header = split(lines[0], ',');
   EXPECT_THAT(lines[0], StartsWith("frame,time_s,step_ms,"));
   // The plausibility figures of each frame close the line.
-  EXPECT_THAT(lines[0], testing::EndsWith(
-                            ",deepest_penetration_m,mean_penetration_m,bodies_at_rest,"
-                            "bodies_asleep,jitter_m_per_s,warm_started,islands,collision_passes"));
+  EXPECT_THAT(lines[0],
+              testing::EndsWith(
+                  ",deepest_penetration_m,mean_penetration_m,bodies_at_rest,"
+                  "bodies_asleep,jitter_m_per_s,warm_started,islands,collision_passes,serial_ms,"
+                  "broad_phase_serial_ms,narrow_phase_serial_ms,contacts_serial_ms,"
+                  "response_serial_ms,integration_serial_ms,sleep_serial_ms"));
   const auto contacts_column = std::find(header.begin(), header.end(), "contacts") - header.begin();
   ASSERT_LT(contacts_column, static_cast<std::ptrdiff_t>(header.size()));
   for (int frame = 1; frame <= 5; ++frame) {

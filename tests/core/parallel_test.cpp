@@ -1,8 +1,10 @@
 // Parallel's staged loops: every item of every stage runs exactly once, and each stage sees all
-// that the stages before it wrote, on one thread and on several (more threads than cores too).
+// that the stages before it wrote, on one thread and on several (more threads than cores too);
+// and the time its loops take, which the step's serial time leaves out.
 
 #include "sphys/parallel.h"
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -54,6 +56,41 @@ TEST(Parallel, StagesRunInOrderAndEachItemOnce) {
         below = sum;
       }
     }
+  }
+}
+
+// Spins for about `ms` of wall-clock time, so that a loop's time is known to be at least that.
+void spend(double ms) {
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::duration<double, std::milli>(ms);
+  while (std::chrono::steady_clock::now() < until) {
+  }
+}
+
+// loop_ms() times the loops threads share, on one thread as on several: a loop of two items or
+// more, once even when another runs inside it; not one item alone, nor two jobs side by side.
+TEST(Parallel, LoopTimeCountsTheSharedLoopsOnce) {
+  for (const std::uint32_t threads : {1u, 2u}) {
+    SCOPED_TRACE(threads);
+    const Parallel parallel(threads);
+    EXPECT_EQ(parallel.loop_ms(), 0.0);
+    parallel.for_each(1, [](std::size_t) { spend(2.0); });
+    parallel.side_by_side([] { spend(2.0); }, [] { spend(2.0); });
+    EXPECT_EQ(parallel.loop_ms(), 0.0);
+
+    const auto start = std::chrono::steady_clock::now();
+    parallel.for_each(4,
+                      [&](std::size_t) { parallel.for_each(2, [](std::size_t) { spend(1.0); }); });
+    const double outer_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    // Eight spins of 1 ms: at least 8 ms on one thread, 4 on two; the nested loops are not added.
+    EXPECT_GE(parallel.loop_ms(), 8.0 / threads);
+    EXPECT_LE(parallel.loop_ms(), outer_ms);
+
+    const double before = parallel.loop_ms();
+    const std::vector<std::uint32_t> counts(3, 8);
+    parallel.for_each_in_stages(counts, [](std::size_t, std::uint32_t) { spend(0.1); });
+    EXPECT_GE(parallel.loop_ms() - before, 2.4 / threads);
   }
 }
 

@@ -16,7 +16,7 @@ import sphys
 
 # Figures of the summary that are wall-clock times (or made from them): the rest is determined by
 # the scene and must agree exactly between runs.
-TIMING_KEYS = {"wall_s", "steps_per_s", "step_ms", "time_share_percent"}
+TIMING_KEYS = {"wall_s", "steps_per_s", "step_ms", "time_share_percent", "serial_share_percent"}
 # Keys only the command line's summary has: where it wrote its files.
 CLI_ONLY_KEYS = {"csv", "recording"}
 

@@ -3,6 +3,7 @@
 // sleep body by body: who settles, and who wakes whom.
 #include "world/sleep_tracker.h"
 
+#include <algorithm>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -147,6 +148,46 @@ TEST(SleepTracker, ASleepingBodyWakesAloneWhenWhatTouchesItMoves) {
   const std::vector<Contact> beside{touching(3, 4)};
   bodies.tracker.wake_disturbed(beside, settings, woken);
   EXPECT_TRUE(woken.empty());
+}
+
+// Many contacts joined on four threads name each island by its smallest body, as a brute-force
+// labelling does (each body the smallest it reaches through contacts), whatever order the joins
+// came in.
+TEST(SleepTracker, IslandsJoinedOnThreadsAreNamedByTheirSmallestBody) {
+  constexpr std::uint32_t kBodies = 3000;
+  BodyStore store;
+  SleepTracker tracker{store};
+  RigidBody body;
+  body.inverse_mass = 1.0f;
+  for (std::uint32_t i = 0; i < kBodies; ++i) store.add(body, 0.5f);
+  const Parallel threads(4);
+  tracker.use_threads(&threads);
+  // Chains and clumps of random pairs, a fixed seed: islands of many sizes.
+  std::vector<Contact> contacts;
+  std::uint64_t state = 2008;
+  const auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<std::uint32_t>(state >> 33) % kBodies;
+  };
+  for (int k = 0; k < 2000; ++k) contacts.push_back(touching(next(), next()));
+  tracker.link_islands(contacts);
+
+  std::vector<std::uint32_t> expected(kBodies);
+  for (std::uint32_t i = 0; i < kBodies; ++i) expected[i] = i;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const Contact& contact : contacts) {
+      const std::uint32_t least = std::min(expected[contact.body_a], expected[contact.body_b]);
+      for (const std::uint32_t end : {contact.body_a, contact.body_b}) {
+        if (expected[end] != least) {
+          expected[end] = least;
+          changed = true;
+        }
+      }
+    }
+  }
+  const std::span<const std::uint32_t> islands = tracker.islands();
+  EXPECT_EQ(std::vector<std::uint32_t>(islands.begin(), islands.end()), expected);
 }
 
 }  // namespace

@@ -3,11 +3,15 @@
 
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "sphys/step_stats.h"
+#include "sphys/tools/build_world.h"
+#include "sphys/tools/scenarios.h"
+#include "sphys/world.h"
 
 namespace sphys {
 namespace {
@@ -50,7 +54,14 @@ TEST(StepFigures, TheFramesCsvColumnsAreTheDocumentedOnes) {
                                                "jitter_m_per_s",
                                                "warm_started",
                                                "islands",
-                                               "collision_passes"};
+                                               "collision_passes",
+                                               "serial_ms",
+                                               "broad_phase_serial_ms",
+                                               "narrow_phase_serial_ms",
+                                               "contacts_serial_ms",
+                                               "response_serial_ms",
+                                               "integration_serial_ms",
+                                               "sleep_serial_ms"};
   std::vector<std::string> columns;
   for (const StepFigure& figure : step_figures()) {
     if (figure.in_frames_csv) columns.push_back(frames_csv_column(figure));
@@ -100,6 +111,44 @@ TEST(StepFigures, DetectionCountersAddUp) {
   EXPECT_EQ(sum.descended_pairs, 12u);
   EXPECT_EQ(sum.reused_pairs, 14u);
   EXPECT_EQ(sum.pairs_deferred, 16u);
+}
+
+// The serial times of a falling bunny pile, one and two threads: each phase's is part of its
+// time, they add up to no more than the step's, and on one thread the loops that threads would
+// share (the narrow phase's chunks, the soft step's passes) are most of the step, not serial.
+TEST(StepFigures, SerialTimesArePartsOfThePhasesAndTheStep) {
+  constexpr double kClockSlack = 1e-3;  // clocks read a little apart. unit: ms
+  for (const std::uint32_t threads : {1u, 2u}) {
+    SCOPED_TRACE(threads);
+    tools::Scene scene = tools::bunny_stacks_scene(4, 25, 2);
+    scene.ground.kind = tools::GroundSpec::Kind::kPlane;
+    tools::BuildWorldOptions options;
+    options.threads = threads;
+    const tools::SimulationSetup setup = tools::build_world(scene, options);
+    double step_ms = 0.0;
+    double serial_ms = 0.0;
+    for (int frame = 0; frame < 60; ++frame) {
+      const StepStats stats = setup.world->step(static_cast<float>(scene.time_step));
+      const std::pair<double, double> phases[] = {
+          {stats.broad_phase_ms, stats.broad_phase_serial_ms},
+          {stats.narrow_phase_ms, stats.narrow_phase_serial_ms},
+          {stats.contacts_ms, stats.contacts_serial_ms},
+          {stats.response_ms, stats.response_serial_ms},
+          {stats.integration_ms, stats.integration_serial_ms},
+          {stats.sleep_ms, stats.sleep_serial_ms}};
+      double phases_serial_ms = 0.0;
+      for (const auto& [ms, serial] : phases) {
+        EXPECT_GE(serial, 0.0);
+        EXPECT_LE(serial, ms + kClockSlack);
+        phases_serial_ms += serial;
+      }
+      EXPECT_LE(phases_serial_ms, stats.serial_ms + kClockSlack);
+      EXPECT_LE(stats.serial_ms, stats.step_ms);
+      step_ms += stats.step_ms;
+      serial_ms += stats.serial_ms;
+    }
+    EXPECT_LT(serial_ms, 0.5 * step_ms);
+  }
 }
 
 }  // namespace

@@ -20,8 +20,8 @@ namespace sphys::tools {
 struct RunTotals {
   double wall_s = 0.0;          // unit: s
   std::vector<double> step_ms;  // per frame. unit: ms
-  // Each phase's time summed over the frames, by the figure it is (step_figures(): the frames
-  // CSV's times but the step's), and the steps'. unit: ms
+  // Each phase's time and serial time summed over the frames, by the figure it is (step_figures():
+  // the frames CSV's times but the step's), and the steps'. unit: ms
   std::vector<std::pair<const StepFigure*, double>> phases;
   double step = 0;                         // the steps' time summed over the frames. unit: ms
   double contacts = 0;                     // summed over the frames

@@ -111,14 +111,24 @@ std::string run_summary_json(const Scene& scene, const SimulationSetup& setup,
   summary["step_ms"] = {{"mean", mean_ms}, {"median", median(totals.step_ms)}};
   summary["contacts_per_frame"] = {{"mean", totals.contacts / frames},
                                    {"max", totals.max_contacts}};
-  // Per phase, named as its figure less "_ms".
+  // Per phase, named as its figure less "_ms"; the serial times apart, named as their phase, the
+  // whole step's as "step": the share of the step that more threads would not shorten.
   nlohmann::ordered_json shares = nlohmann::ordered_json::object();
+  nlohmann::ordered_json serial_shares = {{"step", nullptr}};
   for (const auto& [figure, sum] : totals.phases) {
     std::string name(figure->name);
-    name.resize(name.size() - std::string_view("_ms").size());
-    shares[name] = totals.share(sum);
+    if (name == "serial_ms") {
+      serial_shares["step"] = totals.share(sum);
+    } else if (name.ends_with("_serial_ms")) {
+      name.resize(name.size() - std::string_view("_serial_ms").size());
+      serial_shares[name] = totals.share(sum);
+    } else {
+      name.resize(name.size() - std::string_view("_ms").size());
+      shares[name] = totals.share(sum);
+    }
   }
   summary["time_share_percent"] = shares;
+  summary["serial_share_percent"] = serial_shares;
   add_end_state(summary, scene, setup, totals.plausibility.result(), totals.lowest_center_y);
   return summary.dump(2);
 }
