@@ -12,6 +12,7 @@
 #include "sphys/body_store.h"
 #include "sphys/collision_settings.h"
 #include "sphys/contact.h"
+#include "sphys/joint.h"
 #include "sphys/material.h"
 #include "sphys/rigid_body.h"
 #include "sphys/solver_settings.h"
@@ -139,9 +140,10 @@ class World {
   // that is not a unit quaternion (within 1e-3), a mass that is not positive and finite, an
   // inertia that is not symmetric positive definite, restitution outside 0..1, negative friction.
   BodyId add_body(const BodyDesc& desc);
-  // The body leaves the world with its contacts, pair materials and sleep; the sleeping bodies
-  // it touched wake. Its id, and every copy of it, is stale from then on. Every call taking a
-  // BodyId throws sphys::Error for a stale or unknown id, or the null one (BodyId{}).
+  // The body leaves the world with its contacts, pair materials, sleep and joints (listed by
+  // joints_removed()); the sleeping bodies it touched or was joined to wake. Its id, and every copy
+  // of it, is stale from then on. Every call taking a BodyId throws sphys::Error for a stale or
+  // unknown id, or the null one (BodyId{}).
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
   [[nodiscard]] RigidBody body(BodyId body) const;
@@ -173,6 +175,31 @@ class World {
   // The slot of a body in the world (its row in bodies()); throws sphys::Error for a stale,
   // unknown or null id.
   [[nodiscard]] std::uint32_t slot_of(BodyId body) const;
+
+  // Joins two bodies, or a body and the world (a null BodyId), by a joint solved with the
+  // contacts (plausible mode; sphys/joint.h, docs/joints.md). Its bodies wake, and by default no
+  // longer collide with each other. Throws sphys::Error naming the joint and the field for a
+  // body that is not in the world, the same body twice, a zero axis, a value that is not finite,
+  // limits out of order, a negative most effort, frequency or damping, or a paper-mode world.
+  JointId add_joint(const JointDesc& desc);
+  // The joint leaves the world and its bodies wake; its id is stale from then on. Every call
+  // taking a JointId throws sphys::Error for a stale or unknown id, or the null one (JointId{}).
+  void remove_joint(JointId joint);
+  // True for the id of a joint in the world, false for a stale or unknown one or the null one.
+  [[nodiscard]] bool joint_alive(JointId joint) const;
+  // The joint as added, with the changes of the setters below.
+  [[nodiscard]] JointDesc joint(JointId joint) const;
+  // What the joint did in the last step that solved it: its position, speed, gap, force and
+  // torque.
+  [[nodiscard]] JointState joint_state(JointId joint) const;
+  // The joint's motor from the next step on; its bodies wake. Checked as add_joint checks it.
+  void set_joint_motor(JointId joint, const JointMotor& motor);
+  // The joint's limits from the next step on, as set_joint_motor.
+  void set_joint_limit(JointId joint, const JointLimit& limit);
+  // The joint's spring from the next step on, as set_joint_motor.
+  void set_joint_spring(JointId joint, const JointSpring& spring);
+  // The joints the last remove_body removed with its body (stale ids now), in slot order.
+  [[nodiscard]] std::span<const JointId> joints_removed() const;
 
   // Advances the world by dt (unit: s, positive and finite, else sphys::Error). Never throws
   // otherwise, but for a call on another thread under way (see above); when a body's state stops

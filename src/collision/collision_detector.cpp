@@ -139,6 +139,27 @@ Aabb CollisionDetector::bounds(std::uint32_t slot) const {
                     broad_phase_);
 }
 
+void CollisionDetector::set_unpaired(
+    std::span<const std::pair<std::uint32_t, std::uint32_t>> body_pairs) {
+  unpaired_.clear();
+  for (const auto& [a, b] : body_pairs) {
+    unpaired_.push_back(pair_key(bodies_[a].proxy, bodies_[b].proxy));
+  }
+  std::sort(unpaired_.begin(), unpaired_.end());
+}
+
+bool CollisionDetector::unpaired(const PairRecord& record) const {
+  return !unpaired_.empty() && std::binary_search(unpaired_.begin(), unpaired_.end(),
+                                                  pair_key(record.proxies.a, record.proxies.b));
+}
+
+void CollisionDetector::drop_contacts(PairRecord& record) {
+  record.count = 0;
+  record.kept_asleep = false;
+  record.descent_margin = -1.0f;
+  record.done = true;
+}
+
 bool CollisionDetector::links_dynamic_bodies(const PairRecord& record) const {
   return record.count > 0 && store_->dynamic()[body_of_proxy_[record.proxies.a]] != 0 &&
          store_->dynamic()[body_of_proxy_[record.proxies.b]] != 0;

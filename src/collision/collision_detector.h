@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -87,6 +88,10 @@ class CollisionDetector final : public SlotArrays {
   // Whether the broad phase found the body's box in a crowd at the last detect()
   // (CollisionSettings::crowd_pairs_per_body).
   [[nodiscard]] bool crowded(std::uint32_t slot) const;
+  // Body pairs (store slots, alive) whose contacts with each other do not count, such as the
+  // bodies a joint holds together: their pairs make no contacts from the next detection on.
+  // Replaces the last list.
+  void set_unpaired(std::span<const std::pair<std::uint32_t, std::uint32_t>> body_pairs);
 
   // The threads the narrow phase and the contacts run on (none: the caller's thread). The
   // contacts and figures do not depend on them. A time-critical budget is spent pair after pair
@@ -170,6 +175,10 @@ class CollisionDetector final : public SlotArrays {
 
   // Whether a record joined two dynamic bodies by contacts in its last narrow phase.
   [[nodiscard]] bool links_dynamic_bodies(const PairRecord& record) const;
+  // Whether a record's body pair is unpaired (set_unpaired): it makes no contacts.
+  [[nodiscard]] bool unpaired(const PairRecord& record) const;
+  // An unpaired record is left with no contacts, and done for the step.
+  static void drop_contacts(PairRecord& record);
   [[nodiscard]] Aabb broad_phase_box(std::uint32_t slot) const;
   [[nodiscard]] float pair_margin(const Body& a, const Body& b) const;
   [[nodiscard]] float plane_margin(const Body& body) const;
@@ -216,6 +225,7 @@ class CollisionDetector final : public SlotArrays {
   std::vector<NarrowChunk*> chunks_;  // the planned runs, in order
   const Parallel* parallel_ = nullptr;
   CollisionStats stats_;
+  std::vector<std::uint64_t> unpaired_;  // set_unpaired's pairs as sorted keys of their proxies
 };
 
 }  // namespace sphys

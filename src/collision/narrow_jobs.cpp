@@ -67,15 +67,21 @@ std::size_t CollisionDetector::list_in_runs(const Parallel& parallel, std::size_
 void CollisionDetector::list_jobs() {
   const Parallel& parallel = threads_or_caller(parallel_);
   const std::span<PairRecord> records = cache_.records();
-  // Every record and body starts undone (marked by `moving`, twice over).
+  // Every record and body starts undone (marked by `moving`, twice over). An unpaired record
+  // (bodies a joint holds together) neither moves nor rests: it is left with no contacts.
   std::size_t live_asleep = list_in_runs(
       parallel, records.size(), false, {},
       [&](std::size_t p) {
         records[p].done = false;
+        if (unpaired(records[p])) {
+          drop_contacts(records[p]);
+          return false;
+        }
         return moves(body_of_proxy_[records[p].proxies.a]) ||
                moves(body_of_proxy_[records[p].proxies.b]);
       },
-      [](std::size_t) { return true; }, [&](std::size_t p) -> PairRecord& { return records[p]; });
+      [&](std::size_t p) { return !unpaired(records[p]); },
+      [&](std::size_t p) -> PairRecord& { return records[p]; });
   pair_jobs_ = jobs_.size();
   const std::size_t resting_pairs = newly_resting_.size();
   const bool plane = settings_.ground_plane_height.has_value();

@@ -43,6 +43,10 @@ LaneBodies SoftStepSolver::lane_bodies() {
   return {velocity_.data()->linear.data(), motion_.data()->moved.data()};
 }
 
+JointSolverBodies SoftStepSolver::joint_bodies(const BodyStore& bodies) {
+  return {velocity_, inverse_mass_, inverse_inertia_, bodies.poses()};
+}
+
 // Awake bodies in runs of this many per item of an integration stage. unit: bodies
 constexpr std::uint32_t kBodiesPerItem = 64;
 
@@ -59,15 +63,22 @@ void SoftStepSolver::add_pass(Work work) {
   add_stage(work, kOverflowColour, overflow_.empty() ? 0u : 1u);
 }
 
-void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting) {
+void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting,
+                                 bool joints) {
   stages_.clear();
   stage_items_.clear();
   const auto runs = static_cast<std::uint32_t>((awake + kBodiesPerItem - 1) / kBodiesPerItem);
+  const std::uint32_t joint_items = joints ? 1 : 0;  // one thread, one order: the same bits
   for (std::uint32_t i = 0; i < substeps; ++i) {
     add_stage(Work::kIntegrateVelocities, 0, runs);
-    if (warm_starting) add_pass(Work::kWarmStart);
+    if (warm_starting) {
+      add_stage(Work::kJointWarmStart, 0, joint_items);
+      add_pass(Work::kWarmStart);
+    }
+    add_stage(Work::kJointSolve, 0, joint_items);
     add_pass(Work::kSolve);
     add_stage(Work::kIntegratePositions, 0, runs);
+    add_stage(Work::kJointRelax, 0, joint_items);
     add_pass(Work::kRelax);
   }
   add_pass(Work::kRestitute);
@@ -75,6 +86,17 @@ void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool
 
 void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies,
                               const SoftStepContext& context) {
+  switch (stage.work) {
+    case Work::kJointWarmStart:
+      joints_->warm_start(joint_bodies(bodies));
+      return;
+    case Work::kJointSolve:
+    case Work::kJointRelax:
+      joints_->solve(joint_bodies(bodies), stage.work == Work::kJointSolve);
+      return;
+    default:
+      break;
+  }
   if (stage.work == Work::kIntegrateVelocities || stage.work == Work::kIntegratePositions) {
     const std::span<const std::uint32_t> awake = bodies.awake();
     const std::size_t first = std::size_t{item} * kBodiesPerItem;
@@ -113,7 +135,10 @@ void SoftStepSolver::run_pass(const LaneKernels<W>& kernels, Work work,
       return;
     case Work::kIntegrateVelocities:
     case Work::kIntegratePositions:
-      return;  // run_item's, per run of bodies
+    case Work::kJointWarmStart:
+    case Work::kJointSolve:
+    case Work::kJointRelax:
+      return;  // run_item's, per run of bodies or on the joints
   }
 }
 
@@ -189,13 +214,15 @@ SoftStepContext::SoftStepContext(const SolverSettings& settings, const Vec3& ste
 SoftStepStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> contacts,
                                     std::span<ContactMemory> memory,
                                     std::span<const PairMaterial> materials,
-                                    const SoftStepContext& context) {
+                                    const SoftStepContext& context, JointSolver* joints) {
   SoftStepStats stats;
   const Parallel& parallel = context.parallel;
   load_bodies(bodies, parallel);
+  if (joints != nullptr) joints->prepare(joint_bodies(bodies), context);
+  joints_ = joints != nullptr && !joints->empty() ? joints : nullptr;
   prepare(contacts, memory, context, stats);
   pack(materials, context);
-  plan_stages(bodies.awake().size(), context.substeps, context.warm_starting);
+  plan_stages(bodies.awake().size(), context.substeps, context.warm_starting, joints_ != nullptr);
   bounces_.store(0);
   parallel.for_each_in_stages(stage_items_, [&](std::size_t stage, std::uint32_t item) {
     run_item(stages_[stage], item, bodies, context);
@@ -209,6 +236,7 @@ SoftStepStats SoftStepSolver::solve(BodyStore& bodies, std::span<const Contact> 
   parallel.for_each_run(awake.size(), kConstraintsPerRun, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) bound_spin(velocity_[awake[k]].angular, most_spin);
   });
+  if (joints_ != nullptr) joints_->finish(joint_bodies(bodies));
   store_solver_velocities(velocity_, parallel, bodies);
   keep_impulses(memory, parallel);
   kept_substep_dt_ = context.substep_dt;

@@ -22,6 +22,7 @@
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/contact_levels.h"
+#include "dynamics/joint_solver.h"
 #include "dynamics/soft_step_context.h"
 #include "dynamics/soft_step_stats.h"
 #include "dynamics/solver_bodies.h"
@@ -40,10 +41,11 @@ class SoftStepSolver {
   // contacts: their velocities and poses on return are those at the end of the pass. The other
   // bodies count as static. `materials[k]` is contact k's material; `memory[k]` is its warm start
   // on entry and what it leaves for the next pass on return. The colours' blocks are solved on the
-  // context's threads, and the result does not depend on how many there are.
+  // context's threads, and the result does not depend on how many there are. `joints`, where
+  // given, are solved with the contacts, each pass of theirs on one thread before the contacts'.
   SoftStepStats solve(BodyStore& bodies, std::span<const Contact> contacts,
                       std::span<ContactMemory> memory, std::span<const PairMaterial> materials,
-                      const SoftStepContext& context);
+                      const SoftStepContext& context, JointSolver* joints = nullptr);
 
   // The lanes the passes run in (resolved: resolve_solver_lanes()); the same bits whichever.
   void use_lanes(SolverLanes lanes);
@@ -104,13 +106,17 @@ class SoftStepSolver {
   // The substeps' work as stages, each run over its items on the threads once the one before has
   // finished: the bodies' integration in runs of bodies, and each pass colour by colour (a block
   // per item), the overflow last (one item); restitution's pass once, after the last substep.
+  // The joints' passes, where there are joints, are one item each, before the contacts' own.
   enum class Work : std::uint8_t {
     kIntegrateVelocities,
     kWarmStart,
     kSolve,
     kIntegratePositions,
     kRelax,
-    kRestitute
+    kRestitute,
+    kJointWarmStart,
+    kJointSolve,
+    kJointRelax
   };
   struct Stage {
     Work work = Work::kSolve;
@@ -143,8 +149,10 @@ class SoftStepSolver {
   void pack_lane(std::uint32_t manifold, const PairMaterial& material,
                  const SoftStepContext& context, ManifoldBlock<W>& block, int lane) const;
   // The stages of `substeps` substeps: integrate velocities, warm start, solve, integrate
-  // positions, relax; then restitution.
-  void plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting);
+  // positions, relax, each pass after the joints' own where there are `joints`; then
+  // restitution.
+  void plan_stages(std::size_t awake, std::uint32_t substeps, bool warm_starting,
+                   bool joints = false);
   void add_stage(Work work, std::uint32_t colour, std::uint32_t items);
   void add_pass(Work work);
   // Item `item` of a stage.
@@ -160,6 +168,8 @@ class SoftStepSolver {
                            const SoftStepContext& context);
   void keep_impulses(std::span<ContactMemory> memory, const Parallel& parallel) const;
   [[nodiscard]] LaneBodies lane_bodies();
+  // The slots as the joints see them, with the store's poses.
+  [[nodiscard]] JointSolverBodies joint_bodies(const BodyStore& bodies);
 
   std::vector<Constraint> constraints_;
   std::vector<Manifold> manifolds_;
@@ -186,6 +196,7 @@ class SoftStepSolver {
   std::vector<Stage> stages_;
   std::vector<std::uint32_t> stage_items_;
   const LaneKernels<kLaneWidth>* kernels_ = &lane_kernels(SolverLanes::kPortable);
+  JointSolver* joints_ = nullptr;          // this solve's, if it has joints
   std::atomic<std::uint32_t> bounces_{0};  // restitution's pass, counted across its items
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one lane that holds it in a colour.

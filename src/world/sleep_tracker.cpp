@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <limits>
+#include <numeric>
 
 #include "core/buffers.h"
 #include "core/place_in_runs.h"
@@ -105,6 +106,9 @@ void SleepTracker::link_islands(std::span<const Contact> contacts) {
           }
         }
       });
+  for (const auto& [a, b] : joined_) {
+    if (dynamic[a] != 0 && dynamic[b] != 0) join(a, b);
+  }
 }
 
 void SleepTracker::split_islands(std::span<const Contact> contacts) {
@@ -148,6 +152,12 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
       if (wakes(contact.body_b, contact.body_a)) mark(woken_[contact.body_b], 1);
     }
   });
+  // A joint wakes its sleeping body whatever the speed of the other: a sleeping body counts as
+  // static in the solve, and would hold an awake one where it fell asleep.
+  for (const auto& [a, b] : joined_) {
+    if (store_->asleep(a) && store_->moving()[b] != 0) woken_[a] = 1;
+    if (store_->asleep(b) && store_->moving()[a] != 0) woken_[b] = 1;
+  }
   compact_in_runs(
       parallel, woken_.size(), kItemsPerRun, [&](std::size_t i) { return woken_[i] != 0; },
       [&](std::size_t count) { woken.resize(first + count); },
@@ -157,6 +167,33 @@ void SleepTracker::wake_disturbed(std::span<const Contact> contacts, const Sleep
       run_first_);
   for (std::size_t k = first; k < woken.size(); ++k) note_woken(woken[k], settings);
   store_->set_asleep(std::span(woken).subspan(first), false);
+}
+
+void SleepTracker::settle_joined() {
+  if (joined_.empty()) return;
+  const std::span<const std::uint8_t> dynamic = store_->dynamic();
+  joined_group_.resize(settles_.size());
+  std::iota(joined_group_.begin(), joined_group_.end(), 0u);
+  const auto group = [&](std::uint32_t body) {
+    while (joined_group_[body] != body) {
+      joined_group_[body] = joined_group_[joined_group_[body]];  // path halving
+      body = joined_group_[body];
+    }
+    return body;
+  };
+  for (const auto& [a, b] : joined_) {
+    if (dynamic[a] == 0 || dynamic[b] == 0) continue;
+    const std::uint32_t ga = group(a);
+    const std::uint32_t gb = group(b);
+    if (ga != gb) joined_group_[std::max(ga, gb)] = std::min(ga, gb);
+  }
+  joined_awake_.assign(settles_.size(), 0);
+  for (std::uint32_t i = 0; i < settles_.size(); ++i) {
+    if (dynamic[i] != 0 && !store_->asleep(i) && settles_[i] == 0) joined_awake_[group(i)] = 1;
+  }
+  for (std::uint32_t i = 0; i < settles_.size(); ++i) {
+    if (settles_[i] != 0 && joined_awake_[group(i)] != 0) settles_[i] = 0;
+  }
 }
 
 std::uint32_t SleepTracker::update(std::span<const Contact> contacts, const SleepSettings& settings,
@@ -204,6 +241,7 @@ std::uint32_t SleepTracker::update(std::span<const Contact> contacts, const Slee
       if (restless(contact.body_a, settings)) mark(settles_[contact.body_b], 0);
     }
   });
+  settle_joined();
   const std::size_t first = fell_asleep.size();
   compact_in_runs(
       parallel, slots, kItemsPerRun, [&](std::size_t i) { return settles_[i] != 0; },

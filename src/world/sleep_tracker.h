@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "sphys/body_store.h"
@@ -35,13 +36,19 @@ class SleepTracker final : public SlotArrays {
   // has been still for the sleep time again, and moving until count_still_time() counts it.
   void unsettle(std::uint32_t body);
 
-  // Islands: dynamic bodies touching by a contact share one; a sleeping body is in one of its
-  // own. Static bodies and the ground join nothing. An island's name is its smallest slot,
-  // whatever order its bodies were joined in, so joining on the threads names it as one thread
-  // does. They persist from step to step:
-  // link_islands() merges the islands that contacts join, and an island whose bodies may have
-  // parted stays whole until split_islands() builds them afresh, so an island may join more
-  // bodies than touch (a coarser grouping, which the solver and sleep allow).
+  // The body pairs joints join (store slots, not the world): such bodies are one island, sleep
+  // together and wake together. Replaces the last list.
+  void set_joined(std::span<const std::pair<std::uint32_t, std::uint32_t>> joined) {
+    joined_.assign(joined.begin(), joined.end());
+  }
+
+  // Islands: dynamic bodies touching by a contact or joined by a joint share one; a sleeping body
+  // is in one of its own. Static bodies and the ground join nothing. An island's name is its
+  // smallest slot, whatever order its bodies were joined in, so joining on the threads names it as
+  // one thread does. They persist from step to step: link_islands() merges the islands that
+  // contacts join, and an island whose bodies may have parted stays whole until split_islands()
+  // builds them afresh, so an island may join more bodies than touch (a coarser grouping, which the
+  // solver and sleep allow).
   void link_islands(std::span<const Contact> contacts);
   // Two dynamic bodies that touched have parted, or a body left: split at the next
   // split_islands().
@@ -52,7 +59,8 @@ class SleepTracker final : public SlotArrays {
   // call of any other member.
   [[nodiscard]] std::span<const std::uint32_t> islands();
   // Wakes every sleeping body that a contact joins to an awake body that moves (as fast as
-  // settings.speed at the last count_still_time()), appending them to `woken`.
+  // settings.speed at the last count_still_time()), or that a joint joins to an awake body,
+  // appending them to `woken`.
   void wake_disturbed(std::span<const Contact> contacts, const SleepSettings& settings,
                       std::vector<std::uint32_t>& woken);
   // An awake body finished after a collision pass of `pass_dt` (unit: s): its speed, the
@@ -63,7 +71,8 @@ class SleepTracker final : public SlotArrays {
     still_time_[body] = speed_[body] < settings.speed ? still_time_[body] + pass_dt : 0.0f;
   }
   // Puts to sleep every awake body still for long enough (settings.time, or more in an island
-  // with a restless body) that touches no restless body, appending them to `fell_asleep`.
+  // with a restless body) that touches no restless body, and whose joined bodies all may sleep
+  // too, appending them to `fell_asleep`.
   // Returns the number of islands.
   std::uint32_t update(std::span<const Contact> contacts, const SleepSettings& settings,
                        std::vector<std::uint32_t>& fell_asleep);
@@ -74,6 +83,9 @@ class SleepTracker final : public SlotArrays {
   // ancestor); and the union of two sets, on any thread.
   [[nodiscard]] std::uint32_t island(std::uint32_t body);
   void join(std::uint32_t a, std::uint32_t b);
+  // Bodies joined (transitively) to one that may not fall asleep may not either: settles_ per
+  // group of joined bodies. One thread, in the joints' order.
+  void settle_joined();
   // A sleeping body about to wake: keeps its still time (see wake()) and counts it as measured
   // at rest; the caller wakes it in the store.
   void note_woken(std::uint32_t body, const SleepSettings& settings);
@@ -95,6 +107,9 @@ class SleepTracker final : public SlotArrays {
   std::vector<std::uint8_t> settles_;       // per body: may fall asleep in this update, scratch
   std::vector<std::uint8_t> woken_;         // per body: wakes in wake_disturbed(), scratch
   std::vector<std::uint32_t> run_first_;    // place_in_runs()'s scratch
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> joined_;  // set_joined()'s
+  std::vector<std::uint32_t> joined_group_;  // settle_joined()'s union-find, scratch
+  std::vector<std::uint8_t> joined_awake_;   // per group root: a member stays awake, scratch
 };
 
 }  // namespace sphys

@@ -20,8 +20,9 @@ void solve_contacts(PassContext& pass) {
   const SolverSettings& solver = world.settings.solver;
   const SoftStepContext context(solver, world.settings.gravity, pass.pass_dt, solver.soft_substeps,
                                 world.parallel);
-  const SoftStepStats solved =
-      world.solver.solve(world.store, contacts, world.detector.memory(), world.materials, context);
+  world.joint_solver.set_joints(world.joints.models());
+  const SoftStepStats solved = world.solver.solve(world.store, contacts, world.detector.memory(),
+                                                  world.materials, context, &world.joint_solver);
   StepStats& stats = pass.stats;
   stats.contacts_solved += solved.contacts_solved;
   stats.warm_started += solved.warm_started;

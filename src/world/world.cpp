@@ -194,6 +194,7 @@ void World::remove_body(BodyId id) {
   world.removed_neighbours.clear();
   world.detector.paired_bodies(index, world.removed_neighbours);
   for (const std::uint32_t neighbour : world.removed_neighbours) world.wake(neighbour);
+  world.remove_joints_on(index);
   world.detector.remove_body(index);
   world.store.remove(index);
   world.sleep.parted();

@@ -55,6 +55,31 @@ void WorldState::wake(std::uint32_t body) {
   sleep.unsettle(body);
 }
 
+void WorldState::joints_changed() {
+  detector.set_unpaired(joints.joined_pairs(true));
+  sleep.set_joined(joints.joined_pairs(false));
+}
+
+void WorldState::wake_joined(const JointModel& joint) {
+  for (const std::uint32_t body : {joint.body_a, joint.body_b}) {
+    if (body != kWorldSlot && !store.is_static(body)) wake(body);
+  }
+}
+
+void WorldState::remove_joints_on(std::uint32_t body) {
+  removed_joints.clear();
+  joint_slots.clear();
+  joints.joints_on(body, joint_slots);
+  if (joint_slots.empty()) return;
+  for (const std::uint32_t slot : joint_slots) {
+    wake_joined(joints.at(slot));
+    removed_joints.push_back(joints.id_of(slot));
+    joints.remove(slot);
+  }
+  sleep.parted();
+  joints_changed();
+}
+
 void WorldState::set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds) {
   WorldSettings changed = settings;
   changed.collision.max_sphere_tests = max_sphere_tests;

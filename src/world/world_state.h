@@ -17,6 +17,7 @@
 #include "sphys/parallel.h"
 #include "sphys/step_stats.h"
 #include "sphys/world.h"
+#include "world/joint_store.h"
 #include "world/sleep_tracker.h"
 #include "world/world_access.h"
 
@@ -41,6 +42,14 @@ struct WorldState {
   // Wakes a sleeping body and counts it restless: a velocity, an impulse or a force set it
   // moving from outside, or a body it touched left.
   void wake(std::uint32_t body);
+  // After joints were added or removed: the body pairs whose contacts do not count (the
+  // detector's) and the bodies that sleep and wake together (the sleep tracker's).
+  void joints_changed();
+  // Wakes a joint's bodies (not the world, nor a static body).
+  void wake_joined(const JointModel& joint);
+  // Removes the joints on a body about to leave, waking the bodies they joined, into
+  // removed_joints.
+  void remove_joints_on(std::uint32_t body);
   // The narrow phase's budgets from the next step on; throws sphys::Error for a time that is
   // negative or not finite, and changes nothing then.
   void set_detection_budget(std::uint64_t max_sphere_tests, double max_microseconds);
@@ -53,8 +62,12 @@ struct WorldState {
   BodyStore store;
   Parallel parallel;
   CollisionDetector detector;
-  SoftStepSolver solver;  // plausible mode
-  SleepTracker sleep;     // plausible mode
+  SoftStepSolver solver;                   // plausible mode
+  SleepTracker sleep;                      // plausible mode
+  JointStore joints;                       // plausible mode
+  JointSolver joint_solver;                // solves `joints` in the soft step
+  std::vector<JointId> removed_joints;     // by the last remove_body
+  std::vector<std::uint32_t> joint_slots;  // remove_body's scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials;
   std::vector<PairMaterial> materials;            // per contact, plausible mode's response
   std::vector<std::uint8_t> touching;             // measure_rest's scratch, per slot

@@ -43,13 +43,19 @@ inline BodyDesc cube(const Vec3& position, float friction, float mass = 1000.0f)
   return desc;
 }
 
-// A solid ball of 1 kg.
-inline BodyDesc ball(float radius, const Vec3& position, float restitution) {
+// A solid ball of `mass` (unit: kg) and `radius` (unit: m) at `position`: I = 2/5 m r².
+inline BodyDesc ball_body(float radius, float mass, const Vec3& position) {
   BodyDesc desc;
   desc.tree = one_sphere_tree(radius);
   desc.pose.translation = position;
-  desc.mass = 1.0f;
-  desc.inertia = Mat3::Identity() * (0.4f * radius * radius);
+  desc.mass = mass;
+  desc.inertia = Mat3::Identity() * (0.4f * mass * radius * radius);
+  return desc;
+}
+
+// A solid ball of 1 kg.
+inline BodyDesc ball(float radius, const Vec3& position, float restitution) {
+  BodyDesc desc = ball_body(radius, 1.0f, position);
   desc.restitution = restitution;
   return desc;
 }

@@ -17,6 +17,7 @@
 #include "sphys/world.h"
 #include "support/cube_tree.h"
 #include "support/float_limits.h"
+#include "support/world_scenes.h"
 
 namespace sphys {
 namespace {
@@ -35,15 +36,6 @@ BodyDesc solid_ball(float radius, float density, const Vec3& position) {
   const double mass = density * 4.0 / 3.0 * kPi * r * r * r;
   desc.mass = static_cast<float>(mass);
   desc.inertia = Mat3::Identity() * static_cast<float>(0.4 * mass * r * r);
-  return desc;
-}
-
-BodyDesc ball_of_mass(float radius, float mass, const Vec3& position) {
-  BodyDesc desc;
-  desc.tree = one_sphere_tree(radius);
-  desc.pose.translation = position;
-  desc.mass = mass;
-  desc.inertia = Mat3::Identity() * (0.4f * mass * radius * radius);
   return desc;
 }
 
@@ -196,8 +188,8 @@ struct HeadOnResult {
 // stepped until well after they part.
 HeadOnResult head_on(float mass_a, float mass_b, float restitution, float u_a, float u_b) {
   World world(zero_gravity());
-  BodyDesc a = ball_of_mass(0.5f, mass_a, Vec3(-1.0f, 0.0f, 0.0f));
-  BodyDesc b = ball_of_mass(0.5f, mass_b, Vec3(1.0f, 0.0f, 0.0f));
+  BodyDesc a = test::ball_body(0.5f, mass_a, Vec3(-1.0f, 0.0f, 0.0f));
+  BodyDesc b = test::ball_body(0.5f, mass_b, Vec3(1.0f, 0.0f, 0.0f));
   a.linear_velocity = Vec3(u_a, 0.0f, 0.0f);
   b.linear_velocity = Vec3(u_b, 0.0f, 0.0f);
   a.restitution = restitution;
@@ -583,7 +575,7 @@ TEST(World, MorePassesCarryAnImpulseThroughARow) {
   World world(settings);
   std::vector<BodyId> balls;
   for (int i = 0; i < 3; ++i) {
-    BodyDesc desc = ball_of_mass(0.5f, 2.0f, Vec3(static_cast<float>(i), 0.0f, 0.0f));
+    BodyDesc desc = test::ball_body(0.5f, 2.0f, Vec3(static_cast<float>(i), 0.0f, 0.0f));
     desc.restitution = 1.0f;
     if (i == 0) desc.linear_velocity = Vec3(1.0f, 0.0f, 0.0f);
     balls.push_back(world.add_body(desc));
