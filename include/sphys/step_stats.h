@@ -60,12 +60,12 @@ struct StepStats : DetectionCounters {
   // Each phase's serial time, and the whole step's: its time on one thread outside the loops that
   // threads share (Parallel::loop_ms), which more threads do not shorten. Over step_ms, the serial
   // share that bounds what threads can gain (Amdahl's law). unit: ms
-  double broad_phase_serial_ms = 0.0;
-  double narrow_phase_serial_ms = 0.0;
-  double contacts_serial_ms = 0.0;
-  double response_serial_ms = 0.0;
-  double integration_serial_ms = 0.0;
-  double sleep_serial_ms = 0.0;
+  double broad_phase_serial_ms = 0.0;   // of broad_phase_ms
+  double narrow_phase_serial_ms = 0.0;  // of narrow_phase_ms
+  double contacts_serial_ms = 0.0;      // of contacts_ms
+  double response_serial_ms = 0.0;      // of response_ms
+  double integration_serial_ms = 0.0;   // of integration_ms
+  double sleep_serial_ms = 0.0;         // of sleep_ms
   double serial_ms = 0.0;  // the whole step's, the phases' and what lies between them
   // Detection as the paper counts it: broad phase, narrow phase and contacts. unit: ms
   [[nodiscard]] double detection_ms() const {
