@@ -66,7 +66,7 @@ struct StepStats : DetectionCounters {
   double response_serial_ms = 0.0;      // of response_ms
   double integration_serial_ms = 0.0;   // of integration_ms
   double sleep_serial_ms = 0.0;         // of sleep_ms
-  double serial_ms = 0.0;  // the whole step's, the phases' and what lies between them
+  double serial_ms = 0.0;               // the whole step's, the phases' and what lies between them
   // Detection as the paper counts it: broad phase, narrow phase and contacts. unit: ms
   [[nodiscard]] double detection_ms() const {
     return broad_phase_ms + narrow_phase_ms + contacts_ms;

@@ -154,12 +154,15 @@ void merge_touched_pairs(std::vector<ProxyPair>& pairs, std::span<const std::uin
                          std::vector<ProxyPair>& left, const Parallel* parallel) {
   if (touched.empty()) return;
   // Run r takes its old pairs and the touched keys from its first old pair's on (the first run
-  // from the first), up to the next run's first old pair (the last run to the end).
+  // from the first), up to the next run's first old pair (the last run to the end). On one
+  // thread, one run.
+  const bool one_thread = parallel == nullptr || parallel->threads() == 1;
   const std::size_t runs =
-      std::max<std::size_t>(1, (pairs.size() + kPairsPerMergeRun - 1) / kPairsPerMergeRun);
-  const auto old_begin = [&](std::size_t r) {
-    return std::min(pairs.size(), r * kPairsPerMergeRun);
-  };
+      one_thread
+          ? 1
+          : std::max<std::size_t>(1, (pairs.size() + kPairsPerMergeRun - 1) / kPairsPerMergeRun);
+  const std::size_t run_pairs = one_thread ? pairs.size() : kPairsPerMergeRun;
+  const auto old_begin = [&](std::size_t r) { return std::min(pairs.size(), r * run_pairs); };
   const auto touched_begin = [&](std::size_t r) -> std::size_t {
     if (r == 0) return 0;
     if (r == runs) return touched.size();
@@ -171,6 +174,16 @@ void merge_touched_pairs(std::vector<ProxyPair>& pairs, std::span<const std::uin
     merge_run(pairs, old_begin(r), old_begin(r + 1), touched, touched_begin(r),
               touched_begin(r + 1), table, emit);
   };
+  if (runs == 1) {
+    work.merged.clear();
+    merge(0, [&](std::uint64_t key, bool listed, bool came, bool went) {
+      if (listed) work.merged.push_back(pair_of(key));
+      if (came) entered.push_back(pair_of(key));
+      if (went) left.push_back(pair_of(key));
+    });
+    pairs.swap(work.merged);
+    return;
+  }
   resize_buffer(work.runs, runs + 1);
   work.runs[0] = {0, static_cast<std::uint32_t>(entered.size()),
                   static_cast<std::uint32_t>(left.size())};

@@ -21,45 +21,57 @@ constexpr std::size_t kItemsPerRun = 256;
 // `moving(k)`: item k is a job; `resting(k)`: its record rests, `record(k)` (a PairRecord&).
 // Lists the jobs {k, plane} in jobs_ from `first.jobs` on and the newly resting items in
 // newly_resting_ from `first.newly_resting` on, each in order, sizing each to its end; returns
-// the resting records' live contacts.
+// the resting records' live contacts. On one thread, one pass into room for every item.
 template <class Moving, class Resting, class RecordOf>
 std::size_t CollisionDetector::list_in_runs(const Parallel& parallel, std::size_t count, bool plane,
                                             RunLists first, const Moving& moving,
                                             const Resting& resting, const RecordOf& record) {
+  // Items [begin, end) listed from `next` on, or counted into it where `write` is false; returns
+  // the live contacts of the resting records.
+  const auto list = [&](std::size_t begin, std::size_t end, RunLists& next, bool write) {
+    std::size_t live = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (moving(k)) {
+        if (write) jobs_[next.jobs] = {static_cast<std::uint32_t>(k), plane};
+        ++next.jobs;
+      } else if (resting(k)) {
+        PairRecord& rests = record(k);
+        live += PairCache::rest(rests);
+        if (rests.kept_asleep) continue;
+        if (write) newly_resting_[next.newly_resting] = static_cast<std::uint32_t>(k);
+        ++next.newly_resting;
+      }
+    }
+    return live;
+  };
+  const auto resize = [&](const RunLists& end) {
+    resize_buffer(jobs_, end.jobs);
+    resize_buffer(newly_resting_, end.newly_resting);
+  };
+  if (parallel.threads() == 1) {
+    const auto room = static_cast<std::uint32_t>(count);
+    resize({first.jobs + room, first.newly_resting + room});
+    const std::size_t live = list(0, count, first, true);
+    resize(first);
+    return live;
+  }
   const std::size_t runs = (count + kItemsPerRun - 1) / kItemsPerRun;
   resize_buffer(run_lists_, runs + 1);
   run_lists_[0] = first;
   std::atomic<std::size_t> live_asleep{0};
   parallel.for_each_run(count, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
     RunLists taken;
-    std::size_t live = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      if (moving(k)) {
-        ++taken.jobs;
-      } else if (resting(k)) {
-        PairRecord& rests = record(k);
-        live += PairCache::rest(rests);
-        if (!rests.kept_asleep) ++taken.newly_resting;
-      }
-    }
+    live_asleep.fetch_add(list(begin, end, taken, false), std::memory_order_relaxed);
     run_lists_[begin / kItemsPerRun + 1] = taken;
-    live_asleep.fetch_add(live, std::memory_order_relaxed);
   });
   for (std::size_t r = 0; r < runs; ++r) {
     run_lists_[r + 1].jobs += run_lists_[r].jobs;
     run_lists_[r + 1].newly_resting += run_lists_[r].newly_resting;
   }
-  resize_buffer(jobs_, run_lists_[runs].jobs);
-  resize_buffer(newly_resting_, run_lists_[runs].newly_resting);
+  resize(run_lists_[runs]);
   parallel.for_each_run(count, kItemsPerRun, [&](std::size_t begin, std::size_t end) {
     RunLists next = run_lists_[begin / kItemsPerRun];
-    for (std::size_t k = begin; k < end; ++k) {
-      if (moving(k)) {
-        jobs_[next.jobs++] = {static_cast<std::uint32_t>(k), plane};
-      } else if (resting(k) && !record(k).kept_asleep) {
-        newly_resting_[next.newly_resting++] = static_cast<std::uint32_t>(k);
-      }
-    }
+    list(begin, end, next, true);
   });
   return live_asleep.load();
 }

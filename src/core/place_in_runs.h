@@ -18,11 +18,23 @@ namespace sphys {
 // places(k) > 0, first being the places of the items before k; returns the total. places() is
 // called twice per item and must give the same answer both times; place() of different items
 // must not touch the same memory. `run_first` is scratch, kept by the caller so that a step need
-// not allocate.
+// not allocate. On one thread, or with one run, it is the serial loop, in one pass: size(most),
+// `most` bounding the total, then size(total) once the items are placed.
 template <class Places, class Size, class Place>
 std::size_t place_in_runs(const Parallel& parallel, std::size_t count, std::size_t run,
-                          const Places& places, const Size& size, const Place& place,
-                          std::vector<std::uint32_t>& run_first) {
+                          std::size_t most, const Places& places, const Size& size,
+                          const Place& place, std::vector<std::uint32_t>& run_first) {
+  if (parallel.threads() == 1 || count <= run) {
+    size(most);
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t taken = places(k);
+      if (taken > 0) place(first, k);
+      first += taken;
+    }
+    size(first);
+    return first;
+  }
   const std::size_t runs = (count + run - 1) / run;
   fill_buffer(run_first, runs + 1, 0u);
   parallel.for_each_run(count, run, [&](std::size_t begin, std::size_t end) {
@@ -50,7 +62,7 @@ std::size_t compact_in_runs(const Parallel& parallel, std::size_t count, std::si
                             const Keep& keep, const Size& size, const Place& place,
                             std::vector<std::uint32_t>& run_first) {
   return place_in_runs(
-      parallel, count, run, [&](std::size_t k) { return keep(k) ? 1u : 0u; }, size, place,
+      parallel, count, run, count, [&](std::size_t k) { return keep(k) ? 1u : 0u; }, size, place,
       run_first);
 }
 

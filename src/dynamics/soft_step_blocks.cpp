@@ -216,7 +216,7 @@ void SoftStepSolver::cut_manifolds(const Parallel& parallel) {
            pair_first_[p];
   };
   place_in_runs(
-      parallel, pairs, kConstraintsPerRun,
+      parallel, pairs, kConstraintsPerRun, count,
       [&](std::size_t p) { return (points_of(p) + kManifoldPoints - 1) / kManifoldPoints; },
       [&](std::size_t manifolds) {
         resize_buffer(manifolds_, manifolds);
