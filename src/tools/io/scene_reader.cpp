@@ -289,26 +289,24 @@ bool read_enabled(const JsonNode& node, std::span<const std::string_view> keys) 
   return !enabled || read_bool(*enabled);
 }
 
+// The bounds are checked as the world checks them (World::add_joint): in order, and a distance's
+// not negative, when the limit is on.
 JointLimit read_joint_limit(const JsonNode& node, JointType type) {
   JointLimit limit;
   limit.enabled = read_enabled(node, kJointLimitKeys);
-  if (const auto n = node.find("lower")) {
-    limit.lower = static_cast<float>(read_bounded(*n, kMaxCoordinate, "rad or m"));
-    if (type == JointType::kDistance && limit.lower < 0.0f) {
-      n->fail("a distance joint's shortest length must not be negative, got " +
-              shown_value(n->json()));
-    }
-  }
-  if (const auto n = node.find("upper")) {
-    limit.upper = static_cast<float>(read_bounded(*n, kMaxCoordinate, "rad or m"));
+  const auto lower = node.find("lower");
+  const auto upper = node.find("upper");
+  if (lower) limit.lower = static_cast<float>(read_bounded(*lower, kMaxCoordinate, "rad or m"));
+  if (upper) limit.upper = static_cast<float>(read_bounded(*upper, kMaxCoordinate, "rad or m"));
+  if (!limit.enabled) return limit;
+  if (lower && type == JointType::kDistance && limit.lower < 0.0f) {
+    lower->fail("a distance joint's shortest length must not be negative, got " +
+                shown_value(lower->json()));
   }
   if (limit.lower > limit.upper) {
     // As written: a bound left out is its default, 0.
-    const auto shown = [&](const std::string& key) {
-      const auto bound = node.find(key);
-      return bound ? shown_value(bound->json()) : std::string("0");
-    };
-    node.fail("lower " + shown("lower") + " > upper " + shown("upper"));
+    node.fail("lower " + (lower ? shown_value(lower->json()) : "0") + " > upper " +
+              (upper ? shown_value(upper->json()) : "0"));
   }
   return limit;
 }

@@ -599,7 +599,8 @@ class RandomScene {
     const float low = within(1e5f);
     const float high = within(1e5f);
     d.limit = {.enabled = coin(), .lower = std::min(low, high), .upper = std::max(low, high)};
-    if (d.type == JointType::kDistance) {
+    if (!d.limit.enabled && coin()) std::swap(d.limit.lower, d.limit.upper);  // off: any bounds
+    if (d.limit.enabled && d.type == JointType::kDistance) {
       d.limit.lower = std::abs(d.limit.lower);
       d.limit.upper = std::max(d.limit.lower, std::abs(d.limit.upper));
     }
@@ -693,7 +694,7 @@ TEST(SceneFile, EachJointTypeRoundTripsBitForBit) {
       {"type": "weld", "body_a": 2, "body_b": null, "spring": {"hertz": 10, "damping_ratio": 1},
        "collide_connected": true},
       {"type": "distance", "body_a": 0, "body_b": 2, "length": 1.75,
-       "limit": {"enabled": false, "lower": 0.5, "upper": 3}}
+       "limit": {"enabled": false, "lower": 3, "upper": 0.5}}
     ])"),
                                   "s.json");
   ASSERT_EQ(scene.joints.size(), 5U);
@@ -712,7 +713,8 @@ TEST(SceneFile, EachJointTypeRoundTripsBitForBit) {
   EXPECT_TRUE(scene.joints[3].desc.collide_connected);
   EXPECT_EQ(scene.joints[4].desc.length, 1.75f);
   EXPECT_FALSE(scene.joints[4].desc.limit.enabled);
-  EXPECT_EQ(scene.joints[4].desc.limit.upper, 3.0f);
+  // A limit that is off is kept as written, unchecked, as the world keeps it.
+  EXPECT_EQ(scene.joints[4].desc.limit.lower, 3.0f);
   const std::string text = scene_to_json(scene);
   const Scene back = parse_scene(text, "s.json");
   expect_same_scene(back, scene);
@@ -1027,6 +1029,8 @@ TEST(SceneFile, BadJointsNameTheirPathAndReason) {
        "/joints/0/limit/enabled", "expected true or false"},
       {joints(R"({"type": "distance", "body_a": 0, "body_b": 1, "limit": {"lower": -1}})"),
        "/joints/0/limit/lower", "a distance joint's shortest length must not be negative, got -1"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "limit": {"upper": -0.5}})"),
+       "/joints/0/limit", "lower 0 > upper -0.5"},
       {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "motor": {"max_effort": -5}})"),
        "/joints/0/motor/max_effort", "must not be negative, got -5"},
       {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "motor": {"speed": 1e5}})"),
