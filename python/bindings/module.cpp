@@ -69,6 +69,7 @@ PYBIND11_MODULE(_sphys, m) {
   bind_mesh(m);
   bind_tree(m);
   bind_world(m);
+  bind_joints(m);
   bind_query(m);
   bind_robot(m);
   bind_scene(m);

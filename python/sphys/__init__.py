@@ -8,6 +8,9 @@ Everything the command line does, by task (docs/python.md):
   SphereTree (centres, radii, level(k))
 * worlds: World(**settings), settings_table, World.add_body / step / poses / velocities /
   contacts; StepStats
+* joints: World.add_joint(JointDesc(...)) / remove_joint / joint_state / set_joint_motor /
+  set_joint_limit / set_joint_spring; JointType, JointLimit, JointMotor, JointSpring, JointCone,
+  JointId, JointState
 * queries: World.query() (a WorldQuery: cast_ray, cast_ray_all, cast_rays, overlap_sphere /
   aabb / box / body, distance, check_configurations), World.check_configurations, QueryFilter
 * scenes: load_scene("stacks:4x50" or a file), Scene.from_dict, Simulation(scene).step / run /

@@ -1,8 +1,10 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -199,6 +201,54 @@ TEST(SimulateCommand, BadSceneFilesExitWithCode2AndTheJsonPath) {
       gone + ": /bodies/0/mesh: no such file: " + (dir.path() / "meshes" / "gone.obj").string());
   expect_bad_input({"simulate", (dir.path() / "absent.json").string(), "--no-cache"},
                    "absent.json: no such file");
+}
+
+// A scene file's joints reach the world: a 10 cm bunny hinged 1 m below a pivot on the world,
+// let go 30° from the vertical, swings through the vertical to the other side within the first
+// second (a simple pendulum's half period is π √(1/9.81) = 1.003 s) on its 1 m rod.
+TEST(SimulateCommand, APendulumFromASceneFileSwings) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const Vec3 pivot(0.0f, 2.0f, 0.0f);
+  const fs::path scene = dir.write("pendulum.json", scene_text(R"("frames": 60,
+      "ground": {"type": "none"}, "sleep": {"enabled": false},
+      "bodies": [{"size": 0.1, "position": [0.5, 1.1339746, 0],
+                  "sphere_tree": {"method": "octree", "depth": 1}}],
+      "joints": [{"type": "hinge", "body_a": null, "body_b": 0, "anchor_a": [0, 2, 0],
+                  "anchor_b": [-0.5, 0.8660254, 0], "axis_a": [0, 0, 1], "axis_b": [0, 0, 1]}])"));
+  const fs::path out = dir.path() / "out";
+  const test::CommandResult r = sphys_cli({"simulate", scene.string(), "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const tools::Recording recording = tools::read_recording(out / "recording.sphysrec");
+  ASSERT_EQ(recording.frame_count, 61u);
+  float lowest_x = 1.0f;
+  float worst_rod = 0.0f;
+  for (std::uint32_t n = 0; n < recording.frame_count; ++n) {
+    const Vec3 bob = recording.frame(n)[0].position;
+    lowest_x = std::min(lowest_x, bob.x());
+    worst_rod = std::max(worst_rod, std::abs((bob - pivot).norm() - 1.0f));
+  }
+  std::cout << "scene-file pendulum: lowest x " << lowest_x << " m, rod length off by at most "
+            << worst_rod << " m\n";
+  EXPECT_FLOAT_EQ(recording.frame(0)[0].position.x(), 0.5f);
+  EXPECT_LT(lowest_x, -0.4f);  // swung to the other side, near its start's mirror at -0.5
+  EXPECT_LT(worst_rod, 0.01f);
+}
+
+TEST(SimulateCommand, BadJointsExitWithCode2AndTheJsonPath) {
+  const test::TempDir dir;
+  const std::string missing = dir.write("missing.json", scene_text(R"("bodies": [{}],
+      "joints": [{"type": "ball", "body_a": 0, "body_b": 7}])"))
+                                  .string();
+  expect_bad_input({"simulate", missing, "--no-cache"},
+                   missing + ": /joints/0/body_b: no body 7; /bodies has 1");
+  const std::string paper = dir.write("paper.json", scene_text(R"("response": "paper",
+      "ground": {"type": "none"},
+      "bodies": [{"sphere_tree": {"method": "octree", "depth": 1}}],
+      "joints": [{"type": "ball", "body_a": 0, "body_b": null}])"))
+                                .string();
+  expect_bad_input({"simulate", paper, "--no-cache"},
+                   "/joints/0: add_joint (ball): joints are solved in plausible mode only");
 }
 
 // The options that set the world's settings say what the settings table says of them.

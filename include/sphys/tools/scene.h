@@ -79,6 +79,14 @@ struct PairMaterialSpec {
   PairMaterial material;                // what their contacts use
 };
 
+// A joint between two of the scene's bodies, or a body and the world (World::add_joint).
+struct JointSpec {
+  // Indices into Scene::bodies; none: the world. At least one is a body, and not both the same.
+  std::optional<std::size_t> body_a;
+  std::optional<std::size_t> body_b;
+  JointDesc desc;  // everything else (its body ids unused: build_world sets them)
+};
+
 // "paper", "plausible": the response modes by name, as scene files and the command line write
 // them.
 [[nodiscard]] std::string_view response_mode_name(ResponseMode mode);
@@ -115,6 +123,7 @@ struct Scene {
   GroundSpec ground;             // what the bodies stand on
   std::vector<BodySpec> bodies;  // at most kMaxSceneBodies
   std::vector<PairMaterialSpec> pair_materials;  // pairs of bodies with their own material
+  std::vector<JointSpec> joints;                 // added after the bodies, in order
   // Folder that relative mesh and .sph paths are taken from.
   std::filesystem::path base_directory;
 };

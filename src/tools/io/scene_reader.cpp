@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -33,8 +34,9 @@ constexpr double kUnitTolerance = 1e-6;
 // Every integer up to here is exact in a double, as a JSON number is read.
 constexpr long long kMaxExactInteger = 9'007'199'254'740'992;  // 2^53
 
-constexpr std::array<ArrayLimit, 1> kArrayLimits = {
-    {{"/bodies", kMaxSceneBodies, "bodies; a scene holds at most that many"}}};
+constexpr std::array<ArrayLimit, 2> kArrayLimits = {
+    {{"/bodies", kMaxSceneBodies, "bodies; a scene holds at most that many"},
+     {"/joints", kMaxSceneBodies, "joints; a scene holds at most as many as bodies"}}};
 
 template <typename Enum, std::size_t N>
 Enum read_choice(const JsonNode& node, const NameTable<Enum, N>& table) {
@@ -267,6 +269,121 @@ std::vector<PairMaterialSpec> read_pair_materials(const JsonNode& node,
   return pairs;
 }
 
+// A joint's body: an index into the scene's bodies, or null for the world.
+std::optional<std::size_t> read_joint_body(const JsonNode& node, std::size_t body_count) {
+  if (node.json().is_null()) return std::nullopt;
+  return read_body_index(node, body_count);
+}
+
+// A direction: three numbers, not all zero (the world normalises it when the joint is added).
+Vec3 read_axis(const JsonNode& node) {
+  const Vec3 axis = read_vec3(node);
+  if (!normalised(read_triple(node))) node.fail("a zero-length axis has no direction");
+  return axis;
+}
+
+// An object of a joint's optional part: on when given, unless it says "enabled": false.
+bool read_enabled(const JsonNode& node, std::span<const std::string_view> keys) {
+  check_keys(node, keys);
+  const auto enabled = node.find("enabled");
+  return !enabled || read_bool(*enabled);
+}
+
+// The bounds are checked as the world checks them (World::add_joint): in order, and a distance's
+// not negative, when the limit is on.
+JointLimit read_joint_limit(const JsonNode& node, JointType type) {
+  JointLimit limit;
+  limit.enabled = read_enabled(node, kJointLimitKeys);
+  const auto lower = node.find("lower");
+  const auto upper = node.find("upper");
+  if (lower) limit.lower = static_cast<float>(read_bounded(*lower, kMaxCoordinate, "rad or m"));
+  if (upper) limit.upper = static_cast<float>(read_bounded(*upper, kMaxCoordinate, "rad or m"));
+  if (!limit.enabled) return limit;
+  if (lower && type == JointType::kDistance && limit.lower < 0.0f) {
+    lower->fail("a distance joint's shortest length must not be negative, got " +
+                shown_value(lower->json()));
+  }
+  if (limit.lower > limit.upper) {
+    // As written: a bound left out is its default, 0.
+    node.fail("lower " + (lower ? shown_value(lower->json()) : "0") + " > upper " +
+              (upper ? shown_value(upper->json()) : "0"));
+  }
+  return limit;
+}
+
+JointMotor read_joint_motor(const JsonNode& node) {
+  JointMotor motor;
+  motor.enabled = read_enabled(node, kJointMotorKeys);
+  if (const auto n = node.find("speed")) {
+    motor.speed = static_cast<float>(read_bounded(*n, kMaxSpeed, "rad/s or m/s"));
+  }
+  if (const auto n = node.find("max_effort")) motor.max_effort = read_non_negative_single(*n);
+  return motor;
+}
+
+JointSpring read_joint_spring(const JsonNode& node) {
+  JointSpring spring;
+  spring.enabled = read_enabled(node, kJointSpringKeys);
+  if (const auto n = node.find("hertz")) spring.hertz = read_non_negative_single(*n);
+  if (const auto n = node.find("damping_ratio")) {
+    spring.damping_ratio = read_non_negative_single(*n);
+  }
+  if (const auto n = node.find("target")) {
+    spring.target = static_cast<float>(read_bounded(*n, kMaxCoordinate, "rad or m"));
+  }
+  return spring;
+}
+
+JointCone read_joint_cone(const JsonNode& node) {
+  JointCone cone;
+  cone.enabled = read_enabled(node, kJointConeKeys);
+  if (const auto n = node.find("angle")) {
+    cone.angle = static_cast<float>(read_between(*n, 0.0, std::numbers::pi_v<float>));
+  }
+  return cone;
+}
+
+JointSpec read_joint(const JsonNode& node, std::size_t body_count) {
+  check_keys(node, kJointKeys);
+  JointSpec joint;
+  JointDesc& desc = joint.desc;
+  desc.type = read_choice(node.required("type", "a joint names its type"), kJointTypes);
+  constexpr std::string_view kBodies = "a joint names its two bodies (null for the world)";
+  joint.body_a = read_joint_body(node.required("body_a", kBodies), body_count);
+  const JsonNode body_b = node.required("body_b", kBodies);
+  joint.body_b = read_joint_body(body_b, body_count);
+  if (!joint.body_a && !joint.body_b) body_b.fail("a joint needs a body; both are the world");
+  if (joint.body_a == joint.body_b) {
+    body_b.fail("the same body as body_a (" + std::to_string(*joint.body_a) + ")");
+  }
+  if (const auto n = node.find("anchor_a")) {
+    desc.anchor_a = read_bounded_vec3(*n, kMaxCoordinate, "m");
+  }
+  if (const auto n = node.find("anchor_b")) {
+    desc.anchor_b = read_bounded_vec3(*n, kMaxCoordinate, "m");
+  }
+  if (const auto n = node.find("axis_a")) desc.axis_a = read_axis(*n);
+  if (const auto n = node.find("axis_b")) desc.axis_b = read_axis(*n);
+  if (const auto n = node.find("limit")) desc.limit = read_joint_limit(*n, desc.type);
+  if (const auto n = node.find("motor")) desc.motor = read_joint_motor(*n);
+  if (const auto n = node.find("spring")) desc.spring = read_joint_spring(*n);
+  if (const auto n = node.find("cone")) desc.cone = read_joint_cone(*n);
+  if (const auto n = node.find("length")) {
+    desc.length = static_cast<float>(read_physical(*n, kJointLengthRange));
+  }
+  if (const auto n = node.find("collide_connected")) desc.collide_connected = read_bool(*n);
+  return joint;
+}
+
+std::vector<JointSpec> read_joints(const JsonNode& node, std::size_t body_count) {
+  if (!node.json().is_array()) fail_type(node, "an array of joints");
+  std::vector<JointSpec> joints;
+  for (std::size_t k = 0; k < node.json().size(); ++k) {
+    joints.push_back(read_joint(node.element(k), body_count));
+  }
+  return joints;
+}
+
 void read_header(const JsonNode& root) {
   const JsonNode format =
       root.required("format", "a scene file starts with \"format\": \"sphys-scene\"");
@@ -323,6 +440,7 @@ Scene read_scene(const Json& document, const fs::path& name) {
   if (const auto n = root.find("pair_materials")) {
     scene.pair_materials = read_pair_materials(*n, scene.bodies);
   }
+  if (const auto n = root.find("joints")) scene.joints = read_joints(*n, scene.bodies.size());
   return scene;
 }
 

@@ -9,9 +9,9 @@ namespace {
 
 // The keys of the top level and of "ground" besides the world's settings, which the settings
 // table lists.
-constexpr std::array<std::string_view, 10> kSceneOwnKeys = {
-    "format", "version", "time_step", "frames", "solver",
-    "sleep",  "ground",  "defaults",  "bodies", "pair_materials"};
+constexpr std::array<std::string_view, 11> kSceneOwnKeys = {
+    "format", "version",  "time_step", "frames",         "solver", "sleep",
+    "ground", "defaults", "bodies",    "pair_materials", "joints"};
 constexpr std::array<std::string_view, 5> kGroundOwnKeys = {"type", "height", "size", "thickness",
                                                             "depth"};
 

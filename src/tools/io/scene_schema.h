@@ -40,9 +40,20 @@ inline constexpr PhysicalRange kGroundThicknessRange{1e-3, 1e4, "m"};
 inline constexpr double kMaxCoordinate = 1e5;
 // Beyond any rigid body's speed (a rifle bullet: 1,000 m/s). unit: m/s; rad/s for spin
 inline constexpr double kMaxSpeed = 1e4;
+// A distance joint's length, from a micrometre to the farthest coordinate. unit: m
+inline constexpr PhysicalRange kJointLengthRange{1e-6, kMaxCoordinate, "m"};
 
 inline constexpr std::array<std::string_view, 3> kPairMaterialKeys = {"bodies", "friction",
                                                                       "restitution"};
+inline constexpr std::array<std::string_view, 13> kJointKeys = {
+    "type",  "body_a", "body_b", "anchor_a", "anchor_b", "axis_a",           "axis_b",
+    "limit", "motor",  "spring", "cone",     "length",   "collide_connected"};
+inline constexpr std::array<std::string_view, 3> kJointLimitKeys = {"enabled", "lower", "upper"};
+inline constexpr std::array<std::string_view, 3> kJointMotorKeys = {"enabled", "speed",
+                                                                    "max_effort"};
+inline constexpr std::array<std::string_view, 4> kJointSpringKeys = {"enabled", "hertz",
+                                                                     "damping_ratio", "target"};
+inline constexpr std::array<std::string_view, 2> kJointConeKeys = {"enabled", "angle"};
 inline constexpr std::array<std::string_view, 13> kBodyKeys = {"mesh",
                                                                "triangles",
                                                                "size",
@@ -78,6 +89,14 @@ inline constexpr NameTable<GroundSpec::Kind, 3> kGroundKinds{{
     {GroundSpec::Kind::kOctreeBox, "octree-box"},
     {GroundSpec::Kind::kPlane, "plane"},
     {GroundSpec::Kind::kNone, "none"},
+}};
+
+inline constexpr NameTable<JointType, 5> kJointTypes{{
+    {JointType::kHinge, "hinge"},
+    {JointType::kSlider, "slider"},
+    {JointType::kBall, "ball"},
+    {JointType::kWeld, "weld"},
+    {JointType::kDistance, "distance"},
 }};
 
 template <typename Enum, std::size_t N>

@@ -71,6 +71,32 @@ Json pair_material_json(const PairMaterialSpec& pair) {
           {"restitution", shortest_double(pair.material.restitution)}};
 }
 
+Json joint_json(const JointSpec& joint) {
+  const JointDesc& d = joint.desc;
+  Json out = Json::object();
+  out["type"] = name_of(d.type, kJointTypes);
+  out["body_a"] = optional_json(joint.body_a);
+  out["body_b"] = optional_json(joint.body_b);
+  out["anchor_a"] = vec3_json(d.anchor_a);
+  out["anchor_b"] = vec3_json(d.anchor_b);
+  out["axis_a"] = vec3_json(d.axis_a);
+  out["axis_b"] = vec3_json(d.axis_b);
+  out["limit"] = {{"enabled", d.limit.enabled},
+                  {"lower", shortest_double(d.limit.lower)},
+                  {"upper", shortest_double(d.limit.upper)}};
+  out["motor"] = {{"enabled", d.motor.enabled},
+                  {"speed", shortest_double(d.motor.speed)},
+                  {"max_effort", shortest_double(d.motor.max_effort)}};
+  out["spring"] = {{"enabled", d.spring.enabled},
+                   {"hertz", shortest_double(d.spring.hertz)},
+                   {"damping_ratio", shortest_double(d.spring.damping_ratio)},
+                   {"target", shortest_double(d.spring.target)}};
+  out["cone"] = {{"enabled", d.cone.enabled}, {"angle", shortest_double(d.cone.angle)}};
+  out["length"] = shortest_double(d.length);
+  out["collide_connected"] = d.collide_connected;
+  return out;
+}
+
 }  // namespace
 
 std::string scene_to_json(const Scene& scene) {
@@ -93,6 +119,9 @@ std::string scene_to_json(const Scene& scene) {
     pairs.push_back(pair_material_json(pair));
   }
   out["pair_materials"] = std::move(pairs);
+  Json joints = Json::array();
+  for (const JointSpec& joint : scene.joints) joints.push_back(joint_json(joint));
+  out["joints"] = std::move(joints);
   return out.dump(2) + "\n";
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -124,6 +125,28 @@ void set_pair_materials(const Scene& scene, const SimulationSetup& setup) {
   }
 }
 
+// The joints after every body, in the scene's order; as for a pair, a scene made in code may name
+// a body it lacks or a joint the world refuses (paper mode), and the message names the JSON path.
+void add_joints(const Scene& scene, const SimulationSetup& setup) {
+  for (std::size_t k = 0; k < scene.joints.size(); ++k) {
+    const JointSpec& joint = scene.joints[k];
+    const std::string where = scene.name + ": /joints/" + std::to_string(k) + ": ";
+    const auto body_id = [&](const std::optional<std::size_t>& index) {
+      if (!index) return BodyId{};
+      if (*index >= setup.bodies.size()) throw Error(where + "no body " + std::to_string(*index));
+      return setup.bodies[*index];
+    };
+    JointDesc desc = joint.desc;
+    desc.body_a = body_id(joint.body_a);
+    desc.body_b = body_id(joint.body_b);
+    try {
+      (void)setup.world->add_joint(desc);
+    } catch (const Error& error) {
+      throw Error(where + error.what());
+    }
+  }
+}
+
 }  // namespace
 
 SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options) {
@@ -183,6 +206,7 @@ SimulationSetup build_world(const Scene& scene, const BuildWorldOptions& options
     }
   }
   set_pair_materials(scene, setup);
+  add_joints(scene, setup);
   return setup;
 }
 

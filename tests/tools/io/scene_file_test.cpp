@@ -130,6 +130,36 @@ void expect_same_pairs(const std::vector<PairMaterialSpec>& a,
   }
 }
 
+void expect_same_joints(const std::vector<JointSpec>& a, const std::vector<JointSpec>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    SCOPED_TRACE("joint " + std::to_string(k));
+    const JointDesc& x = a[k].desc;
+    const JointDesc& y = b[k].desc;
+    EXPECT_EQ(x.type, y.type);
+    EXPECT_EQ(a[k].body_a, b[k].body_a);
+    EXPECT_EQ(a[k].body_b, b[k].body_b);
+    expect_same(x.anchor_a, y.anchor_a, "anchor_a");
+    expect_same(x.anchor_b, y.anchor_b, "anchor_b");
+    expect_same(x.axis_a, y.axis_a, "axis_a");
+    expect_same(x.axis_b, y.axis_b, "axis_b");
+    EXPECT_EQ(x.limit.enabled, y.limit.enabled);
+    EXPECT_EQ(bits(x.limit.lower), bits(y.limit.lower));
+    EXPECT_EQ(bits(x.limit.upper), bits(y.limit.upper));
+    EXPECT_EQ(x.motor.enabled, y.motor.enabled);
+    EXPECT_EQ(bits(x.motor.speed), bits(y.motor.speed));
+    EXPECT_EQ(bits(x.motor.max_effort), bits(y.motor.max_effort));
+    EXPECT_EQ(x.spring.enabled, y.spring.enabled);
+    EXPECT_EQ(bits(x.spring.hertz), bits(y.spring.hertz));
+    EXPECT_EQ(bits(x.spring.damping_ratio), bits(y.spring.damping_ratio));
+    EXPECT_EQ(bits(x.spring.target), bits(y.spring.target));
+    EXPECT_EQ(x.cone.enabled, y.cone.enabled);
+    EXPECT_EQ(bits(x.cone.angle), bits(y.cone.angle));
+    EXPECT_EQ(bits(x.length), bits(y.length));
+    EXPECT_EQ(x.collide_connected, y.collide_connected);
+  }
+}
+
 void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.base_directory, b.base_directory);
@@ -144,6 +174,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   expect_same_solver(a.solver, b.solver);
   expect_same_sleep(a.sleep, b.sleep);
   expect_same_pairs(a.pair_materials, b.pair_materials);
+  expect_same_joints(a.joints, b.joints);
   EXPECT_EQ(a.ground.kind, b.ground.kind);
   EXPECT_EQ(bits(a.ground.height), bits(b.ground.height));
   EXPECT_EQ(bits(a.ground.size), bits(b.ground.size));
@@ -194,7 +225,15 @@ constexpr std::string_view kFullScene = R"({
      "mass": 12.5, "restitution": 0.1, "friction": 0.7, "static": true},
     {"mesh": "bunny", "triangles": 800, "size": 2.5, "sphere_tree": "trees/bunny.sph"}
   ],
-  "pair_materials": [{"bodies": [1, 0], "friction": 1.25, "restitution": 0.05}]
+  "pair_materials": [{"bodies": [1, 0], "friction": 1.25, "restitution": 0.05}],
+  "joints": [
+    {"type": "slider", "body_a": null, "body_b": 1, "anchor_a": [0, 1, 0],
+     "anchor_b": [0.5, 0, 0], "axis_a": [0, 1, 0], "axis_b": [0, 0, 2],
+     "limit": {"enabled": true, "lower": -0.5, "upper": 1.5},
+     "motor": {"enabled": false, "speed": 2, "max_effort": 30},
+     "spring": {"hertz": 4, "damping_ratio": 0.7, "target": 0.25},
+     "cone": {"angle": 0.5}, "length": 2.5, "collide_connected": true}
+  ]
 })";
 
 class SceneFileOnDisk : public testing::Test {
@@ -242,6 +281,20 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   expect_same_solver(scene.solver, solver);
   expect_same_sleep(scene.sleep, {.enabled = false, .speed = 0.1f, .time = 2.0f});
   expect_same_pairs(scene.pair_materials, {{.bodies = {1, 0}, .material = {1.25f, 0.05f}}});
+  JointSpec slider{.body_a = std::nullopt, .body_b = 1, .desc = {}};
+  slider.desc.type = JointType::kSlider;
+  slider.desc.anchor_a = Vec3(0.0f, 1.0f, 0.0f);
+  slider.desc.anchor_b = Vec3(0.5f, 0.0f, 0.0f);
+  slider.desc.axis_a = Vec3(0.0f, 1.0f, 0.0f);
+  slider.desc.axis_b = Vec3(0.0f, 0.0f, 2.0f);  // as written: the world normalises it
+  slider.desc.limit = {.enabled = true, .lower = -0.5f, .upper = 1.5f};
+  slider.desc.motor = {.enabled = false, .speed = 2.0f, .max_effort = 30.0f};
+  // An object given is on unless it says otherwise.
+  slider.desc.spring = {.enabled = true, .hertz = 4.0f, .damping_ratio = 0.7f, .target = 0.25f};
+  slider.desc.cone = {.enabled = true, .angle = 0.5f};
+  slider.desc.length = 2.5f;
+  slider.desc.collide_connected = true;
+  expect_same_joints(scene.joints, {slider});
   EXPECT_EQ(scene.ground.kind, GroundSpec::Kind::kPlane);
   EXPECT_EQ(scene.ground.height, -1.5);
   EXPECT_EQ(scene.ground.size, 20.0);
@@ -473,6 +526,9 @@ class RandomScene {
       pair.material = {std::abs(any_float()), unit_float()};
       scene.pair_materials.push_back(pair);
     }
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (coin()) scene.joints.push_back(joint(i, scene.bodies.size()));
+    }
     return scene;
   }
 
@@ -524,6 +580,39 @@ class RandomScene {
     body.friction = std::abs(any_float());
     body.is_static = coin();
     return body;
+  }
+
+  // A joint of body `i` to another of the `bodies` or to the world, every field set.
+  JointSpec joint(std::size_t i, std::size_t bodies) {
+    JointSpec joint;
+    joint.body_a = i;
+    const std::size_t other = std::uniform_int_distribution<std::size_t>(0, bodies - 1)(rng_);
+    if (other != i) joint.body_b = other;
+    if (coin()) std::swap(joint.body_a, joint.body_b);
+    JointDesc& d = joint.desc;
+    d.type = pick(std::array{JointType::kHinge, JointType::kSlider, JointType::kBall,
+                             JointType::kWeld, JointType::kDistance});
+    d.anchor_a = vec3_within(1e5f);
+    d.anchor_b = vec3_within(1e5f);
+    d.axis_a = vec3_within(1e5f) + Vec3(1e-3f, 0.0f, 0.0f);
+    d.axis_b = vec3_within(1e5f) + Vec3(0.0f, 0.0f, 1e-3f);
+    const float low = within(1e5f);
+    const float high = within(1e5f);
+    d.limit = {.enabled = coin(), .lower = std::min(low, high), .upper = std::max(low, high)};
+    if (!d.limit.enabled && coin()) std::swap(d.limit.lower, d.limit.upper);  // off: any bounds
+    if (d.limit.enabled && d.type == JointType::kDistance) {
+      d.limit.lower = std::abs(d.limit.lower);
+      d.limit.upper = std::max(d.limit.lower, std::abs(d.limit.upper));
+    }
+    d.motor = {.enabled = coin(), .speed = within(1e4f), .max_effort = std::abs(any_float())};
+    d.spring = {.enabled = coin(),
+                .hertz = std::abs(any_float()),
+                .damping_ratio = std::abs(any_float()),
+                .target = within(1e5f)};
+    d.cone = {.enabled = coin(), .angle = 3.0f * unit_float()};
+    d.length = static_cast<float>(in_range(1e-5, 1e5));
+    d.collide_connected = coin();
+    return joint;
   }
 
   bool coin() { return std::uniform_int_distribution<int>(0, 1)(rng_) == 1; }
@@ -590,6 +679,46 @@ TEST_F(SceneFileOnDisk, RandomScenesRoundTripBitForBit) {
 TEST_F(SceneFileOnDisk, FullSceneRoundTripsBitForBit) {
   const Scene scene = parse_scene(kFullScene, scene_path());
   expect_same_scene(parse_scene(scene_to_json(scene), scene_path()), scene);
+}
+
+TEST(SceneFile, EachJointTypeRoundTripsBitForBit) {
+  const Scene scene = parse_scene(scene_text(R"("bodies": [{}, {}, {}],
+    "joints": [
+      {"type": "hinge", "body_a": null, "body_b": 0, "anchor_a": [0, 2, 0], "anchor_b": [0, 0.5, 0],
+       "axis_a": [0, 0, 1], "axis_b": [0, 0, 1], "limit": {"lower": -1.2, "upper": 0.3},
+       "motor": {"speed": 1.5, "max_effort": 20}},
+      {"type": "slider", "body_a": 0, "body_b": 1, "axis_a": [1, 0, 0],
+       "spring": {"hertz": 2, "damping_ratio": 0.1, "target": 0.2}},
+      {"type": "ball", "body_a": 1, "body_b": 2, "anchor_b": [0.1, 0, 0],
+       "cone": {"angle": 0.3}, "limit": {"lower": -0.2, "upper": 0.2}},
+      {"type": "weld", "body_a": 2, "body_b": null, "spring": {"hertz": 10, "damping_ratio": 1},
+       "collide_connected": true},
+      {"type": "distance", "body_a": 0, "body_b": 2, "length": 1.75,
+       "limit": {"enabled": false, "lower": 3, "upper": 0.5}}
+    ])"),
+                                  "s.json");
+  ASSERT_EQ(scene.joints.size(), 5U);
+  const std::array types = {JointType::kHinge, JointType::kSlider, JointType::kBall,
+                            JointType::kWeld, JointType::kDistance};
+  for (std::size_t k = 0; k < types.size(); ++k) EXPECT_EQ(scene.joints[k].desc.type, types[k]);
+  EXPECT_EQ(scene.joints[0].body_a, std::nullopt);
+  EXPECT_EQ(scene.joints[0].body_b, std::optional<std::size_t>(0));
+  EXPECT_TRUE(scene.joints[0].desc.limit.enabled);
+  EXPECT_EQ(scene.joints[0].desc.limit.lower, -1.2f);
+  EXPECT_TRUE(scene.joints[0].desc.motor.enabled);
+  EXPECT_EQ(scene.joints[0].desc.motor.max_effort, 20.0f);
+  EXPECT_FALSE(scene.joints[0].desc.spring.enabled);
+  EXPECT_EQ(scene.joints[2].desc.cone.angle, 0.3f);
+  EXPECT_EQ(scene.joints[3].body_b, std::nullopt);
+  EXPECT_TRUE(scene.joints[3].desc.collide_connected);
+  EXPECT_EQ(scene.joints[4].desc.length, 1.75f);
+  EXPECT_FALSE(scene.joints[4].desc.limit.enabled);
+  // A limit that is off is kept as written, unchecked, as the world keeps it.
+  EXPECT_EQ(scene.joints[4].desc.limit.lower, 3.0f);
+  const std::string text = scene_to_json(scene);
+  const Scene back = parse_scene(text, "s.json");
+  expect_same_scene(back, scene);
+  EXPECT_EQ(scene_to_json(back), text);
 }
 
 TEST(SceneFile, WrittenFloatsUseTheirShortestForm) {
@@ -862,6 +991,72 @@ TEST(SceneFile, BadValuesNameTheirPathAndReason) {
   }
 }
 
+TEST(SceneFile, BadJointsNameTheirPathAndReason) {
+  const auto joints = [](std::string_view entries) {
+    return scene_text(R"("bodies": [{}, {}, {}, {}, {}], "joints": [)" + std::string(entries) +
+                      "]");
+  };
+  constexpr std::string_view kHinge = R"({"type": "hinge", "body_a": 0, "body_b": 1})";
+  const std::string hinges = std::string(kHinge) + ", " + std::string(kHinge) + ", ";
+  const std::vector<BadCase> cases = {
+      {scene_text(R"("bodies": [], "joints": {})"), "/joints", "expected an array of joints"},
+      {joints(hinges + R"({"type": "hinge", "body_a": 0, "body_b": 7})"), "/joints/2/body_b",
+       "no body 7; /bodies has 5 (indices from 0)"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "limit": {"lower": 1, "upper": 0}})"),
+       "/joints/0/limit", "lower 1 > upper 0"},
+      {joints(R"({"type": "hnge", "body_a": 0, "body_b": 1})"), "/joints/0/type", "hinge"},
+      {joints(R"({"body_a": 0, "body_b": 1})"), "/joints/0/type",
+       "missing; a joint names its type"},
+      {joints(R"({"type": "ball", "body_a": 0})"), "/joints/0/body_b",
+       "missing; a joint names its two bodies (null for the world)"},
+      {joints(R"({"type": "ball", "body_a": null, "body_b": null})"), "/joints/0/body_b",
+       "a joint needs a body; both are the world"},
+      {joints(R"({"type": "ball", "body_a": 3, "body_b": 3})"), "/joints/0/body_b",
+       "the same body as body_a (3)"},
+      {joints(R"({"type": "ball", "body_a": -1, "body_b": 3})"), "/joints/0/body_a",
+       "must be between 0 and"},
+      {joints(R"({"type": "ball", "body_a": 0, "body_b": 1, "ancor_a": [0, 0, 0]})"),
+       "/joints/0/ancor_a", "unknown key; did you mean \"anchor_a\"?"},
+      {joints(R"({"type": "ball", "body_a": 0, "body_b": 1, "anchor_b": [0, 2e5, 0]})"),
+       "/joints/0/anchor_b/1", "must be between -1e+05 and 1e+05 m, got 200000"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "axis_a": [0, 0, 0]})"),
+       "/joints/0/axis_a", "a zero-length axis has no direction"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "axis_b": [0, 1]})"),
+       "/joints/0/axis_b", "3"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "limit": {"lowr": 1}})"),
+       "/joints/0/limit/lowr", "unknown key; did you mean \"lower\"?"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "limit": {"enabled": 1}})"),
+       "/joints/0/limit/enabled", "expected true or false"},
+      {joints(R"({"type": "distance", "body_a": 0, "body_b": 1, "limit": {"lower": -1}})"),
+       "/joints/0/limit/lower", "a distance joint's shortest length must not be negative, got -1"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "limit": {"upper": -0.5}})"),
+       "/joints/0/limit", "lower 0 > upper -0.5"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "motor": {"max_effort": -5}})"),
+       "/joints/0/motor/max_effort", "must not be negative, got -5"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "motor": {"speed": 1e5}})"),
+       "/joints/0/motor/speed", "must be between -10000 and 10000 rad/s or m/s, got 100000"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "spring": {"hertz": -1}})"),
+       "/joints/0/spring/hertz", "must not be negative, got -1"},
+      {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "spring": {"damping_ratio": -2}})"),
+       "/joints/0/spring/damping_ratio", "must not be negative, got -2"},
+      {joints(R"({"type": "ball", "body_a": 0, "body_b": 1, "cone": {"angle": 4}})"),
+       "/joints/0/cone/angle", "must be between 0 and 3.14159"},
+      {joints(R"({"type": "ball", "body_a": 0, "body_b": 1, "cone": 0.5})"), "/joints/0/cone",
+       "expected an object"},
+      {joints(R"({"type": "distance", "body_a": 0, "body_b": 1, "length": 0})"), "/joints/0/length",
+       "must be positive, got 0"},
+      {joints(R"({"type": "distance", "body_a": 0, "body_b": 1, "length": 2e5})"),
+       "/joints/0/length", "must be between 1e-06 and 1e+05 m, got 200000"},
+      {joints(R"({"type": "weld", "body_a": 0, "body_b": 1, "collide_connected": "yes"})"),
+       "/joints/0/collide_connected", "expected true or false"},
+  };
+  for (const BadCase& bad : cases) {
+    SCOPED_TRACE(bad.text);
+    EXPECT_THAT(parse_error(bad.text),
+                AllOf(StartsWith("scene.json: " + bad.path + ": "), HasSubstr(bad.reason)));
+  }
+}
+
 TEST(SceneFile, NonFiniteNumbersAreNamedWithLineAndColumn) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"NaN", "scene.json:3: column 16: NaN is not a number in JSON; every number must be finite"},
@@ -1033,6 +1228,16 @@ TEST(SceneFileSchema, ListsTheKeysOfTheFormat) {
   EXPECT_EQ(property_names(defs.at("solver")), object_keys(full.at("solver")));
   EXPECT_EQ(property_names(defs.at("sleep")), object_keys(full.at("sleep")));
   EXPECT_EQ(property_names(defs.at("pair_material")), object_keys(full.at("pair_materials").at(0)));
+  EXPECT_EQ(property_names(defs.at("joint")), object_keys(full.at("joints").at(0)));
+  // The writer writes every key of a joint's parts.
+  const nlohmann::json written = nlohmann::json::parse(scene_to_json(parse_scene(
+      scene_text(R"("bodies": [{}], "joints": [{"type": "ball", "body_a": 0, "body_b": null}])"),
+      "s.json")));
+  for (const char* part : {"limit", "motor", "spring", "cone"}) {
+    EXPECT_EQ(property_names(defs.at("joint").at("properties").at(part)),
+              object_keys(written.at("joints").at(0).at(part)))
+        << part;
+  }
   EXPECT_EQ(schema.at("required"), nlohmann::json({"format", "version", "bodies"}));
 }
 
@@ -1084,6 +1289,17 @@ TEST(SceneFileSchema, TheParserReadsEveryKeyItLists) {
   for (const std::string& key : property_names(defs.at("pair_material"))) {
     expect_read("/pair_materials/0", key,
                 R"("bodies": [{}, {}], "pair_materials": [{"bodies": [0, 1]}])");
+  }
+  constexpr std::string_view kJoint =
+      R"("bodies": [{}, {}], "joints": [{"type": "ball", "body_a": 0, "body_b": 1)";
+  for (const std::string& key : property_names(defs.at("joint"))) {
+    expect_read("/joints/0", key, std::string(kJoint) + "}]");
+  }
+  for (const char* part : {"limit", "motor", "spring", "cone"}) {
+    for (const std::string& key : property_names(defs.at("joint").at("properties").at(part))) {
+      expect_read("/joints/0/" + std::string(part), key,
+                  std::string(kJoint) + ", \"" + part + "\": {}}]");
+    }
   }
   for (const std::string& key : property_names(defs.at("ground"))) {
     expect_read("/ground", key, R"("ground": {}, "bodies": [])");
