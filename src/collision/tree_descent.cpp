@@ -77,8 +77,10 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
   };
 
   // Tests one pair: two leaves with their own spheres (a leaf pair found), anything else with the
-  // subtree bounds (the pair waits on the stack to be expanded).
-  const auto visit = [&](std::uint32_t na, std::uint32_t nb) {
+  // subtree bounds (the pair waits on the stack to be expanded). Inlined always: it is the
+  // descent's inner loop, and whether the optimiser inlined it turned with changes elsewhere in
+  // the program (out of line, the descent took 18% longer).
+  const auto visit = [&](std::uint32_t na, std::uint32_t nb) __attribute__((always_inline)) {
     ++stats.sphere_tests;
     const float distance_squared = (world_b[nb] - world_a[na]).squaredNorm();
     const bool leaf_a = a.acts_as_leaf(na);
