@@ -83,7 +83,7 @@ struct PairMaterialSpec {
 struct JointSpec {
   // Indices into Scene::bodies; none: the world. At least one is a body, and not both the same.
   std::optional<std::size_t> body_a;
-  std::optional<std::size_t> body_b;
+  std::optional<std::size_t> body_b;  // as body_a
   JointDesc desc;  // everything else (its body ids unused: build_world sets them)
 };
 
