@@ -63,6 +63,14 @@ class Parallel {
              [&](std::size_t r) { fn(r * run, std::min(count, r * run + run)); });
   }
 
+  // Runs fn() on the caller's thread: the one pass a loop makes where one thread runs it whole.
+  // Timed as a loop (loop_ms()) where `shared`, work that more threads would share.
+  template <class Fn>
+  void as_one_run(const Fn& fn, bool shared) const {
+    const LoopClock clock(*this, shared);
+    fn();
+  }
+
   // Runs first() and second() at once where there are threads, else one after the other: two
   // jobs that are not loops over items. Their time is serial time (loop_ms()): no more than two
   // threads share them.

@@ -176,11 +176,14 @@ void merge_touched_pairs(std::vector<ProxyPair>& pairs, std::span<const std::uin
   };
   if (runs == 1) {
     work.merged.clear();
-    merge(0, [&](std::uint64_t key, bool listed, bool came, bool went) {
-      if (listed) work.merged.push_back(pair_of(key));
-      if (came) entered.push_back(pair_of(key));
-      if (went) left.push_back(pair_of(key));
-    });
+    const auto one_pass = [&] {
+      merge(0, [&](std::uint64_t key, bool listed, bool came, bool went) {
+        if (listed) work.merged.push_back(pair_of(key));
+        if (came) entered.push_back(pair_of(key));
+        if (went) left.push_back(pair_of(key));
+      });
+    };
+    threads_or_caller(parallel).as_one_run(one_pass, pairs.size() > kPairsPerMergeRun);
     pairs.swap(work.merged);
     return;
   }

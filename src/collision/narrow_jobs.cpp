@@ -51,7 +51,8 @@ std::size_t CollisionDetector::list_in_runs(const Parallel& parallel, std::size_
   if (parallel.threads() == 1) {
     const auto room = static_cast<std::uint32_t>(count);
     resize({first.jobs + room, first.newly_resting + room});
-    const std::size_t live = list(0, count, first, true);
+    std::size_t live = 0;
+    parallel.as_one_run([&] { live = list(0, count, first, true); }, count > kItemsPerRun);
     resize(first);
     return live;
   }

@@ -19,7 +19,8 @@ namespace sphys {
 // called twice per item and must give the same answer both times; place() of different items
 // must not touch the same memory. `run_first` is scratch, kept by the caller so that a step need
 // not allocate. On one thread, or with one run, it is the serial loop, in one pass: size(most),
-// `most` bounding the total, then size(total) once the items are placed.
+// `most` bounding the total, then size(total) once the items are placed (on one thread, timed as
+// a loop where more threads would have shared it: Parallel::as_one_run).
 template <class Places, class Size, class Place>
 std::size_t place_in_runs(const Parallel& parallel, std::size_t count, std::size_t run,
                           std::size_t most, const Places& places, const Size& size,
@@ -27,11 +28,14 @@ std::size_t place_in_runs(const Parallel& parallel, std::size_t count, std::size
   if (parallel.threads() == 1 || count <= run) {
     size(most);
     std::size_t first = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::uint32_t taken = places(k);
-      if (taken > 0) place(first, k);
-      first += taken;
-    }
+    const auto one_pass = [&] {
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::uint32_t taken = places(k);
+        if (taken > 0) place(first, k);
+        first += taken;
+      }
+    };
+    parallel.as_one_run(one_pass, count > run);
     size(first);
     return first;
   }
