@@ -2,8 +2,6 @@
 
 // A rigid body's mass properties and state, and the semi-implicit Euler integrator.
 
-#include <span>
-
 #include "sphys/math.h"
 
 namespace sphys {
@@ -51,25 +49,10 @@ struct RigidBody {
 // for a moving body: x += v dt; the orientation turns by ω_mid dt (q += ½ dt (0,
 // ω_mid) q, then renormalised), with ω_mid the angular velocity at the middle of the turn. The
 // world angular momentum I ω is kept across the turn (ω' = I'⁻¹ I ω), so a torque-free body
-// conserves it instead of keeping ω fixed while its inertia turns. Paper mode's integrator.
+// conserves it instead of keeping ω fixed while its inertia turns. Paper mode's integrator;
+// the plausible mode's keeps the spin more closely (src/bodies/spin_integrator.h).
 void integrate_position(Transform& pose, const Vec3& linear_velocity, Vec3& angular_velocity,
                         const Mat3& inertia_body, const Mat3& inverse_inertia_body, float dt);
-// A body as integrate_positions_keeping_spin moves it: its pose and angular velocity (updated),
-// its linear velocity and its inertia in its own frame.
-struct SpinningBody {
-  Transform* pose;                   // moved. unit: m
-  const Vec3* linear_velocity;       // world frame. unit: m/s
-  Vec3* angular_velocity;            // world frame, updated. unit: rad/s
-  const Mat3* inertia_body;          // about the centre of mass, body axes. unit: kg·m²
-  const Mat3* inverse_inertia_body;  // unit: 1/(kg·m²)
-};
-// The motion of integrate_position with the angular momentum following Euler's equations in the
-// body frame by the implicit midpoint rule, in double: a torque-free body keeps |L| and its
-// kinetic energy to float rounding (2e-5 over 2,400 steps of an asymmetric body tumbling). The
-// plausible mode's integrator. A body turning more than half a radian in the step goes by
-// integrate_position. For many bodies, each with the result it has alone: a few at a time side by
-// side, so that their long chains of dependent double operations overlap.
-void integrate_positions_keeping_spin(std::span<const SpinningBody> bodies, float dt);
 // The same for a RigidBody; static bodies are left alone.
 void integrate_position(RigidBody& body, float dt);
 

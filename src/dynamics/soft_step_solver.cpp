@@ -8,6 +8,7 @@
 #include <array>
 #include <numbers>
 
+#include "bodies/spin_integrator.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/solver_bodies.h"
 #include "sphys/rigid_body.h"
@@ -37,7 +38,10 @@ constexpr float kMostTurnPerSubstep = 0.25f * std::numbers::pi_v<float>;
 
 }  // namespace
 
-void SoftStepSolver::use_lanes(SolverLanes lanes) { kernels_ = &lane_kernels(lanes); }
+void SoftStepSolver::use_lanes(SolverLanes lanes) {
+  kernels_ = &lane_kernels(lanes);
+  spin_kernel_ = spin_kernel(lanes);
+}
 
 LaneBodies SoftStepSolver::lane_bodies() {
   return {velocity_.data()->linear.data(), motion_.data()->moved.data()};
@@ -177,7 +181,8 @@ void SoftStepSolver::integrate_positions(std::span<const std::uint32_t> awake, B
     spinning[k] = {&poses[i], &velocity_[i].linear, &velocity_[i].angular,
                    &bodies.inertias_body()[i], &bodies.inverse_inertias_body()[i]};
   }
-  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), context.substep_dt);
+  integrate_positions_keeping_spin(std::span(spinning.data(), awake.size()), context.substep_dt,
+                                   spin_kernel_);
   for (const std::uint32_t i : awake) {
     motion_[i] = {poses[i].translation - position_[i],
                   (poses[i].rotation * rotation_[i].conjugate()).toRotationMatrix()};

@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "bodies/spin_batch.h"
 #include "collision/collision_detector.h"
 #include "dynamics/constraint_colouring.h"
 #include "dynamics/contact_lanes.h"
@@ -196,7 +197,8 @@ class SoftStepSolver {
   std::vector<Stage> stages_;
   std::vector<std::uint32_t> stage_items_;
   const LaneKernels<kLaneWidth>* kernels_ = &lane_kernels(SolverLanes::kPortable);
-  JointSolver* joints_ = nullptr;          // this solve's, if it has joints
+  SpinKernel spin_kernel_ = spin_kernel(SolverLanes::kPortable);  // the same lanes' integrator
+  JointSolver* joints_ = nullptr;                                 // this solve's, if it has joints
   std::atomic<std::uint32_t> bounces_{0};  // restitution's pass, counted across its items
   // Per body, and one more slot at the end for the ground plane. Velocities are written only for
   // moving bodies, each by the one lane that holds it in a colour.
