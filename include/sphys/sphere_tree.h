@@ -14,6 +14,19 @@ struct Sphere {
   float radius = 0.0f;         // unit: m
 };
 
+// The nodes' spheres as columns of floats by node index, for the narrow phase's vector tests: each
+// column holds SphereTree::size() values, then kSphereColumnPadding zeros, so that a load of that
+// many from any node stays in bounds. unit: m, in the body frame
+struct SphereColumns {
+  const float* x;               // centres' x
+  const float* y;               // centres' y
+  const float* z;               // centres' z
+  const float* radius;          // the nodes' own radii
+  const float* subtree_radius;  // SphereTree::subtree_radius
+};
+// Zeros after each column of SphereColumns: one vector of the widest lanes. unit: floats
+inline constexpr std::size_t kSphereColumnPadding = 8;
+
 // A node as a builder or a file reader hands it over: its sphere and its parent's index
 // (-1 for the root), in breadth-first order.
 struct SphereTreeNode {
@@ -67,6 +80,11 @@ class SphereTree {
   // it. Builders do not nest children inside parents (each level is fitted to the surface on its
   // own), so culling a subtree must use this bound, not the node's own radius. unit: m
   [[nodiscard]] float subtree_radius(std::uint32_t node) const { return subtree_radius_[node]; }
+  // The spheres as columns (SphereColumns); valid while the tree lives unchanged.
+  [[nodiscard]] SphereColumns columns() const {
+    return {center_x_.data(), center_y_.data(), center_z_.data(), radius_.data(),
+            subtree_radius_.data()};
+  }
   // The level a node is on, 0 for the root.
   [[nodiscard]] int level(std::uint32_t node) const;
 
@@ -98,7 +116,11 @@ class SphereTree {
   std::vector<std::int32_t> parent_;
   std::vector<std::uint32_t> first_child_;
   std::vector<std::uint8_t> child_count_;
-  std::vector<float> subtree_radius_;
+  std::vector<float> subtree_radius_;  // padded as the columns
+  std::vector<float> center_x_;        // the columns, padded (SphereColumns)
+  std::vector<float> center_y_;
+  std::vector<float> center_z_;
+  std::vector<float> radius_;
   std::vector<std::uint32_t> level_begin_;  // depth() + 1 entries
   int branching_ = 8;
 };

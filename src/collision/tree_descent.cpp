@@ -1,6 +1,7 @@
 #include "collision/tree_descent.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <limits>
 
@@ -45,17 +46,12 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
   DescentStats stats;
   if (tree_a.empty() || tree_b.empty()) return stats;
 
-  if (++stamp_ == 0) {
-    // The stamp wrapped: forget every old mark so that none can pass for the new one.
-    std::ranges::fill(world_a_.children_placed, 0u);
-    std::ranges::fill(world_b_.children_placed, 0u);
-    stamp_ = 1;
-  }
   // Grows only while ever larger trees come: in steady state nothing is allocated.
   const auto fit = [](WorldCenters& world, std::size_t size) {
-    if (world.centers.size() < size) {
-      world.centers.resize(size);
-      world.children_placed.resize(size, 0u);
+    if (world.x.size() < size + kChildLanes) {
+      for (std::vector<float>* column : {&world.x, &world.y, &world.z}) {
+        column->resize(size + kChildLanes);
+      }
     }
   };
   fit(world_a_, tree_a.size());
@@ -63,40 +59,54 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
 
   const PosedTree a(tree_a, pose_a, settings.depth_a);
   const PosedTree b(tree_b, pose_b, settings.depth_b);
-  Vec3* const world_a = world_a_.centers.data();
-  Vec3* const world_b = world_b_.centers.data();
-  const auto place_children = [this](const PosedTree& posed, WorldCenters& world,
-                                     std::uint32_t node) {
-    if (world.children_placed[node] == stamp_) return;
-    world.children_placed[node] = stamp_;
-    const std::uint32_t first = posed.tree.first_child(node);
-    const std::uint32_t end = first + posed.tree.child_count(node);
-    for (std::uint32_t c = first; c < end; ++c) {
-      world.centers[c] = posed.place(posed.tree.sphere(c).center);
-    }
-  };
 
-  // Tests one pair: two leaves with their own spheres (a leaf pair found), anything else with the
-  // subtree bounds (the pair waits on the stack to be expanded). Inlined always: it is the
-  // descent's inner loop, and whether the optimiser inlined it turned with changes elsewhere in
-  // the program (out of line, the descent took 18% longer).
-  const auto visit = [&](std::uint32_t na, std::uint32_t nb) __attribute__((always_inline)) {
-    ++stats.sphere_tests;
-    const float distance_squared = (world_b[nb] - world_a[na]).squaredNorm();
-    const bool leaf_a = a.acts_as_leaf(na);
-    const bool leaf_b = b.acts_as_leaf(nb);
-    if (leaf_a && leaf_b) {
-      const float reach = tree_a.sphere(na).radius + tree_b.sphere(nb).radius + settings.margin;
-      if (distance_squared <= reach * reach) {
-        pairs.push_back({na, nb});
-        ++stats.leaf_pairs;
-      }
-      return;
+  // Places the children of `node` (of `side`, with world centres `world`) and tests each against
+  // node `other` of the other side, all in one kernel call (child_test.h): a pair of leaves found
+  // is returned, any other overlapping pair waits on the stack, both in the children's order.
+  const auto expand = [&](const PosedTree& side, WorldCenters& world, std::uint32_t node,
+                          const PosedTree& other_side, const WorldCenters& other_world,
+                          std::uint32_t other, bool children_of_a) {
+    const std::uint32_t first = side.tree.first_child(node);
+    const std::uint32_t count = side.tree.child_count(node);
+    const SphereColumns columns = side.tree.columns();
+    const bool other_leaf = other_side.acts_as_leaf(other);
+    const float other_radius = other_side.tree.sphere(other).radius;
+    ChildTest test{
+        .x = columns.x + first,
+        .y = columns.y + first,
+        .z = columns.z + first,
+        .radius = columns.radius + first,
+        .subtree_radius = columns.subtree_radius + first,
+        .rotation = {},
+        .translation = {side.translation.x(), side.translation.y(), side.translation.z()},
+        .other = {other_world.x[other], other_world.y[other], other_world.z[other]},
+        .other_radius = other_radius,
+        .other_bound = other_leaf ? other_radius : other_side.tree.subtree_radius(other),
+        .margin = settings.margin,
+        .slack = kBoundSlack,
+        .world_x = world.x.data() + first,
+        .world_y = world.y.data() + first,
+        .world_z = world.z.data() + first};
+    std::copy_n(side.rotation.data(), 9, test.rotation);
+    const ChildHits hits = test_children_(test);
+    std::uint32_t leaves = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      if (side.acts_as_leaf(first + i)) leaves |= 1u << i;
     }
-    const float bound_a = leaf_a ? tree_a.sphere(na).radius : tree_a.subtree_radius(na);
-    const float bound_b = leaf_b ? tree_b.sphere(nb).radius : tree_b.subtree_radius(nb);
-    const float reach = (bound_a + bound_b + settings.margin) * kBoundSlack;
-    if (distance_squared <= reach * reach) stack_.push_back({na, nb});
+    std::uint32_t hit = ((leaves & (other_leaf ? hits.leaf_pair : hits.leaf_bound)) |
+                         (~leaves & hits.subtree_bound)) &
+                        ((1u << count) - 1u);
+    stats.sphere_tests += count;
+    for (; hit != 0; hit &= hit - 1) {
+      const auto i = static_cast<std::uint32_t>(std::countr_zero(hit));
+      const NodePair pair = children_of_a ? NodePair{first + i, other} : NodePair{other, first + i};
+      if (other_leaf && ((leaves >> i) & 1u)) {
+        pairs.push_back(pair);
+        ++stats.leaf_pairs;
+      } else {
+        stack_.push_back(pair);
+      }
+    }
   };
 
   // Budgets are checked only when the test count reaches next_check, so the exact mode and the
@@ -112,9 +122,27 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
   std::uint64_t next_check = std::min(test_budget, next_clock);
 
   stack_.clear();
-  world_a[0] = a.place(tree_a.root().center);
-  world_b[0] = b.place(tree_b.root().center);
-  visit(0, 0);
+  world_a_.set(0, a.place(tree_a.root().center));
+  world_b_.set(0, b.place(tree_b.root().center));
+  ++stats.sphere_tests;
+  {
+    // The roots, as any pair: two leaves with their own spheres, else the subtree bounds.
+    const float distance_squared = (world_b_.center(0) - world_a_.center(0)).squaredNorm();
+    const bool leaf_a = a.acts_as_leaf(0);
+    const bool leaf_b = b.acts_as_leaf(0);
+    if (leaf_a && leaf_b) {
+      const float reach = tree_a.root().radius + tree_b.root().radius + settings.margin;
+      if (distance_squared <= reach * reach) {
+        pairs.push_back({0, 0});
+        ++stats.leaf_pairs;
+      }
+    } else {
+      const float bound_a = leaf_a ? tree_a.root().radius : tree_a.subtree_radius(0);
+      const float bound_b = leaf_b ? tree_b.root().radius : tree_b.subtree_radius(0);
+      const float reach = (bound_a + bound_b + settings.margin) * kBoundSlack;
+      if (distance_squared <= reach * reach) stack_.push_back({0, 0});
+    }
+  }
 
   // Paper §3.2: while two nodes' bounds overlap, the children of one meet the other, down to the
   // leaves. The node with the larger subtree bound is split, which keeps the two sides' spheres of
@@ -135,15 +163,9 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
                          (b.acts_as_leaf(pair.node_b) ||
                           tree_a.subtree_radius(pair.node_a) >= tree_b.subtree_radius(pair.node_b));
     if (split_a) {
-      place_children(a, world_a_, pair.node_a);
-      const std::uint32_t first = tree_a.first_child(pair.node_a);
-      const std::uint32_t end = first + tree_a.child_count(pair.node_a);
-      for (std::uint32_t c = first; c < end; ++c) visit(c, pair.node_b);
+      expand(a, world_a_, pair.node_a, b, world_b_, pair.node_b, true);
     } else {
-      place_children(b, world_b_, pair.node_b);
-      const std::uint32_t first = tree_b.first_child(pair.node_b);
-      const std::uint32_t end = first + tree_b.child_count(pair.node_b);
-      for (std::uint32_t c = first; c < end; ++c) visit(pair.node_a, c);
+      expand(b, world_b_, pair.node_b, a, world_a_, pair.node_a, false);
     }
   }
 
@@ -152,8 +174,9 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
   stats.cut_short_pairs = static_cast<std::uint32_t>(stack_.size());
   for (const NodePair& pair : stack_) {
     ++stats.sphere_tests;
-    if (spheres_overlap(world_a[pair.node_a], tree_a.sphere(pair.node_a).radius + settings.margin,
-                        world_b[pair.node_b], tree_b.sphere(pair.node_b).radius)) {
+    if (spheres_overlap(world_a_.center(pair.node_a),
+                        tree_a.sphere(pair.node_a).radius + settings.margin,
+                        world_b_.center(pair.node_b), tree_b.sphere(pair.node_b).radius)) {
       pairs.push_back(pair);
       ++stats.internal_pairs;
     }

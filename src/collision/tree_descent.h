@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "collision/child_test.h"
 #include "sphys/math.h"
 #include "sphys/sphere_tree.h"
 
@@ -56,6 +57,11 @@ struct DescentStats {
 // One per thread; not shared.
 class TreeDescent {
  public:
+  // The children of a node are placed and tested in `lanes` (kAuto: the widest the processor
+  // has); every lane set returns the same pairs in the same order.
+  explicit TreeDescent(SolverLanes lanes = SolverLanes::kAuto)
+      : test_children_(child_test_kernel(lanes)) {}
+
   // Appends to `pairs` every pair of leaves of tree a at pose_a and tree b at pose_b whose spheres
   // overlap (closed test: touching counts) or are apart by at most DescentSettings::margin, and
   // with a budget, the cut-short pairs described in
@@ -68,25 +74,30 @@ class TreeDescent {
   // World-frame spheres of the nodes of the pairs the last descend() returned (for contacts,
   // paper eq. 1-3); valid until the next call. Other nodes may hold stale centres.
   [[nodiscard]] Sphere world_sphere_a(const SphereTree& tree_a, std::uint32_t node) const {
-    return {world_a_.centers[node], tree_a.sphere(node).radius};
+    return {world_a_.center(node), tree_a.sphere(node).radius};
   }
   [[nodiscard]] Sphere world_sphere_b(const SphereTree& tree_b, std::uint32_t node) const {
-    return {world_b_.centers[node], tree_b.sphere(node).radius};
+    return {world_b_.center(node), tree_b.sphere(node).radius};
   }
 
  private:
-  // World centres of one tree, filled lazily: a node's children are placed the first time the
-  // node is expanded in a call (marked by the call's stamp), so a node far from the other body
-  // costs nothing and none is placed twice.
+  // World centres of one tree's nodes as columns, written as the descent expands their parents:
+  // a node far from the other body costs nothing. Each column has kChildLanes more floats than
+  // the tree has nodes, for the kernel's stores.
   struct WorldCenters {
-    std::vector<Vec3> centers;
-    std::vector<std::uint32_t> children_placed;  // stamp of the call that placed the children
+    std::vector<float> x, y, z;
+    [[nodiscard]] Vec3 center(std::uint32_t node) const { return {x[node], y[node], z[node]}; }
+    void set(std::uint32_t node, const Vec3& c) {
+      x[node] = c.x();
+      y[node] = c.y();
+      z[node] = c.z();
+    }
   };
 
   std::vector<NodePair> stack_;
   WorldCenters world_a_;
   WorldCenters world_b_;
-  std::uint32_t stamp_ = 0;
+  ChildTestKernel test_children_;
 };
 
 }  // namespace sphys

@@ -57,6 +57,7 @@ struct PortableLanes {
   void store(float* p) const {
     for (int i = 0; i < W; ++i) p[i] = v[i];
   }
+  void store_unaligned(float* p) const { store(p); }
   // kRow floats of W rows at once: out[k] takes float k of row base + index[i] * stride in lane
   // i. The rows must each hold kRow readable floats.
   static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
@@ -159,6 +160,7 @@ struct Sse2Lanes {
                         base[index[3] * stride])};
   }
   void store(float* p) const { _mm_store_ps(p, v); }
+  void store_unaligned(float* p) const { _mm_storeu_ps(p, v); }
   // As PortableLanes::load_rows: each row's two halves, transposed four by four.
   static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
                         Sse2Lanes (&out)[kRow]) {
@@ -212,6 +214,9 @@ struct Sse2PairLanes {
   Sse2Lanes lo, hi;
 
   static Sse2PairLanes load(const float* p) { return {Sse2Lanes::load(p), Sse2Lanes::load(p + 4)}; }
+  static Sse2PairLanes load_unaligned(const float* p) {
+    return {Sse2Lanes::load_unaligned(p), Sse2Lanes::load_unaligned(p + 4)};
+  }
   static Sse2PairLanes splat(float x) { return {Sse2Lanes::splat(x), Sse2Lanes::splat(x)}; }
   static Sse2PairLanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {
     return {Sse2Lanes::gather(base, index, stride), Sse2Lanes::gather(base, index + 4, stride)};
@@ -219,6 +224,10 @@ struct Sse2PairLanes {
   void store(float* p) const {
     lo.store(p);
     hi.store(p + 4);
+  }
+  void store_unaligned(float* p) const {
+    lo.store_unaligned(p);
+    hi.store_unaligned(p + 4);
   }
   static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
                         Sse2PairLanes (&out)[kRow]) {
@@ -263,6 +272,7 @@ struct Sse2PairLanes {
   friend Mask operator<=(Sse2PairLanes a, Sse2PairLanes b) { return {a.lo <= b.lo, a.hi <= b.hi}; }
   friend Mask operator&(Mask a, Mask b) { return {a.lo & b.lo, a.hi & b.hi}; }
   friend bool any(Mask m) { return any(m.lo) || any(m.hi); }
+  friend std::uint32_t bits(Mask m) { return bits(m.lo) | (bits(m.hi) << 4); }
   friend Sse2PairLanes select(Mask m, Sse2PairLanes a, Sse2PairLanes b) {
     return {select(m.lo, a.lo, b.lo), select(m.hi, a.hi, b.hi)};
   }
@@ -278,6 +288,7 @@ struct Avx2Lanes {
   __m256 v;
 
   static Avx2Lanes load(const float* p) { return {_mm256_load_ps(p)}; }
+  static Avx2Lanes load_unaligned(const float* p) { return {_mm256_loadu_ps(p)}; }
   static Avx2Lanes splat(float x) { return {_mm256_set1_ps(x)}; }
   // Lane i takes base[index[i] * stride], as Sse2Lanes::gather.
   static Avx2Lanes gather(const float* base, const std::uint32_t* index, std::size_t stride) {
@@ -287,6 +298,7 @@ struct Avx2Lanes {
                            base[index[6] * stride], base[index[7] * stride])};
   }
   void store(float* p) const { _mm256_store_ps(p, v); }
+  void store_unaligned(float* p) const { _mm256_storeu_ps(p, v); }
   // As PortableLanes::load_rows: eight rows of eight, transposed.
   static void load_rows(const float* base, const std::uint32_t* index, std::size_t stride,
                         Avx2Lanes (&out)[kRow]) {
@@ -344,6 +356,7 @@ struct Avx2Lanes {
   friend Mask operator<=(Avx2Lanes a, Avx2Lanes b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
   friend Mask operator&(Mask a, Mask b) { return {_mm256_and_ps(a.on, b.on)}; }
   friend bool any(Mask m) { return _mm256_movemask_ps(m.on) != 0; }
+  friend std::uint32_t bits(Mask m) { return static_cast<std::uint32_t>(_mm256_movemask_ps(m.on)); }
   friend Avx2Lanes select(Mask m, Avx2Lanes a, Avx2Lanes b) {
     return {_mm256_blendv_ps(b.v, a.v, m.on)};
   }

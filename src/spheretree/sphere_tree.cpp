@@ -69,6 +69,18 @@ SphereTree SphereTree::from_nodes(std::span<const SphereTreeNode> nodes, int bra
     tree.subtree_radius_[i] = bound;
   }
 
+  tree.subtree_radius_.resize(n + kSphereColumnPadding, 0.0f);
+  for (std::vector<float>* column :
+       {&tree.center_x_, &tree.center_y_, &tree.center_z_, &tree.radius_}) {
+    column->assign(n + kSphereColumnPadding, 0.0f);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    tree.center_x_[i] = tree.spheres_[i].center.x();
+    tree.center_y_[i] = tree.spheres_[i].center.y();
+    tree.center_z_[i] = tree.spheres_[i].center.z();
+    tree.radius_[i] = tree.spheres_[i].radius;
+  }
+
   const int depth = level.back() + 1;
   tree.level_begin_.assign(static_cast<std::size_t>(depth) + 1, static_cast<std::uint32_t>(n));
   for (std::size_t i = n; i-- > 0;) tree.level_begin_[level[i]] = static_cast<std::uint32_t>(i);

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "sphys/contact.h"
+#include "sphys/error.h"
 #include "sphys/tools/build_tree.h"
 #include "sphys/tools/primitives.h"
 
@@ -171,6 +173,55 @@ TEST(TreeDescent, RandomTreesWithProtrudingChildrenGiveExactlyTheBruteForceLeafP
     }
   }
   EXPECT_GT(found, 1000u);
+}
+
+// The children are placed and tested in lanes: every lane set this processor has returns the
+// pairs the plain floats return, in the same order, with the same world centres and counts.
+TEST(TreeDescent, EveryLaneSetReturnsTheSamePairsInTheSameOrder) {
+  Rng rng(11);
+  std::vector<TreeDescent> descents;
+  descents.emplace_back(SolverLanes::kPortable);
+  for (const SolverLanes lanes : {SolverLanes::kSse2, SolverLanes::kAvx2}) {
+    try {
+      descents.emplace_back(lanes);
+    } catch (const Error& error) {
+      // Only AVX2 may be missing, and then the message says so.
+      EXPECT_EQ(lanes, SolverLanes::kAvx2) << error.what();
+      EXPECT_NE(std::string(error.what()).find("avx2"), std::string::npos) << error.what();
+    }
+  }
+  std::size_t found = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int branching = std::uniform_int_distribution<int>(2, 8)(rng);
+    const SphereTree tree_a = random_tree(rng, branching, 4);
+    const SphereTree tree_b = random_tree(rng, branching, 3);
+    const Transform pose_a = random_pose(rng, 1.5f);
+    const Transform pose_b = random_pose(rng, 1.5f);
+    DescentSettings settings;
+    settings.depth_a = trial % 3;
+    settings.margin = uniform(rng, 0.0f, 0.2f);
+    // Every fourth trial with a budget that cuts the descent short.
+    settings.max_sphere_tests = trial % 4 == 0 ? 40 : 0;
+    std::vector<NodePair> expected;
+    const DescentStats expected_stats =
+        descents[0].descend(tree_a, pose_a, tree_b, pose_b, settings, expected);
+    found += expected.size();
+    for (std::size_t d = 1; d < descents.size(); ++d) {
+      std::vector<NodePair> pairs;
+      const DescentStats stats =
+          descents[d].descend(tree_a, pose_a, tree_b, pose_b, settings, pairs);
+      ASSERT_EQ(pairs, expected) << "trial " << trial << ", lane set " << d;
+      EXPECT_EQ(stats.sphere_tests, expected_stats.sphere_tests);
+      EXPECT_EQ(stats.internal_pairs, expected_stats.internal_pairs);
+      for (const NodePair& pair : pairs) {
+        EXPECT_EQ(descents[d].world_sphere_a(tree_a, pair.node_a).center,
+                  descents[0].world_sphere_a(tree_a, pair.node_a).center);
+        EXPECT_EQ(descents[d].world_sphere_b(tree_b, pair.node_b).center,
+                  descents[0].world_sphere_b(tree_b, pair.node_b).center);
+      }
+    }
+  }
+  EXPECT_GT(found, 400u);
 }
 
 TEST(TreeDescent, SeparatedTreesCostOneTest) {

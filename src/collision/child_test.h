@@ -1,0 +1,57 @@
+#pragma once
+
+// The descent's inner loop in lanes: one node's children placed in the world and tested against
+// one node of the other tree, eight at a time (tree_descent.cpp). Plain arrays and no Eigen: the
+// AVX2 kernel's file must share no inline function with the rest of the library
+// (child_test_lanes_avx2.cpp).
+
+#include <cstdint>
+
+#include "sphys/solver_settings.h"
+
+namespace sphys {
+
+// The most children a node has (SphereTree's branching), all tested in one call. unit: children
+inline constexpr int kChildLanes = 8;
+
+struct ChildTest {
+  // The children's columns from the first child (SphereColumns: kChildLanes readable floats
+  // each), in their body's frame. unit: m
+  const float* x;
+  const float* y;
+  const float* z;
+  const float* radius;
+  const float* subtree_radius;
+  // Their body's pose: rotation (column-major) and translation. unit: m
+  float rotation[9];
+  float translation[3];
+  // The other node: its world centre (unit: m), its own radius and its bound (its own radius
+  // where it acts as a leaf, else its subtree radius). unit: m
+  float other[3];
+  float other_radius;
+  float other_bound;
+  float margin;  // DescentSettings::margin. unit: m
+  float slack;   // the bounds' relative slack. unit: dimensionless
+  // The children's world centres, written (kChildLanes writable floats each). unit: m
+  float* world_x;
+  float* world_y;
+  float* world_z;
+};
+
+// Bit i for child i (lanes past the last child hold nothing): its distance to the other node's
+// centre is within each reach, squared.
+struct ChildHits {
+  std::uint32_t leaf_pair;      // own radii + margin: a leaf pair
+  std::uint32_t leaf_bound;     // (own radius + other bound + margin) × slack
+  std::uint32_t subtree_bound;  // (subtree radius + other bound + margin) × slack
+};
+
+using ChildTestKernel = ChildHits (*)(const ChildTest& test);
+
+// The kernel in `lanes` (a lane set the processor has; kAuto: the widest). Every lane set gives
+// the same bits.
+[[nodiscard]] ChildTestKernel child_test_kernel(SolverLanes lanes);
+// The AVX2 kernel, or null where this build has none (child_test_lanes_avx2.cpp).
+[[nodiscard]] ChildTestKernel avx2_child_test_kernel();
+
+}  // namespace sphys
