@@ -74,6 +74,10 @@ class SphereTree {
   [[nodiscard]] std::uint32_t first_child(std::uint32_t node) const { return first_child_[node]; }
   // How many children a node has, 0..branching().
   [[nodiscard]] std::uint32_t child_count(std::uint32_t node) const { return child_count_[node]; }
+  // Bit i set where the node's child i has no children of its own.
+  [[nodiscard]] std::uint32_t childless_children(std::uint32_t node) const {
+    return childless_children_[node];
+  }
   // True for a node without children (on the last level or above it).
   [[nodiscard]] bool is_leaf(std::uint32_t node) const { return child_count_[node] == 0; }
   // Radius about the node's centre of a sphere holding the node's sphere and every sphere below
@@ -116,6 +120,7 @@ class SphereTree {
   std::vector<std::int32_t> parent_;
   std::vector<std::uint32_t> first_child_;
   std::vector<std::uint8_t> child_count_;
+  std::vector<std::uint8_t> childless_children_;
   std::vector<float> subtree_radius_;  // padded as the columns
   std::vector<float> center_x_;        // the columns, padded (SphereColumns)
   std::vector<float> center_y_;

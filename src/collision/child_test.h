@@ -14,28 +14,32 @@ namespace sphys {
 // The most children a node has (SphereTree's branching), all tested in one call. unit: children
 inline constexpr int kChildLanes = 8;
 
-struct ChildTest {
-  // The children's columns from the first child (SphereColumns: kChildLanes readable floats
-  // each), in their body's frame. unit: m
+// One tree at its pose for a descent, as the kernel reads it.
+struct PosedColumns {
+  // The tree's columns (SphereColumns: each padded by kChildLanes floats), in its body's frame.
+  // unit: m
   const float* x;
   const float* y;
   const float* z;
   const float* radius;
   const float* subtree_radius;
-  // Their body's pose: rotation (column-major) and translation. unit: m
+  // The body's pose: rotation (column-major) and translation. unit: m
   float rotation[9];
   float translation[3];
-  // The other node: its world centre (unit: m), its own radius and its bound (its own radius
-  // where it acts as a leaf, else its subtree radius). unit: m
-  float other[3];
-  float other_radius;
-  float other_bound;
-  float margin;  // DescentSettings::margin. unit: m
-  float slack;   // the bounds' relative slack. unit: dimensionless
-  // The children's world centres, written (kChildLanes writable floats each). unit: m
+  // The nodes' world centres, written for the children tested (each padded by kChildLanes
+  // floats). unit: m
   float* world_x;
   float* world_y;
   float* world_z;
+};
+
+// The node of the other tree that a node's children are tested against.
+struct OtherNode {
+  float center[3];  // its world centre. unit: m
+  float radius;     // its own radius. unit: m
+  float bound;      // its own radius where it acts as a leaf, else its subtree radius. unit: m
+  float margin;     // DescentSettings::margin. unit: m
+  float slack;      // the bounds' relative slack. unit: dimensionless
 };
 
 // Bit i for child i (lanes past the last child hold nothing): its distance to the other node's
@@ -46,7 +50,10 @@ struct ChildHits {
   std::uint32_t subtree_bound;  // (subtree radius + other bound + margin) × slack
 };
 
-using ChildTestKernel = ChildHits (*)(const ChildTest& test);
+// The children from node `first` on of `tree` (kChildLanes of them, those past the node's last
+// child ignored by the caller), placed and tested against `other`.
+using ChildTestKernel = ChildHits (*)(const PosedColumns& tree, std::uint32_t first,
+                                      const OtherNode& other);
 
 // The kernel in `lanes` (a lane set the processor has; kAuto: the widest). Every lane set gives
 // the same bits.

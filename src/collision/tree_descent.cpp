@@ -17,16 +17,35 @@ constexpr float kBoundSlack = 1.0f + 1e-5f;
 
 constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
 
-// One tree at its pose, cut to the levels in use.
+// One tree at its pose, cut to the levels in use, with its columns for the child-test kernel.
 struct PosedTree {
-  PosedTree(const SphereTree& t, const Transform& pose, int depth_used)
+  PosedTree(const SphereTree& t, const Transform& pose, int depth_used, float* world_x,
+            float* world_y, float* world_z)
       : tree(t), rotation(pose.rotation.toRotationMatrix()), translation(pose.translation) {
     leaf_from = t.level_begin(t.last_level(depth_used));
+    const SphereColumns spheres = t.columns();
+    columns = {.x = spheres.x,
+               .y = spheres.y,
+               .z = spheres.z,
+               .radius = spheres.radius,
+               .subtree_radius = spheres.subtree_radius,
+               .rotation = {},
+               .translation = {translation.x(), translation.y(), translation.z()},
+               .world_x = world_x,
+               .world_y = world_y,
+               .world_z = world_z};
+    std::copy_n(rotation.data(), 9, columns.rotation);
   }
 
   // The nodes of the last used level act as leaves even when they have children.
   [[nodiscard]] bool acts_as_leaf(std::uint32_t node) const {
     return node >= leaf_from || tree.is_leaf(node);
+  }
+  // Bit i set where the node's child i acts as a leaf: all of them on the last used level (a
+  // node's children share a level), else those without children.
+  [[nodiscard]] std::uint32_t leaf_children(std::uint32_t node) const {
+    return tree.first_child(node) >= leaf_from ? (1u << tree.child_count(node)) - 1u
+                                               : tree.childless_children(node);
   }
   [[nodiscard]] Vec3 place(const Vec3& body_point) const {
     return rotation * body_point + translation;
@@ -36,6 +55,7 @@ struct PosedTree {
   Mat3 rotation;
   Vec3 translation;
   std::uint32_t leaf_from = 0;
+  PosedColumns columns;
 };
 
 }  // namespace
@@ -57,42 +77,29 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
   fit(world_a_, tree_a.size());
   fit(world_b_, tree_b.size());
 
-  const PosedTree a(tree_a, pose_a, settings.depth_a);
-  const PosedTree b(tree_b, pose_b, settings.depth_b);
+  const PosedTree a(tree_a, pose_a, settings.depth_a, world_a_.x.data(), world_a_.y.data(),
+                    world_a_.z.data());
+  const PosedTree b(tree_b, pose_b, settings.depth_b, world_b_.x.data(), world_b_.y.data(),
+                    world_b_.z.data());
 
   // Places the children of `node` (of `side`, with world centres `world`) and tests each against
   // node `other` of the other side, all in one kernel call (child_test.h): a pair of leaves found
   // is returned, any other overlapping pair waits on the stack, both in the children's order.
-  const auto expand = [&](const PosedTree& side, WorldCenters& world, std::uint32_t node,
-                          const PosedTree& other_side, const WorldCenters& other_world,
-                          std::uint32_t other, bool children_of_a) {
+  const auto expand = [&](const PosedTree& side, std::uint32_t node, const PosedTree& other_side,
+                          const WorldCenters& other_world, std::uint32_t other,
+                          bool children_of_a) {
     const std::uint32_t first = side.tree.first_child(node);
     const std::uint32_t count = side.tree.child_count(node);
-    const SphereColumns columns = side.tree.columns();
     const bool other_leaf = other_side.acts_as_leaf(other);
     const float other_radius = other_side.tree.sphere(other).radius;
-    ChildTest test{
-        .x = columns.x + first,
-        .y = columns.y + first,
-        .z = columns.z + first,
-        .radius = columns.radius + first,
-        .subtree_radius = columns.subtree_radius + first,
-        .rotation = {},
-        .translation = {side.translation.x(), side.translation.y(), side.translation.z()},
-        .other = {other_world.x[other], other_world.y[other], other_world.z[other]},
-        .other_radius = other_radius,
-        .other_bound = other_leaf ? other_radius : other_side.tree.subtree_radius(other),
+    const OtherNode against{
+        .center = {other_world.x[other], other_world.y[other], other_world.z[other]},
+        .radius = other_radius,
+        .bound = other_leaf ? other_radius : other_side.tree.subtree_radius(other),
         .margin = settings.margin,
-        .slack = kBoundSlack,
-        .world_x = world.x.data() + first,
-        .world_y = world.y.data() + first,
-        .world_z = world.z.data() + first};
-    std::copy_n(side.rotation.data(), 9, test.rotation);
-    const ChildHits hits = test_children_(test);
-    std::uint32_t leaves = 0;
-    for (std::uint32_t i = 0; i < count; ++i) {
-      if (side.acts_as_leaf(first + i)) leaves |= 1u << i;
-    }
+        .slack = kBoundSlack};
+    const ChildHits hits = test_children_(side.columns, first, against);
+    const std::uint32_t leaves = side.leaf_children(node);
     std::uint32_t hit = ((leaves & (other_leaf ? hits.leaf_pair : hits.leaf_bound)) |
                          (~leaves & hits.subtree_bound)) &
                         ((1u << count) - 1u);
@@ -163,9 +170,9 @@ DescentStats TreeDescent::descend(const SphereTree& tree_a, const Transform& pos
                          (b.acts_as_leaf(pair.node_b) ||
                           tree_a.subtree_radius(pair.node_a) >= tree_b.subtree_radius(pair.node_b));
     if (split_a) {
-      expand(a, world_a_, pair.node_a, b, world_b_, pair.node_b, true);
+      expand(a, pair.node_a, b, world_b_, pair.node_b, true);
     } else {
-      expand(b, world_b_, pair.node_b, a, world_a_, pair.node_a, false);
+      expand(b, pair.node_b, a, world_a_, pair.node_a, false);
     }
   }
 

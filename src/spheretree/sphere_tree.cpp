@@ -69,6 +69,14 @@ SphereTree SphereTree::from_nodes(std::span<const SphereTreeNode> nodes, int bra
     tree.subtree_radius_[i] = bound;
   }
 
+  tree.childless_children_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::uint32_t k = 0; k < tree.child_count_[i]; ++k) {
+      if (tree.child_count_[tree.first_child_[i] + k] == 0) {
+        tree.childless_children_[i] |= static_cast<std::uint8_t>(1u << k);
+      }
+    }
+  }
   tree.subtree_radius_.resize(n + kSphereColumnPadding, 0.0f);
   for (std::vector<float>* column :
        {&tree.center_x_, &tree.center_y_, &tree.center_z_, &tree.radius_}) {
