@@ -576,8 +576,8 @@ def test_read_recording_errors(tmp_path, simulate_cli):
         "header.sphysrec": (data[:20], "truncated header: the file has 20 bytes"),
         "cut.sphysrec": (data[:-5], "truncated frames"),
         "long.sphysrec": (data + b"xyz", "3 trailing bytes after the last frame"),
-        "version.sphysrec": (data[:8] + (2).to_bytes(4, "little") + data[12:],
-                             "unsupported recording version 2"),
+        "version.sphysrec": (data[:8] + (3).to_bytes(4, "little") + data[12:],
+                             "unsupported recording version 3"),
     }
     for name, (content, message) in cases.items():
         path = tmp_path / name
