@@ -34,7 +34,8 @@ JointImpulses scaled(const JointImpulses& impulses, float scale) {
           .motor = scale * impulses.motor,
           .lower = scale * impulses.lower,
           .upper = scale * impulses.upper,
-          .cone = scale * impulses.cone};
+          .cone = scale * impulses.cone,
+          .friction = scale * impulses.friction};
 }
 
 }  // namespace

@@ -114,6 +114,8 @@ def test_limits_and_springs_set_from_python_are_read_back(sphere_tree):
         body_a=b, spring=sphys.JointSpring(hertz=-2))), "spring.hertz"),
     (lambda w, b: w.add_joint(sphys.JointDesc(
         body_a=b, cone=sphys.JointCone(enabled=True, angle=4))), "cone.angle"),
+    (lambda w, b: w.add_joint(sphys.JointDesc(body_a=b, friction=-1)), "friction"),
+    (lambda w, b: w.add_joint(sphys.JointDesc(body_a=b, friction=float("nan"))), "friction"),
     (lambda w, b: w.add_joint(sphys.JointDesc(type=sphys.JointType.DISTANCE, body_a=b,
                                               length=0)), "length"),
     (lambda w, b: w.add_joint(sphys.JointDesc(body_a=b, body_b=b)), "body_b"),

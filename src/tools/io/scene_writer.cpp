@@ -93,6 +93,7 @@ Json joint_json(const JointSpec& joint) {
                    {"damping_ratio", shortest_double(d.spring.damping_ratio)},
                    {"target", shortest_double(d.spring.target)}};
   out["cone"] = {{"enabled", d.cone.enabled}, {"angle", shortest_double(d.cone.angle)}};
+  out["friction"] = shortest_double(d.friction);
   out["length"] = shortest_double(d.length);
   out["collide_connected"] = d.collide_connected;
   return out;
