@@ -432,7 +432,8 @@ def test_recording_writer_round_trip(tmp_path):
         writer.add_frame(frame)
     assert not path.exists()  # only finish() puts the file in place
     writer.finish()
-    assert path.stat().st_size == 32 + len(metadata.encode()) + 28 * bodies * frames
+    # The header, the metadata, the joint count (no joints), the frames.
+    assert path.stat().st_size == 32 + len(metadata.encode()) + 4 + 28 * bodies * frames
     recording = sphys.read_recording(str(path))
     assert recording.body_count == bodies and recording.frame_count == frames
     assert recording.time_step == 1.0 / 30.0

@@ -30,12 +30,12 @@ struct BodyPose {
 
 // A joint as a recording keeps it: enough to draw it from the recorded body poses.
 struct RecordedJoint {
-  JointType type = JointType::kBall;
+  JointType type = JointType::kBall;  // what the joint leaves free
   // Indices into the recording's bodies; none: the world. Not both none, and not the same.
   std::optional<std::uint32_t> body_a;
-  std::optional<std::uint32_t> body_b;
-  Vec3 anchor_a = Vec3::Zero();  // in body a's frame (the world's for none). unit: m
-  Vec3 anchor_b = Vec3::Zero();  // in body b's frame (the world's for none). unit: m
+  std::optional<std::uint32_t> body_b;  // as body_a
+  Vec3 anchor_a = Vec3::Zero();         // in body a's frame (the world's for none). unit: m
+  Vec3 anchor_b = Vec3::Zero();         // in body b's frame (the world's for none). unit: m
   // The same joint: every field equal.
   friend bool operator==(const RecordedJoint&, const RecordedJoint&) = default;
 };
