@@ -274,7 +274,8 @@ void run(const SimulateOptions& options) {
   const fs::path recording_path = out / "recording.sphysrec";
 
   tools::RecordingWriter recording(recording_path, static_cast<std::uint32_t>(setup.bodies.size()),
-                                   scene.time_step, recorded_scene(scene));
+                                   scene.time_step, recorded_scene(scene),
+                                   tools::recorded_joints(scene));
   recording.add_frame(poses(setup));
   std::vector<std::vector<double>> rows;
   rows.reserve(static_cast<std::size_t>(scene.frames));

@@ -23,6 +23,7 @@ struct ViewArguments {
   std::optional<std::string> screenshot;
   bool no_cache = false;
   bool no_shadows = false;
+  bool no_joints = false;  // --no-joints, of a scene's joints (not a robot's --joint)
   // A robot (the scene argument is a .urdf file).
   std::vector<std::string> packages;
   std::optional<std::string> spheres_from;
@@ -74,6 +75,8 @@ void add_view_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--show-contacts", options->show_contacts, "Draw contact points and normals");
   cmd->add_flag("--show-boxes", options->show_boxes, "Draw the broad phase's boxes");
+  cmd->add_flag("--no-joints", args->no_joints,
+                "Draw no joints (by default each is drawn over the bodies; key J toggles it)");
   cmd->add_flag("--no-shadows", args->no_shadows, "Draw without the sun's shadows (faster)");
   cmd->add_option("--screenshot", args->screenshot,
                   "Render one frame to this PNG and exit, after --frames physics frames (with "
@@ -124,6 +127,7 @@ void add_view_command(CLI::App& app) {
     if (args->screenshot) options->screenshot = *args->screenshot;
     options->use_cache = !args->no_cache;
     options->shadows = !args->no_shadows;
+    options->show_joints = !args->no_joints;
     viewer::run_viewer(*options);
   });
 }

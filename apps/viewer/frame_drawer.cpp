@@ -44,7 +44,7 @@ void FrameDrawer::draw(bool first) {
   }
   glViewport(0, 0, window_.width(), window_.height());
   drawer_.draw(renderer_, lines_, first ? start_camera_ : ground_camera_, window_.aspect(),
-               {bodies_, {}, {}}, Overlays{});
+               {bodies_, {}, {}, {}}, Overlays{});
   glFinish();
 }
 

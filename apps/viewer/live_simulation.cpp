@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include "sphys/tools/scene_file.h"
+
 namespace sphys::viewer {
 namespace {
 
@@ -23,7 +25,7 @@ Quat random_orientation(std::mt19937& random) {
 }  // namespace
 
 LiveSimulation::LiveSimulation(tools::Scene scene, tools::BuildWorldOptions build)
-    : scene_(std::move(scene)), build_(std::move(build)) {
+    : scene_(std::move(scene)), build_(std::move(build)), joints_(tools::recorded_joints(scene_)) {
   reset();
 }
 

@@ -10,6 +10,7 @@
 
 #include "body_view.h"
 #include "sphys/tools/build_world.h"
+#include "sphys/tools/recording.h"
 #include "sphys/tools/scene.h"
 
 namespace sphys::viewer {
@@ -31,6 +32,8 @@ class LiveSimulation {
   [[nodiscard]] std::size_t body_count() const { return bodies_.size(); }
   // The bodies as they are now, the scene's first, then those added.
   void bodies(std::vector<BodyView>& out) const;
+  // The scene's joints, their bodies indices into bodies().
+  [[nodiscard]] const std::vector<tools::RecordedJoint>& joints() const { return joints_; }
   // The broad phase's box of every body, the static ground's included.
   void bounds(std::vector<Aabb>& out) const;
 
@@ -51,6 +54,7 @@ class LiveSimulation {
   tools::Scene scene_;
   tools::BuildWorldOptions build_;
   tools::SimulationSetup setup_;
+  std::vector<tools::RecordedJoint> joints_;
   std::vector<BodyId> bodies_;
   std::vector<std::uint32_t> body_shape_;
   struct Added {

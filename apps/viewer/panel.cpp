@@ -11,6 +11,8 @@ void overlay_controls(Overlays& overlays, bool live) {
   ImGui::SliderInt("sphere level", &overlays.sphere_level, 0, 6,
                    overlays.sphere_level == 0 ? "off" : "%d");
   ImGui::Checkbox("shadows", &overlays.shadows);
+  ImGui::SameLine();
+  ImGui::Checkbox("joints (J)", &overlays.joints);
   if (live) {
     ImGui::SameLine();
     ImGui::Checkbox("contacts", &overlays.contacts);

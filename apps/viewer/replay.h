@@ -24,6 +24,10 @@ class Replay {
   [[nodiscard]] double time_step() const { return recording_.time_step; }
   [[nodiscard]] const tools::Scene& scene() const { return scene_; }
   [[nodiscard]] const std::vector<tools::BodyShape>& shapes() const { return setup_.shapes; }
+  // The recording's joints, their bodies indices into bodies().
+  [[nodiscard]] const std::vector<tools::RecordedJoint>& joints() const {
+    return recording_.joints;
+  }
   // The bodies at frame `frame` (0 .. frame_count - 1), in the scene's order.
   void bodies(std::uint32_t frame, std::vector<BodyView>& out) const;
 

@@ -1,6 +1,9 @@
 #include "scene_drawer.h"
 
 #include <algorithm>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -19,6 +22,9 @@ constexpr float kSphereAlpha = 0.25f;
 const Eigen::Vector3f kContactColour(0.95f, 0.10f, 0.10f);
 const Eigen::Vector3f kNormalColour(1.00f, 0.85f, 0.10f);
 const Eigen::Vector3f kBoxColour(0.10f, 0.75f, 0.25f);
+const Eigen::Vector3f kJointColour(0.90f, 0.15f, 0.90f);
+// A hinge, ball or weld whose anchors are further apart than kLargeJointGap.
+const Eigen::Vector3f kJointGapColour(1.00f, 0.50f, 0.00f);
 // The sun's shadows cover a sphere around what the camera looks at, as wide as the view is far,
 // within these bounds: wider would blur them, narrower cut them off. unit: m
 constexpr float kMinShadowReach = 10.0f;
@@ -26,6 +32,17 @@ constexpr float kMaxShadowReach = 80.0f;
 // Half the arms of a contact's cross, and the length of its normal. unit: m
 constexpr float kContactMark = 0.03f;
 constexpr float kNormalLength = 0.25f;
+// Half the arms of the cross at a joint's anchor on body b. unit: m
+constexpr float kJointMark = 0.05f;
+// A gap between a hinge's, ball's or weld's anchors this large is drawn in kJointGapColour: the
+// joint tests hold theirs under 2 mm, the ragdoll's under 2 cm (docs/joints.md). unit: m
+constexpr float kLargeJointGap = 0.01f;
+
+// The joint types whose two anchors are one point: for them the anchors' distance is the joint's
+// gap (a slider's anchors slide apart, a distance joint's are its rod's ends).
+bool holds_anchors_together(JointType type) {
+  return type == JointType::kHinge || type == JointType::kBall || type == JointType::kWeld;
+}
 
 Eigen::Matrix4f model_matrix(const Transform& pose, float scale = 1.0f) {
   Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
@@ -70,6 +87,7 @@ void SceneDrawer::draw(Renderer& renderer, LineRenderer& lines, const OrbitCamer
   // See-through spheres last, so that they do not hide what lies behind them.
   if (overlays.sphere_level > 0) draw_spheres(renderer, frame.bodies, overlays.sphere_level);
   if (overlays.contacts) draw_contacts(lines, frame.contacts);
+  if (overlays.joints) draw_joints(lines, frame.bodies, frame.joints);
 }
 
 // The spheres of one level of each body's tree, see-through, as in the paper's Figure 1.
@@ -123,6 +141,43 @@ void SceneDrawer::draw_boxes(LineRenderer& lines, std::span<const Aabb> boxes) {
     }
   }
   lines.draw(points_, kBoxColour, false);
+}
+
+// Each joint as its bodies' arms, centre to anchor, the segment between its two anchors and a
+// cross at body b's anchor, drawn over everything: a joint lies inside its bodies. A joint to
+// the world has no arm on the world's side. A joint whose anchors have come apart is drawn whole
+// in the gap's colour.
+void SceneDrawer::draw_joints(LineRenderer& lines, std::span<const BodyView> bodies,
+                              std::span<const tools::RecordedJoint> joints) {
+  points_.clear();
+  gap_points_.clear();
+  const auto within = [&](const std::optional<std::uint32_t>& body) {
+    return !body || *body < bodies.size();
+  };
+  const auto placed = [&](const std::optional<std::uint32_t>& body, const Vec3& anchor) {
+    return body ? bodies[*body].pose.apply(anchor) : anchor;
+  };
+  for (const tools::RecordedJoint& joint : joints) {
+    if (!within(joint.body_a) || !within(joint.body_b)) continue;
+    const Vec3 a = placed(joint.body_a, joint.anchor_a);
+    const Vec3 b = placed(joint.body_b, joint.anchor_b);
+    const bool gapped = holds_anchors_together(joint.type) && (b - a).norm() > kLargeJointGap;
+    std::vector<Eigen::Vector3f>& out = gapped ? gap_points_ : points_;
+    for (const auto& [body, anchor] : {std::pair{joint.body_a, a}, {joint.body_b, b}}) {
+      if (!body) continue;
+      out.push_back(bodies[*body].pose.translation);
+      out.push_back(anchor);
+    }
+    out.push_back(a);
+    out.push_back(b);
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec3 arm = kJointMark * Vec3::Unit(axis);
+      out.push_back(b - arm);
+      out.push_back(b + arm);
+    }
+  }
+  lines.draw(points_, kJointColour, true);
+  lines.draw(gap_points_, kJointGapColour, true);
 }
 
 // Tall stacks rise out of view: the live view is for the pile they make.

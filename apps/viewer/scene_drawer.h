@@ -1,7 +1,7 @@
 #pragma once
 
 // Draws a frame of a scene: the ground and the bodies' meshes in the sun's shadows, and the
-// overlays (sphere-tree level, contacts and normals, broad-phase boxes, sleeping tint).
+// overlays (sphere-tree level, contacts and normals, broad-phase boxes, joints, sleeping tint).
 
 #include <cstdint>
 #include <optional>
@@ -14,6 +14,7 @@
 #include "renderer.h"
 #include "sphys/contact.h"
 #include "sphys/tools/build_world.h"
+#include "sphys/tools/recording.h"
 #include "sphys/tools/scene.h"
 
 namespace sphys::viewer {
@@ -22,6 +23,7 @@ struct Overlays {
   int sphere_level = 0;  // tree level drawn see-through, 1 the root; 0: none
   bool contacts = false;
   bool boxes = false;
+  bool joints = true;  // each joint's anchors and the arms from its bodies' centres
   bool sleeping_tint = true;
   bool shadows = true;  // the sun's, cast by the bodies
 };
@@ -30,6 +32,8 @@ struct FrameContents {
   std::span<const BodyView> bodies;
   std::span<const Contact> contacts;  // empty for a replay
   std::span<const Aabb> boxes;        // empty for a replay
+  // Their bodies are indices into `bodies`.
+  std::span<const tools::RecordedJoint> joints;
 };
 
 class SceneDrawer {
@@ -45,13 +49,16 @@ class SceneDrawer {
   void draw_spheres(Renderer& renderer, std::span<const BodyView> bodies, int level) const;
   void draw_contacts(LineRenderer& lines, std::span<const Contact> contacts);
   void draw_boxes(LineRenderer& lines, std::span<const Aabb> boxes);
+  void draw_joints(LineRenderer& lines, std::span<const BodyView> bodies,
+                   std::span<const tools::RecordedJoint> joints);
 
   const tools::Scene* scene_;
   const std::vector<tools::BodyShape>* shapes_;
   std::vector<std::uint32_t> shape_meshes_;
   std::optional<std::uint32_t> ground_;
   std::uint32_t sphere_ = 0;
-  std::vector<Eigen::Vector3f> points_;  // line end points, reused
+  std::vector<Eigen::Vector3f> points_;      // line end points, reused
+  std::vector<Eigen::Vector3f> gap_points_;  // those of the joints drawn in the gap's colour
 };
 
 // Looks at the middle of the bodies' starting positions, low enough to see the ground, from far

@@ -65,6 +65,7 @@ Overlays overlays_of(const ViewerOptions& options) {
   overlays.sphere_level = options.sphere_level;
   overlays.contacts = options.show_contacts;
   overlays.boxes = options.show_boxes;
+  overlays.joints = options.show_joints;
   overlays.shadows = options.shadows;
   return overlays;
 }
@@ -154,6 +155,7 @@ void run_live(const ViewerOptions& options, tools::Scene scene) {
     controls.step_once |= input.pressed(GLFW_KEY_N);
     controls.reset |= input.pressed(GLFW_KEY_R);
     controls.drop |= input.pressed(GLFW_KEY_B);
+    if (input.pressed(GLFW_KEY_J)) controls.overlays.joints = !controls.overlays.joints;
     const bool shoot_at_cursor = input.pressed(GLFW_KEY_SPACE);
 
     if (controls.restart) {
@@ -222,7 +224,8 @@ void run_live(const ViewerOptions& options, tools::Scene scene) {
     if (controls.overlays.boxes) simulation->bounds(boxes);
     glViewport(0, 0, window.width(), window.height());
     drawer->draw(renderer, lines, camera, window.aspect(),
-                 {bodies, simulation->world().contacts(), boxes}, controls.overlays);
+                 {bodies, simulation->world().contacts(), boxes, simulation->joints()},
+                 controls.overlays);
     gui.render();
     glfwSwapBuffers(window.handle());
   }
@@ -261,6 +264,7 @@ void run_replay(const ViewerOptions& options) {
     if (input.pressed(GLFW_KEY_P) || input.pressed(GLFW_KEY_SPACE)) {
       controls.playing = !controls.playing;
     }
+    if (input.pressed(GLFW_KEY_J)) controls.overlays.joints = !controls.overlays.joints;
     if (input.pressed(GLFW_KEY_LEFT)) controls.frame = std::max(0, controls.frame - 1);
     if (input.pressed(GLFW_KEY_RIGHT)) controls.frame = std::min(last, controls.frame + 1);
     if (std::floor(position) != controls.frame) position = controls.frame;  // the slider moved
@@ -274,7 +278,8 @@ void run_replay(const ViewerOptions& options) {
     replay_panel(title, replay.frame_count(), replay.time_step(), clock.fps, controls);
     replay.bodies(static_cast<std::uint32_t>(controls.frame), bodies);
     glViewport(0, 0, window.width(), window.height());
-    drawer.draw(renderer, lines, camera, window.aspect(), {bodies, {}, {}}, controls.overlays);
+    drawer.draw(renderer, lines, camera, window.aspect(), {bodies, {}, {}, replay.joints()},
+                controls.overlays);
     gui.render();
     glfwSwapBuffers(window.handle());
   }
@@ -306,8 +311,8 @@ void live_screenshot(const ViewerOptions& options, tools::Scene scene) {
   Renderer renderer;
   SceneDrawer drawer(renderer, simulation.scene(), simulation.shapes());
   draw_and_save(window, renderer, drawer, simulation.scene(),
-                {bodies, simulation.world().contacts(), boxes}, overlays_of(options),
-                *options.screenshot);
+                {bodies, simulation.world().contacts(), boxes, simulation.joints()},
+                overlays_of(options), *options.screenshot);
 }
 
 void replay_screenshot(const ViewerOptions& options) {
@@ -318,8 +323,8 @@ void replay_screenshot(const ViewerOptions& options) {
   const Window window(options.width, options.height, options.msaa);
   Renderer renderer;
   SceneDrawer drawer(renderer, replay.scene(), replay.shapes());
-  draw_and_save(window, renderer, drawer, replay.scene(), {bodies, {}, {}}, overlays_of(options),
-                *options.screenshot);
+  draw_and_save(window, renderer, drawer, replay.scene(), {bodies, {}, {}, replay.joints()},
+                overlays_of(options), *options.screenshot);
 }
 
 }  // namespace

@@ -25,6 +25,7 @@ struct ViewerOptions {
   int sphere_level = 0;                           // sphere overlay: tree level drawn; 0: none
   bool show_contacts = false;
   bool show_boxes = false;
+  bool show_joints = true;
   bool shadows = true;
   std::optional<std::filesystem::path> screenshot;
   // Physics frames before the screenshot; with a replay, the recording's frame shown.

@@ -129,7 +129,7 @@ void Input::update(const Window& window, const Gui& gui, OrbitCamera& camera) {
     }
     camera.zoom(ImGui::GetIO().MouseWheel);
   }
-  for (const int key : {GLFW_KEY_SPACE, GLFW_KEY_B, GLFW_KEY_N, GLFW_KEY_P, GLFW_KEY_R,
+  for (const int key : {GLFW_KEY_SPACE, GLFW_KEY_B, GLFW_KEY_J, GLFW_KEY_N, GLFW_KEY_P, GLFW_KEY_R,
                         GLFW_KEY_LEFT, GLFW_KEY_RIGHT}) {
     const bool down = glfwGetKey(window.handle(), key) == GLFW_PRESS;
     const auto k = static_cast<std::size_t>(key);

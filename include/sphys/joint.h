@@ -85,6 +85,11 @@ struct JointDesc {
   JointMotor motor;    // hinge and slider
   JointSpring spring;  // hinge, slider, distance; a weld's softness (its target unused)
   JointCone cone;      // ball
+  // Friction in the joint, >= 0; 0 is none: the most torque (hinge: about its axis; ball: about
+  // every axis) or force (slider: along its axis) with which it resists its bodies' relative
+  // motion, as a motor holding speed 0 would (Box2D v3's ragdoll), so that a limb comes to rest.
+  // Welds and distance joints have none. unit: N·m (hinge, ball) or N (slider)
+  float friction = 0.0f;
   // A distance joint's length: its rod's, or its spring's rest length, > 0. unit: m
   float length = 1.0f;
   // Whether the two bodies' contacts with each other count (off: they pass through each other).

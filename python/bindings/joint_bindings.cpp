@@ -122,8 +122,8 @@ void bind_desc(py::module_& m) {
   desc.def(py::init([](JointType type, BodyId body_a, BodyId body_b, const py::object& anchor_a,
                        const py::object& anchor_b, const py::object& axis_a,
                        const py::object& axis_b, const JointLimit& limit, const JointMotor& motor,
-                       const JointSpring& spring, const JointCone& cone, float length,
-                       bool collide_connected) {
+                       const JointSpring& spring, const JointCone& cone, float friction,
+                       float length, bool collide_connected) {
              JointDesc d;
              d.type = type;
              d.body_a = body_a;
@@ -136,6 +136,7 @@ void bind_desc(py::module_& m) {
              d.motor = motor;
              d.spring = spring;
              d.cone = cone;
+             d.friction = friction;
              d.length = length;
              d.collide_connected = collide_connected;
              return d;
@@ -146,11 +147,12 @@ void bind_desc(py::module_& m) {
            py::arg("axis_a") = py::make_tuple(1, 0, 0), py::arg("axis_b") = py::make_tuple(1, 0, 0),
            py::arg("limit") = JointLimit{}, py::arg("motor") = JointMotor{},
            py::arg("spring") = JointSpring{}, py::arg("cone") = JointCone{},
-           py::arg("length") = JointDesc{}.length,
+           py::arg("friction") = JointDesc{}.friction, py::arg("length") = JointDesc{}.length,
            py::arg("collide_connected") = JointDesc{}.collide_connected,
            "A joint of `type` between body_a and body_b (BodyId() for the world): anchors (m) and "
-           "axes in each body's frame, the optional limit, motor, spring and cone, a distance "
-           "joint's length (m), and whether the two bodies still collide.")
+           "axes in each body's frame, the optional limit, motor, spring and cone, the friction "
+           "(N·m or N), a distance joint's length (m), and whether the two bodies still "
+           "collide.")
       .def_readwrite("type", &JointDesc::type, "What the joint leaves free (JointType).")
       .def_readwrite("body_a", &JointDesc::body_a,
                      "A body of the world, or BodyId() for the world.")
@@ -163,6 +165,10 @@ void bind_desc(py::module_& m) {
       .def_readwrite("spring", &JointDesc::spring,
                      "Hinge, slider, distance; a weld's softness, its target unused (JointSpring).")
       .def_readwrite("cone", &JointDesc::cone, "Ball (JointCone).")
+      .def_readwrite("friction", &JointDesc::friction,
+                     "The most torque (hinge, ball: about every axis) or force (slider) with "
+                     "which the joint resists its bodies' relative motion, >= 0; 0 is none. "
+                     "unit: N·m or N")
       .def_readwrite("length", &JointDesc::length,
                      "A distance joint's length: its rod's, or its spring's rest length, > 0. "
                      "unit: m")

@@ -267,6 +267,25 @@ void bind_scene(py::module_& m) {
       .def_readonly("body_count", &tools::Recording::body_count, "bodies in every frame")
       .def_readonly("frame_count", &tools::Recording::frame_count, "frames recorded")
       .def_property_readonly(
+          "joints",
+          [](const tools::Recording& r) {
+            py::list joints;
+            for (const tools::RecordedJoint& joint : r.joints) {
+              py::dict entry;
+              entry["type"] = joint.type;
+              entry["body_a"] = joint.body_a;
+              entry["body_b"] = joint.body_b;
+              entry["anchor_a"] =
+                  py::make_tuple(joint.anchor_a.x(), joint.anchor_a.y(), joint.anchor_a.z());
+              entry["anchor_b"] =
+                  py::make_tuple(joint.anchor_b.x(), joint.anchor_b.y(), joint.anchor_b.z());
+              joints.append(entry);
+            }
+            return joints;
+          },
+          "The joints as dicts: type (JointType), body_a and body_b (body indices, None for the "
+          "world), anchor_a and anchor_b (in each body's frame, m); none before version 2.")
+      .def_property_readonly(
           "positions", [](const py::object& self) { return pose_member_view(self, false, 3); },
           "(F, B, 3) float32 read-only view: each body's centre of mass per frame. unit: m")
       .def_property_readonly(

@@ -1,4 +1,5 @@
-// A ball joint (spherical): three point rows hold the anchors together; an optional swing cone
+// A ball joint (spherical): three point rows hold the anchors together; an optional friction
+// resists its turning about every axis (three angular rows); an optional swing cone
 // keeps the angle between the bodies' axes within its half-angle (one angular row across both
 // axes), and an optional twist limit bounds the turn about them (one angular row about their
 // mean), with the spring and motor on the twist as a hinge's.
@@ -39,6 +40,7 @@ bool twist_row(const JointGeometry& g, Row& row) {
 
 void warm_start_ball(const JointModel& joint, JointBody& a, JointBody& b) {
   const JointGeometry g = joint_geometry(joint, a, b);
+  apply(angular_rows<3>(Mat3::Identity()), RowVector<3>(joint.impulses.friction), a, b);
   Row row;
   float room = 0.0f;
   if (cone_row(g, joint.desc.cone.angle, row, room)) apply(row, joint.impulses.cone, a, b);
@@ -49,6 +51,7 @@ void warm_start_ball(const JointModel& joint, JointBody& a, JointBody& b) {
 void solve_ball(JointModel& joint, const PreparedJoint& prepared, const JointPass& pass,
                 JointBody& a, JointBody& b) {
   const JointGeometry g = joint_geometry(joint, a, b);
+  solve_turn_friction(joint, pass, a, b, joint.impulses.friction);
   Row row;
   float room = 0.0f;
   if (joint.desc.cone.enabled && cone_row(g, joint.desc.cone.angle, row, room)) {
@@ -70,6 +73,7 @@ JointState measure_ball(const JointModel& joint, const JointBody& a, const Joint
   state.position = twist_angle(g);
   state.gap = g.d.norm();
   state.force = inverse_h * impulses.linear;
+  state.torque = inverse_h * impulses.friction;
   Row row;
   float room = 0.0f;
   if (cone_row(g, joint.desc.cone.angle, row, room)) {

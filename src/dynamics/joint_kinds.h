@@ -33,4 +33,14 @@ void solve_point(const JointGeometry& g, JointModel& joint, const PreparedJoint&
                  const JointPass& pass, JointBody& a, JointBody& b);
 [[nodiscard]] RowBlock<3> point_rows(const JointGeometry& g);
 
+// A hinge's or slider's friction along its row: a rigid row holding rate 0 whose impulse stays
+// within ± JointDesc::friction h, as a motor at speed 0 (Box2D v3's ragdoll), solving and
+// relaxing alike. `impulse` is its impulse so far in the substep.
+void solve_row_friction(const Row& row, const JointModel& joint, const JointPass& pass,
+                        JointBody& a, JointBody& b, float& impulse);
+// A ball joint's friction: three rigid rows holding the relative turning at 0, their impulse a
+// torque impulse of length at most JointDesc::friction h, the same about every axis.
+void solve_turn_friction(const JointModel& joint, const JointPass& pass, JointBody& a, JointBody& b,
+                         Vec3& impulse);
+
 }  // namespace sphys

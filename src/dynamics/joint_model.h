@@ -26,6 +26,9 @@ struct JointImpulses {
   float lower = 0.0f;  // the lower limit's, >= 0
   float upper = 0.0f;  // the upper limit's, >= 0
   float cone = 0.0f;   // a ball joint's swing cone, >= 0
+  // The friction's rows (JointDesc::friction): a hinge's about its axis and a slider's along its
+  // axis in x; a ball's about the world's axes.
+  Vec3 friction = Vec3::Zero();
 };
 
 struct JointModel {

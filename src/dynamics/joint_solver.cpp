@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/substep_change.h"
+
 namespace sphys {
 namespace {
 
@@ -34,7 +36,8 @@ JointImpulses scaled(const JointImpulses& impulses, float scale) {
           .motor = scale * impulses.motor,
           .lower = scale * impulses.lower,
           .upper = scale * impulses.upper,
-          .cone = scale * impulses.cone};
+          .cone = scale * impulses.cone,
+          .friction = scale * impulses.friction};
 }
 
 }  // namespace
@@ -60,6 +63,7 @@ void JointSolver::prepare(const JointSolverBodies& bodies, const SoftStepContext
   const auto ground = static_cast<std::uint32_t>(bodies.velocity.size() - 1);
   const float h = context.substep_dt;
   const float rescale = kept_h_ > 0.0f ? h / kept_h_ : 1.0f;
+  const float last_h = kept_h_;
   kept_h_ = h;
   // The joints' rows are as stiff as the contacts against an immovable body (twice the contacts'
   // frequency, as Box2D v3's joints).
@@ -93,6 +97,8 @@ void JointSolver::prepare(const JointSolverBodies& bodies, const SoftStepContext
     active_.push_back(j);
     prepared_.push_back(prepared);
   }
+  // Only where a joint is at work, so that a scene without joints steps as before, bit for bit.
+  if (!active_.empty()) shift_to_substep(bodies, context.gravity, last_h, h);
 }
 
 void JointSolver::warm_start(const JointSolverBodies& bodies) {

@@ -51,6 +51,11 @@ JointSolverBodies SoftStepSolver::joint_bodies(const BodyStore& bodies) {
   return {velocity_, inverse_mass_, inverse_inertia_, bodies.poses()};
 }
 
+// Turns of the joints' relax and the restitution after the step's restitution pass, where there
+// are joints. Two welded boxes dropped level on a floor with friction bounced, over 2 s, 8 to
+// 16 mm off one body's height with 1 to 3 turns, 2 mm with 4, 1.4 mm with 6 or 8.
+constexpr int kJointRestitutionRounds = 4;
+
 // Awake bodies in runs of this many per item of an integration stage. unit: bodies
 constexpr std::uint32_t kBodiesPerItem = 64;
 
@@ -86,6 +91,16 @@ void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool
     add_pass(Work::kRelax);
   }
   add_pass(Work::kRestitute);
+  // The bounces and the joints together: a bounce given to one of two welded boxes is the pair's
+  // only once the joint shares it, and the share changes the bounce, so the joints' relax and the
+  // restitution take turns (a Gauss–Seidel pass over both). Two welded boxes dropped on a
+  // frictionless floor then stay within 1.3 mm of one body for 2 s, 1.5 cm without; a scene
+  // without joints plans none of it.
+  if (!joints) return;
+  for (int round = 0; round < kJointRestitutionRounds; ++round) {
+    add_stage(Work::kJointRelax, 0, joint_items);
+    add_pass(Work::kRestituteAgain);
+  }
 }
 
 void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore& bodies,
@@ -136,6 +151,9 @@ void SoftStepSolver::run_pass(const LaneKernels<W>& kernels, Work work,
       return;
     case Work::kRestitute:
       bounces_.fetch_add(kernels.restitute(blocks, lanes, settings));
+      return;
+    case Work::kRestituteAgain:
+      (void)kernels.restitute(blocks, lanes, settings);
       return;
     case Work::kIntegrateVelocities:
     case Work::kIntegratePositions:

@@ -115,6 +115,7 @@ class SoftStepSolver {
     kIntegratePositions,
     kRelax,
     kRestitute,
+    kRestituteAgain,  // with the joints, after kRestitute: its bounces are not counted again
     kJointWarmStart,
     kJointSolve,
     kJointRelax

@@ -82,6 +82,7 @@ void check_joint_desc(const std::string& who, const JointDesc& desc) {
   check_joint_limit(who, desc.type, desc.limit);
   check_joint_motor(who, desc.motor);
   check_joint_spring(who, desc.spring);
+  check_not_negative(who, "friction", desc.friction);
   check_not_negative(who, "cone.angle", desc.cone.angle);
   if (desc.cone.angle > std::numbers::pi_v<float>) {
     fail(who, "cone.angle", "must be at most π, got " + std::to_string(desc.cone.angle));

@@ -231,6 +231,10 @@ TEST(SimulateCommand, APendulumFromASceneFileSwings) {
   std::cout << "scene-file pendulum: lowest x " << lowest_x << " m, rod length off by at most "
             << worst_rod << " m\n";
   EXPECT_FLOAT_EQ(recording.frame(0)[0].position.x(), 0.5f);
+  // The recording keeps the joint, for the viewer to draw.
+  const std::vector<tools::RecordedJoint> joints = {
+      {JointType::kHinge, std::nullopt, 0, pivot, Vec3(-0.5f, 0.8660254f, 0.0f)}};
+  EXPECT_EQ(recording.joints, joints);
   EXPECT_LT(lowest_x, -0.4f);  // swung to the other side, near its start's mirror at -0.5
   EXPECT_LT(worst_rod, 0.01f);
 }

@@ -1,6 +1,7 @@
 // `sphys view --screenshot` under Xvfb with Mesa's software OpenGL: the picture shows the scene
 // where the camera looks.
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -181,6 +182,55 @@ TEST(ViewCommand, TheWindowRunsLiveAndReplaysForSomeFramesThenReportsTheFrameRat
             "--spheres", "1", "--width", "320", "--height", "180"});
   ASSERT_EQ(replay.exit_code, 0) << replay.out << replay.err;
   EXPECT_NE(replay.out.find("sphys view: 3 frames displayed in"), std::string::npos) << replay.out;
+}
+
+// Three bunnies hung in a row from the world by a hinge and two ball joints, recorded for 20
+// frames, then drawn from the recording with and without the joints' overlay; and the recording
+// with its first joint's type corrupted, refused by the viewer and the export.
+TEST(ViewCommand, AReplayDrawsItsJointsAndRefusesACorruptOne) {
+  test::use_shared_tree_cache();
+  const test::TempDir dir;
+  const fs::path scene = dir.write("chain.json", R"({"format": "sphys-scene", "version": 1,
+      "frames": 20, "ground": {"type": "plane"},
+      "bodies": [{"size": 0.8, "position": [0, 3, 0], "sphere_tree": {"method": "octree", "depth": 1}},
+                 {"size": 0.8, "position": [1.5, 3, 0], "sphere_tree": {"method": "octree", "depth": 1}},
+                 {"size": 0.8, "position": [3, 3, 0], "sphere_tree": {"method": "octree", "depth": 1}}],
+      "joints": [{"type": "hinge", "body_a": null, "body_b": 0, "anchor_a": [-0.75, 3, 0],
+                  "anchor_b": [-0.75, 0, 0], "axis_a": [0, 0, 1], "axis_b": [0, 0, 1]},
+                 {"type": "ball", "body_a": 0, "body_b": 1, "anchor_a": [0.75, 0, 0],
+                  "anchor_b": [-0.75, 0, 0]},
+                 {"type": "ball", "body_a": 1, "body_b": 2, "anchor_a": [0.75, 0, 0],
+                  "anchor_b": [-0.75, 0, 0]}]})");
+  const fs::path out = dir.path() / "run";
+  const test::CommandResult run =
+      test::run_command(SPHYS_CLI_PATH, {"simulate", scene.string(), "--out", out.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const fs::path recording = out / "recording.sphysrec";
+  const std::vector<std::string> replay = {"--replay", recording.string(), "--frames", "20"};
+  std::vector<std::string> hidden = replay;
+  hidden.push_back("--no-joints");
+  const Image joints = screenshot(dir.path() / "joints.png", replay);
+  const Image plain = screenshot(dir.path() / "plain.png", hidden);
+  // The joints are magenta, a colour found nowhere else (sky, grey ground, sand bunnies).
+  const auto magenta = [](int r, int g, int b) { return r > 180 && g < 90 && b > 180; };
+  EXPECT_EQ(count_pixels(plain, magenta), 0);
+  EXPECT_GT(count_pixels(joints, magenta), 30);
+
+  // The joint records follow the 32-byte header, the metadata and the joint count.
+  std::string bytes = test::read_whole(recording);
+  std::uint32_t metadata_length = 0;
+  for (int i = 0; i < 4; ++i) {
+    metadata_length |= std::uint32_t{static_cast<unsigned char>(bytes[28 + i])} << (8 * i);
+  }
+  bytes[32 + metadata_length + 4] = 7;  // the first joint's type, a u32, little-endian
+  const fs::path corrupt = dir.write("corrupt.sphysrec", bytes);
+  const std::string message = corrupt.string() + ": joint 0: type 7 is not a joint type";
+  test::expect_bad_input(
+      {"view", "--replay", corrupt.string(), "--screenshot", (dir.path() / "x.png").string()},
+      message);
+  test::expect_bad_input({"export", corrupt.string(), "--gltf", (dir.path() / "x.glb").string()},
+                         message);
+  EXPECT_FALSE(fs::exists(dir.path() / "x.png"));
 }
 
 TEST(ViewCommand, BadOptionsExitWithCode2) {

@@ -1,6 +1,7 @@
 """Joints from Python: a pendulum's period against 2π√(L/g), a motor's speed, the read-back,
 bad input named by field, and a removed body's joints going with it."""
 
+import json
 import math
 
 import numpy as np
@@ -113,6 +114,8 @@ def test_limits_and_springs_set_from_python_are_read_back(sphere_tree):
         body_a=b, spring=sphys.JointSpring(hertz=-2))), "spring.hertz"),
     (lambda w, b: w.add_joint(sphys.JointDesc(
         body_a=b, cone=sphys.JointCone(enabled=True, angle=4))), "cone.angle"),
+    (lambda w, b: w.add_joint(sphys.JointDesc(body_a=b, friction=-1)), "friction"),
+    (lambda w, b: w.add_joint(sphys.JointDesc(body_a=b, friction=float("nan"))), "friction"),
     (lambda w, b: w.add_joint(sphys.JointDesc(type=sphys.JointType.DISTANCE, body_a=b,
                                               length=0)), "length"),
     (lambda w, b: w.add_joint(sphys.JointDesc(body_a=b, body_b=b)), "body_b"),
@@ -183,3 +186,19 @@ def test_a_scene_dicts_joints_reach_its_simulation_and_come_back_in_to_dict():
     with pytest.raises(sphys.Error, match="/joints/0/body_b: no body 3"):
         sphys.Scene.from_dict({"format": "sphys-scene", "version": 1, "bodies": [{}],
                                "joints": [{"type": "ball", "body_a": 0, "body_b": 3}]})
+
+
+def test_a_recording_keeps_the_scenes_joints(tmp_path, simulate_cli):
+    scene = {
+        "format": "sphys-scene", "version": 1, "ground": {"type": "none"},
+        "bodies": [{"size": 0.1, "position": [0.5, 1.1339746, 0],
+                    "sphere_tree": {"method": "octree", "depth": 1}}],
+        "joints": [{"type": "hinge", "body_a": None, "body_b": 0, "anchor_a": [0, 2, 0],
+                    "anchor_b": [-0.5, 0.875, 0], "axis_a": [0, 0, 1], "axis_b": [0, 0, 1]}],
+    }
+    path = tmp_path / "pendulum.json"
+    path.write_text(json.dumps(scene))
+    _, recording_path = simulate_cli(str(path), "3")
+    recording = sphys.read_recording(str(recording_path))
+    assert recording.joints == [{"type": sphys.JointType.HINGE, "body_a": None, "body_b": 0,
+                                 "anchor_a": (0.0, 2.0, 0.0), "anchor_b": (-0.5, 0.875, 0.0)}]

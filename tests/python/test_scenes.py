@@ -432,7 +432,8 @@ def test_recording_writer_round_trip(tmp_path):
         writer.add_frame(frame)
     assert not path.exists()  # only finish() puts the file in place
     writer.finish()
-    assert path.stat().st_size == 32 + len(metadata.encode()) + 28 * bodies * frames
+    # The header, the metadata, the joint count (no joints), the frames.
+    assert path.stat().st_size == 32 + len(metadata.encode()) + 4 + 28 * bodies * frames
     recording = sphys.read_recording(str(path))
     assert recording.body_count == bodies and recording.frame_count == frames
     assert recording.time_step == 1.0 / 30.0
@@ -576,8 +577,8 @@ def test_read_recording_errors(tmp_path, simulate_cli):
         "header.sphysrec": (data[:20], "truncated header: the file has 20 bytes"),
         "cut.sphysrec": (data[:-5], "truncated frames"),
         "long.sphysrec": (data + b"xyz", "3 trailing bytes after the last frame"),
-        "version.sphysrec": (data[:8] + (2).to_bytes(4, "little") + data[12:],
-                             "unsupported recording version 2"),
+        "version.sphysrec": (data[:8] + (3).to_bytes(4, "little") + data[12:],
+                             "unsupported recording version 3"),
     }
     for name, (content, message) in cases.items():
         path = tmp_path / name

@@ -83,6 +83,13 @@ TEST(JointsApi, BadInputNamesTheJointAndTheField) {
       HasSubstr("limit.lower must not be above limit.upper"));
   EXPECT_THAT(fails([&](JointDesc& d) { d.motor.max_effort = -1.0f; }),
               HasSubstr("motor.max_effort must not be negative"));
+  EXPECT_THAT(fails([&](JointDesc& d) { d.friction = -0.5f; }),
+              HasSubstr("add_joint (hinge): friction must not be negative, got -0.5"));
+  EXPECT_THAT(fails([&](JointDesc& d) {
+                d.type = JointType::kBall;
+                d.friction = std::nanf("");
+              }),
+              HasSubstr("add_joint (ball): friction must be finite"));
   EXPECT_THAT(fails([&](JointDesc& d) { d.spring.hertz = -2.0f; }),
               HasSubstr("spring.hertz must not be negative"));
   EXPECT_THAT(fails([&](JointDesc& d) { d.spring.damping_ratio = std::nanf(""); }),

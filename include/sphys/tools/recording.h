@@ -1,28 +1,43 @@
 #pragma once
 
-// Recordings: the pose of every body at every frame of a simulation, kept for replay in a viewer
-// and for export. The file (.sphysrec) is compact, little-endian binary with a version header,
-// laid out byte by byte in docs/file-formats.md.
+// Recordings: the pose of every body at every frame of a simulation, and the joints between them,
+// kept for replay in a viewer and for export. The file (.sphysrec) is compact, little-endian
+// binary with a version header, laid out byte by byte in docs/file-formats.md.
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "sphys/joint.h"
 #include "sphys/math.h"
 
 namespace sphys::tools {
 
-// The format version this build writes, and the only one it reads.
-inline constexpr std::uint32_t kRecordingVersion = 1;
+// The format version this build writes. It reads this one and every earlier one: version 1 has
+// no joints.
+inline constexpr std::uint32_t kRecordingVersion = 2;
 
 // Where one body is in one frame.
 struct BodyPose {
   Vec3 position = Vec3::Zero();         // of the centre of mass. unit: m
   Quat orientation = Quat::Identity();  // body to world; unit length
+};
+
+// A joint as a recording keeps it: enough to draw it from the recorded body poses.
+struct RecordedJoint {
+  JointType type = JointType::kBall;  // what the joint leaves free
+  // Indices into the recording's bodies; none: the world. Not both none, and not the same.
+  std::optional<std::uint32_t> body_a;
+  std::optional<std::uint32_t> body_b;  // as body_a
+  Vec3 anchor_a = Vec3::Zero();         // in body a's frame (the world's for none). unit: m
+  Vec3 anchor_b = Vec3::Zero();         // in body b's frame (the world's for none). unit: m
+  // The same joint: every field equal.
+  friend bool operator==(const RecordedJoint&, const RecordedJoint&) = default;
 };
 
 // Streams frames to disk as they come, so that a recording never has to fit in memory. The file
@@ -32,9 +47,11 @@ struct BodyPose {
 class RecordingWriter {
  public:
   // `time_step` is the time between frames (unit: s; positive and finite). `metadata` is stored
-  // as given: the scene as JSON text, opaque to the recording.
+  // as given: the scene as JSON text, opaque to the recording. `joints` are stored before the
+  // frames; a joint that names a body beyond `body_count`, the same body twice, the world twice,
+  // or an anchor that is not finite throws before the file is created.
   RecordingWriter(const std::filesystem::path& path, std::uint32_t body_count, double time_step,
-                  std::string_view metadata);
+                  std::string_view metadata, std::span<const RecordedJoint> joints = {});
   ~RecordingWriter();
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
@@ -62,14 +79,16 @@ struct Recording {
   std::uint32_t body_count = 0;               // poses per frame
   std::uint32_t frame_count = 0;              // frames recorded
   std::vector<BodyPose> poses;                // frame after frame, body_count poses each
+  std::vector<RecordedJoint> joints;          // as the writer was given them; none in version 1
 
   // The poses of frame i (counting from 0; i < frame_count), in body order.
   [[nodiscard]] std::span<const BodyPose> frame(std::uint32_t i) const;
 };
 
 // Reads a whole recording, checking it: the header, the size against the counts it announces,
-// and every pose (finite, orientations of unit length). Throws sphys::Error naming the file and
-// the problem (and the frame and body for a bad pose).
+// every joint (its type, its bodies among the recording's, finite anchors) and every pose
+// (finite, orientations of unit length). Throws sphys::Error naming the file and the problem
+// (and the joint, or the frame and body, at fault).
 [[nodiscard]] Recording read_recording(const std::filesystem::path& path);
 
 }  // namespace sphys::tools

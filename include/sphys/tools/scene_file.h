@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "sphys/tools/recording.h"
 #include "sphys/tools/scene.h"
 
 namespace sphys::tools {
@@ -32,5 +34,8 @@ namespace sphys::tools {
 // .sph paths stay as given, relative to base_directory. A tree read from a .sph file is written
 // as its path alone, so its build settings are not kept.
 [[nodiscard]] std::string scene_to_json(const Scene& scene);
+
+// The scene's joints as a recording keeps them (RecordingWriter), in the scene's order.
+[[nodiscard]] std::vector<RecordedJoint> recorded_joints(const Scene& scene);
 
 }  // namespace sphys::tools

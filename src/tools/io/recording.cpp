@@ -23,7 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // The layout of docs/file-formats.md: magic, u32 version, u32 body count, f64 time step,
-// u32 frame count, u32 metadata length; then the metadata, then the frames.
+// u32 frame count, u32 metadata length; then the metadata, the joints (from version 2: a u32
+// count and the records), then the frames.
 constexpr std::string_view kMagic = "SPHYSREC";
 constexpr std::size_t kVersionOffset = 8;
 constexpr std::size_t kBodyCountOffset = 12;
@@ -31,6 +32,17 @@ constexpr std::size_t kTimeStepOffset = 16;
 constexpr std::size_t kFrameCountOffset = 24;
 constexpr std::size_t kMetadataLengthOffset = 28;
 constexpr std::size_t kHeaderSize = 32;
+// The first version that stores joints.
+constexpr std::uint32_t kFirstVersionWithJoints = 2;
+
+// A joint record: u32 type, u32 body a, u32 body b (kWorldBody for the world), then the anchors
+// as 6 f32 (a's x y z, b's x y z).
+constexpr std::size_t kJointCountSize = 4;
+constexpr std::size_t kJointAnchorsOffset = 12;
+constexpr std::size_t kJointSize = kJointAnchorsOffset + 6 * 4;
+constexpr std::uint32_t kWorldBody = 0xFFFFFFFFu;
+constexpr std::array<const char*, 5> kJointTypeNames = {"hinge", "slider", "ball", "weld",
+                                                        "distance"};
 
 // A pose is 7 f32: position x y z, then orientation w x y z.
 constexpr std::size_t kPoseValues = 7;
@@ -112,6 +124,76 @@ std::optional<std::string> time_step_problem(double time_step) {
   return "the time step must be positive and finite, got " + shown(time_step) + " s";
 }
 
+std::uint32_t stored_body(const std::optional<std::uint32_t>& body) {
+  return body ? *body : kWorldBody;
+}
+
+std::optional<std::uint32_t> body_of(std::uint32_t stored) {
+  if (stored == kWorldBody) return std::nullopt;
+  return stored;
+}
+
+std::string body_text(const std::optional<std::uint32_t>& body) {
+  return body ? std::to_string(*body) : "the world";
+}
+
+// What is wrong with a joint, or nothing: what the writer refuses and the reader rejects.
+std::optional<std::string> joint_problem(const RecordedJoint& joint, std::uint32_t body_count) {
+  for (const auto& [name, body] : {std::pair{"body_a", joint.body_a}, {"body_b", joint.body_b}}) {
+    if (body && *body >= body_count) {
+      return std::string(name) + " " + std::to_string(*body) + " is not one of the " +
+             std::to_string(body_count) + " bodies";
+    }
+  }
+  if (joint.body_a == joint.body_b) {
+    return "body_a and body_b are the same (" + body_text(joint.body_a) + ")";
+  }
+  for (const auto& [name, anchor] :
+       {std::pair{"anchor_a", joint.anchor_a}, {"anchor_b", joint.anchor_b}}) {
+    if (!anchor.allFinite()) {
+      return std::string(name) + " is not finite (" + shown(anchor.x()) + " " + shown(anchor.y()) +
+             " " + shown(anchor.z()) + ")";
+    }
+  }
+  return std::nullopt;
+}
+
+std::string joint_place(std::size_t joint) { return "joint " + std::to_string(joint) + ": "; }
+
+void put_joint(char* out, const RecordedJoint& joint) {
+  put_u32(out, static_cast<std::uint32_t>(joint.type));
+  put_u32(out + 4, stored_body(joint.body_a));
+  put_u32(out + 8, stored_body(joint.body_b));
+  for (int k = 0; k < 3; ++k) {
+    put_u32(out + kJointAnchorsOffset + 4 * k, std::bit_cast<std::uint32_t>(joint.anchor_a[k]));
+    put_u32(out + kJointAnchorsOffset + 12 + 4 * k,
+            std::bit_cast<std::uint32_t>(joint.anchor_b[k]));
+  }
+}
+
+// One joint record, checked; `where` names the joint in messages.
+RecordedJoint get_joint(const char* in, std::uint32_t body_count, const fs::path& path,
+                        const std::string& where) {
+  const std::uint32_t type = get_u32(in);
+  if (type >= kJointTypeNames.size()) {
+    throw Error::in_file(path, where + "type " + std::to_string(type) +
+                                   " is not a joint type (0 hinge, 1 slider, 2 ball, 3 weld, "
+                                   "4 distance)");
+  }
+  RecordedJoint joint;
+  joint.type = static_cast<JointType>(type);
+  joint.body_a = body_of(get_u32(in + 4));
+  joint.body_b = body_of(get_u32(in + 8));
+  for (int k = 0; k < 3; ++k) {
+    joint.anchor_a[k] = std::bit_cast<float>(get_u32(in + kJointAnchorsOffset + 4 * k));
+    joint.anchor_b[k] = std::bit_cast<float>(get_u32(in + kJointAnchorsOffset + 12 + 4 * k));
+  }
+  if (const auto problem = joint_problem(joint, body_count)) {
+    throw Error::in_file(path, where + kJointTypeNames[type] + ": " + *problem);
+  }
+  return joint;
+}
+
 // Reads exactly `size` bytes; the sizes were checked against the file's size beforehand, so a
 // short read means the file changed under us or could not be read.
 void read_exactly(std::istream& in, char* out, std::size_t size, const fs::path& path) {
@@ -130,17 +212,18 @@ std::string total_size_text(std::uint64_t frame_count, std::uint64_t frame_size)
 }
 
 // The frames announced by the header must fill the rest of the file exactly.
+// `available` counts the bytes after `before` (the metadata, or the joints).
 void check_frames_size(const fs::path& path, std::uint32_t frame_count, std::uint32_t body_count,
-                       std::uint64_t available) {
+                       std::uint64_t available, const std::string& before) {
   const std::uint64_t frame_size = std::uint64_t{body_count} * kPoseSize;
   const std::uint64_t whole_frames = frame_size == 0 ? frame_count : available / frame_size;
   if (whole_frames < frame_count) {
-    throw Error::in_file(
-        path, "truncated frames: only " + std::to_string(whole_frames) + " of " +
-                  std::to_string(frame_count) + " frames are whole; " +
-                  std::to_string(frame_count) + " frames of " + std::to_string(body_count) +
-                  " bodies need " + total_size_text(frame_count, frame_size) +
-                  " bytes after the metadata, the file has " + std::to_string(available));
+    throw Error::in_file(path, "truncated frames: only " + std::to_string(whole_frames) + " of " +
+                                   std::to_string(frame_count) + " frames are whole; " +
+                                   std::to_string(frame_count) + " frames of " +
+                                   std::to_string(body_count) + " bodies need " +
+                                   total_size_text(frame_count, frame_size) + " bytes after the " +
+                                   before + ", the file has " + std::to_string(available));
   }
   const std::uint64_t expected = frame_count * frame_size;
   if (available > expected) {
@@ -149,6 +232,37 @@ void check_frames_size(const fs::path& path, std::uint32_t frame_count, std::uin
                                    std::to_string(frame_count) + " frames of " +
                                    std::to_string(body_count) + " bodies)");
   }
+}
+
+// The joints after the metadata: their count, then the records, each checked, within the
+// `available` bytes left in the file.
+std::vector<RecordedJoint> read_joints(std::istream& in, const fs::path& path,
+                                       std::uint32_t body_count, std::uint64_t available) {
+  if (available < kJointCountSize) {
+    throw Error::in_file(path,
+                         "truncated joints: the joint count needs 4 bytes after the "
+                         "metadata, the file has " +
+                             std::to_string(available));
+  }
+  std::array<char, kJointCountSize> count_bytes{};
+  read_exactly(in, count_bytes.data(), count_bytes.size(), path);
+  const std::uint32_t count = get_u32(count_bytes.data());
+  const std::uint64_t needed = std::uint64_t{count} * kJointSize;
+  if (needed > available - kJointCountSize) {
+    throw Error::in_file(path, "truncated joints: " + std::to_string(count) + " joints need " +
+                                   std::to_string(needed) +
+                                   " bytes after their count, the file "
+                                   "has " +
+                                   std::to_string(available - kJointCountSize));
+  }
+  std::vector<RecordedJoint> joints;
+  joints.reserve(count);
+  std::array<char, kJointSize> bytes{};
+  for (std::uint32_t k = 0; k < count; ++k) {
+    read_exactly(in, bytes.data(), bytes.size(), path);
+    joints.push_back(get_joint(bytes.data(), body_count, path, joint_place(k)));
+  }
+  return joints;
 }
 
 }  // namespace
@@ -164,10 +278,21 @@ struct RecordingWriter::Impl {
 };
 
 RecordingWriter::RecordingWriter(const fs::path& path, std::uint32_t body_count, double time_step,
-                                 std::string_view metadata) {
+                                 std::string_view metadata, std::span<const RecordedJoint> joints) {
   if (const auto problem = time_step_problem(time_step)) throw Error::in_file(path, *problem);
   if (metadata.size() > std::numeric_limits<std::uint32_t>::max()) {
     throw Error::in_file(path, "the metadata is longer than 4294967295 bytes");
+  }
+  if (joints.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error::in_file(path, "a recording holds at most 4294967295 joints");
+  }
+  std::string joint_bytes(kJointCountSize + joints.size() * kJointSize, '\0');
+  put_u32(joint_bytes.data(), static_cast<std::uint32_t>(joints.size()));
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    if (const auto problem = joint_problem(joints[k], body_count)) {
+      throw Error::in_file(path, "cannot record " + joint_place(k) + *problem);
+    }
+    put_joint(&joint_bytes[kJointCountSize + k * kJointSize], joints[k]);
   }
   impl_ = std::make_unique<Impl>(path, body_count);
   std::array<char, kHeaderSize> header{};
@@ -180,6 +305,7 @@ RecordingWriter::RecordingWriter(const fs::path& path, std::uint32_t body_count,
   std::ostream& out = impl_->file.stream();
   out.write(header.data(), header.size());
   out.write(metadata.data(), static_cast<std::streamsize>(metadata.size()));
+  out.write(joint_bytes.data(), static_cast<std::streamsize>(joint_bytes.size()));
   impl_->file.check_written();
 }
 
@@ -256,9 +382,9 @@ Recording read_recording(const fs::path& path) {
   // differently.
   if (header_bytes < kVersionOffset + 4) throw Error::in_file(path, truncated_header);
   const std::uint32_t version = get_u32(&header[kVersionOffset]);
-  if (version != kRecordingVersion) {
+  if (version == 0 || version > kRecordingVersion) {
     throw Error::in_file(path, "unsupported recording version " + std::to_string(version) +
-                                   " (this build reads version " +
+                                   " (this build reads versions 1 to " +
                                    std::to_string(kRecordingVersion) + ")");
   }
   if (header_bytes < kHeaderSize) throw Error::in_file(path, truncated_header);
@@ -278,11 +404,16 @@ Recording read_recording(const fs::path& path) {
                                    std::to_string(metadata_length) + " bytes, the file has " +
                                    std::to_string(after_header) + " after the header");
   }
-  check_frames_size(path, recording.frame_count, recording.body_count,
-                    after_header - metadata_length);
-
   recording.metadata.resize(metadata_length);
   read_exactly(in, recording.metadata.data(), metadata_length, path);
+  std::uint64_t available = after_header - metadata_length;
+  const bool has_joints = version >= kFirstVersionWithJoints;
+  if (has_joints) {
+    recording.joints = read_joints(in, path, recording.body_count, available);
+    available -= kJointCountSize + recording.joints.size() * kJointSize;
+  }
+  check_frames_size(path, recording.frame_count, recording.body_count, available,
+                    has_joints ? "joints" : "metadata");
   // With no poses to read, a body count the file need not back must not size a frame buffer.
   if (recording.body_count == 0 || recording.frame_count == 0) return recording;
 

@@ -368,6 +368,7 @@ JointSpec read_joint(const JsonNode& node, std::size_t body_count) {
   if (const auto n = node.find("motor")) desc.motor = read_joint_motor(*n);
   if (const auto n = node.find("spring")) desc.spring = read_joint_spring(*n);
   if (const auto n = node.find("cone")) desc.cone = read_joint_cone(*n);
+  if (const auto n = node.find("friction")) desc.friction = read_non_negative_single(*n);
   if (const auto n = node.find("length")) {
     desc.length = static_cast<float>(read_physical(*n, kJointLengthRange));
   }

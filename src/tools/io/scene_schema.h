@@ -45,9 +45,9 @@ inline constexpr PhysicalRange kJointLengthRange{1e-6, kMaxCoordinate, "m"};
 
 inline constexpr std::array<std::string_view, 3> kPairMaterialKeys = {"bodies", "friction",
                                                                       "restitution"};
-inline constexpr std::array<std::string_view, 13> kJointKeys = {
-    "type",  "body_a", "body_b", "anchor_a", "anchor_b", "axis_a",           "axis_b",
-    "limit", "motor",  "spring", "cone",     "length",   "collide_connected"};
+inline constexpr std::array<std::string_view, 14> kJointKeys = {
+    "type",  "body_a", "body_b", "anchor_a", "anchor_b", "axis_a", "axis_b",
+    "limit", "motor",  "spring", "cone",     "friction", "length", "collide_connected"};
 inline constexpr std::array<std::string_view, 3> kJointLimitKeys = {"enabled", "lower", "upper"};
 inline constexpr std::array<std::string_view, 3> kJointMotorKeys = {"enabled", "speed",
                                                                     "max_effort"};

@@ -1,6 +1,7 @@
 // The scene writer: every key of the scene's manifest (scene_schema.h) written out, in the order
 // of docs/scenes.md, so that the reader gets back the same scene bit for bit.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -92,6 +93,7 @@ Json joint_json(const JointSpec& joint) {
                    {"damping_ratio", shortest_double(d.spring.damping_ratio)},
                    {"target", shortest_double(d.spring.target)}};
   out["cone"] = {{"enabled", d.cone.enabled}, {"angle", shortest_double(d.cone.angle)}};
+  out["friction"] = shortest_double(d.friction);
   out["length"] = shortest_double(d.length);
   out["collide_connected"] = d.collide_connected;
   return out;
@@ -123,6 +125,22 @@ std::string scene_to_json(const Scene& scene) {
   for (const JointSpec& joint : scene.joints) joints.push_back(joint_json(joint));
   out["joints"] = std::move(joints);
   return out.dump(2) + "\n";
+}
+
+std::vector<RecordedJoint> recorded_joints(const Scene& scene) {
+  std::vector<RecordedJoint> joints;
+  const auto index = [](const std::optional<std::size_t>& body) -> std::optional<std::uint32_t> {
+    if (!body) return std::nullopt;
+    return static_cast<std::uint32_t>(*body);
+  };
+  for (const JointSpec& joint : scene.joints) {
+    joints.push_back({.type = joint.desc.type,
+                      .body_a = index(joint.body_a),
+                      .body_b = index(joint.body_b),
+                      .anchor_a = joint.desc.anchor_a,
+                      .anchor_b = joint.desc.anchor_b});
+  }
+  return joints;
 }
 
 }  // namespace sphys::tools

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <string_view>
@@ -66,20 +67,44 @@ class Bytes {
         .u32(static_cast<std::uint32_t>(metadata.size()))
         .text(metadata);
   }
+  // A joint record: type, body a, body b (0xFFFFFFFF: the world), anchor a, anchor b.
+  Bytes& joint(std::uint32_t type, std::uint32_t body_a, std::uint32_t body_b, const Vec3& a,
+               const Vec3& b) {
+    u32(type).u32(body_a).u32(body_b);
+    for (const Vec3& anchor : {a, b}) f32(anchor.x()).f32(anchor.y()).f32(anchor.z());
+    return *this;
+  }
   [[nodiscard]] const std::string& str() const { return bytes_; }
 
  private:
   std::string bytes_;
 };
 
-// A valid file: 3 frames of 2 bodies, frames 1/60 s apart, metadata "{}".
-Bytes valid_file() {
-  Bytes bytes;
-  bytes.header(1, 2, 1.0 / 60.0, 3, "{}");
+constexpr std::uint32_t kWorld = 0xFFFFFFFFu;
+
+// The frames of valid_file().
+Bytes& valid_frames(Bytes& bytes) {
   for (int frame = 0; frame < 3; ++frame) {
     bytes.pose(0, static_cast<float>(frame), 0, 1, 0, 0, 0).pose(1, 2, 3, 0, 0, 1, 0);
   }
   return bytes;
+}
+
+// A valid file of version 1 (no joints): 3 frames of 2 bodies, frames 1/60 s apart, metadata
+// "{}".
+Bytes valid_file() {
+  Bytes bytes;
+  bytes.header(1, 2, 1.0 / 60.0, 3, "{}");
+  return valid_frames(bytes);
+}
+
+// The same in version 2 with one joint, a hinge from the world at (0, 1, 0) to body 1's
+// (0.5, 0, 0), before the frames.
+Bytes jointed_file(const Bytes& joints = Bytes().u32(1).joint(0, kWorld, 1, Vec3(0, 1, 0),
+                                                              Vec3(0.5f, 0, 0))) {
+  Bytes bytes;
+  bytes.header(2, 2, 1.0 / 60.0, 3, "{}").text(joints.str());
+  return valid_frames(bytes);
 }
 
 // The message of the Error that reading `path` throws.
@@ -143,7 +168,8 @@ TEST(Recording, RoundTripIsBitExact) {
   writer.finish();
 
   const Recording recording = read_recording(file);
-  EXPECT_EQ(recording.version, 1u);
+  EXPECT_EQ(recording.version, 2u);
+  EXPECT_THAT(recording.joints, IsEmpty());
   EXPECT_EQ(recording.time_step, 0.004);
   EXPECT_EQ(recording.metadata, "{\"scene\": 1}");
   EXPECT_EQ(recording.body_count, 7u);
@@ -161,14 +187,80 @@ TEST(Recording, RoundTripIsBitExact) {
 TEST(Recording, BytesAreTheDocumentedLayout) {
   const test::TempDir dir;
   const fs::path file = dir.path() / "run.sphysrec";
-  RecordingWriter writer(file, 2, 1.0 / 60.0, "{}");
+  const std::vector<RecordedJoint> joints = {
+      {JointType::kHinge, std::nullopt, 1, Vec3(0, 1, 0), Vec3(0.5f, 0, 0)}};
+  RecordingWriter writer(file, 2, 1.0 / 60.0, "{}", joints);
   for (int frame = 0; frame < 3; ++frame) {
     const std::vector<BodyPose> poses = {{Vec3(0, static_cast<float>(frame), 0), Quat(1, 0, 0, 0)},
                                          {Vec3(1, 2, 3), Quat(0, 0, 1, 0)}};
     writer.add_frame(poses);
   }
   writer.finish();
-  EXPECT_EQ(read_whole(file), valid_file().str());
+  EXPECT_EQ(read_whole(file), jointed_file().str());
+}
+
+// Every joint type, each way round with the world, comes back bit for bit.
+TEST(Recording, RoundTripKeepsTheJoints) {
+  const test::TempDir dir;
+  const fs::path file = dir.path() / "jointed.sphysrec";
+  const std::vector<RecordedJoint> joints = {
+      {JointType::kHinge, std::nullopt, 0, Vec3(0, 2, 0), Vec3(-0.5f, 0, 0)},
+      {JointType::kSlider, 0, 1, Vec3::Zero(), Vec3(1e-30f, -0.0f, 3)},
+      {JointType::kBall, 2, 1, Vec3(0.1f, 0.2f, 0.3f), Vec3::Zero()},
+      {JointType::kWeld, 1, std::nullopt, Vec3(1, 1, 1), Vec3(-1, 0, 7)},
+      {JointType::kDistance, 2, 0, Vec3::Zero(), Vec3(0, 0, 1)}};
+  RecordingWriter writer(file, 3, 0.01, "{}", joints);
+  writer.add_frame(random_frames(1, 3)[0]);
+  writer.finish();
+  const Recording recording = read_recording(file);
+  EXPECT_EQ(recording.joints, joints);
+  EXPECT_EQ(recording.frame_count, 1u);
+  EXPECT_EQ(std::bit_cast<std::uint32_t>(recording.joints[1].anchor_b.y()),
+            std::bit_cast<std::uint32_t>(-0.0f));
+}
+
+// Recordings made before joints were kept (version 1) read as before, with no joints.
+TEST(Recording, AVersionOneRecordingReadsWithNoJoints) {
+  const test::TempDir dir;
+  const Recording recording = read_recording(dir.write("old.sphysrec", valid_file().str()));
+  EXPECT_EQ(recording.version, 1u);
+  EXPECT_THAT(recording.joints, IsEmpty());
+  ASSERT_EQ(recording.frame_count, 3u);
+  EXPECT_EQ(recording.frame(2)[0].position.y(), 2.0f);
+}
+
+TEST(RecordingErrors, CorruptJoints) {
+  const Vec3 zero = Vec3::Zero();
+  const auto joint_error = [&](const Bytes& joints) {
+    return bytes_error(jointed_file(joints).str());
+  };
+  EXPECT_THAT(joint_error(Bytes().u32(1).joint(9, kWorld, 1, zero, zero)),
+              HasSubstr("joint 0: type 9 is not a joint type (0 hinge, 1 slider, 2 ball, 3 weld, "
+                        "4 distance)"));
+  EXPECT_THAT(joint_error(Bytes().u32(2).joint(2, 0, 1, zero, zero).joint(2, 0, 5, zero, zero)),
+              HasSubstr("joint 1: ball: body_b 5 is not one of the 2 bodies"));
+  EXPECT_THAT(joint_error(Bytes().u32(1).joint(3, 1, 1, zero, zero)),
+              HasSubstr("joint 0: weld: body_a and body_b are the same (1)"));
+  EXPECT_THAT(joint_error(Bytes().u32(1).joint(1, kWorld, kWorld, zero, zero)),
+              HasSubstr("joint 0: slider: body_a and body_b are the same (the world)"));
+  EXPECT_THAT(joint_error(Bytes().u32(1).joint(0, 0, 1, Vec3(0, kFloatNan, 0), zero)),
+              HasSubstr("joint 0: hinge: anchor_a is not finite (0 nan 0)"));
+  // A count the file does not back: 3 joints announced, one there, and no frames.
+  Bytes cut;
+  cut.header(2, 2, 0.01, 0, "{}").u32(3).joint(0, kWorld, 1, zero, zero);
+  EXPECT_THAT(bytes_error(cut.str()),
+              HasSubstr("truncated joints: 3 joints need 108 bytes after their count, the file "
+                        "has 36"));
+  Bytes no_count;
+  no_count.header(2, 0, 0.01, 0, "{}").text("ab");
+  EXPECT_THAT(bytes_error(no_count.str()),
+              HasSubstr("truncated joints: the joint count needs 4 bytes after the metadata, the "
+                        "file has 2"));
+  // The frames after the joints are checked as after the metadata.
+  const std::string whole = jointed_file().str();
+  EXPECT_THAT(bytes_error(whole.substr(0, whole.size() - 1)),
+              HasSubstr("only 2 of 3 frames are whole; 3 frames of 2 bodies need 168 bytes after "
+                        "the joints, the file has 167"));
 }
 
 TEST(Recording, ReadsAHandWrittenFile) {
@@ -204,7 +296,7 @@ TEST(Recording, EmptyRecording) {
   const fs::path file = dir.path() / "empty.sphysrec";
   RecordingWriter writer(file, 3, 0.5, "");
   writer.finish();
-  EXPECT_EQ(read_whole(file), Bytes().header(1, 3, 0.5, 0, "").str());
+  EXPECT_EQ(read_whole(file), Bytes().header(2, 3, 0.5, 0, "").u32(0).str());
   const Recording recording = read_recording(file);
   EXPECT_EQ(recording.body_count, 3u);
   EXPECT_EQ(recording.frame_count, 0u);
@@ -235,9 +327,10 @@ TEST(Recording, FramesAreStreamedToDiskNotHeld) {
   const std::vector<fs::path> files = files_in(dir.path());
   ASSERT_THAT(files, SizeIs(1));
   EXPECT_THAT(files[0].filename().string(), AllOf(StartsWith("big.sphysrec."), EndsWith(".tmp")));
-  EXPECT_GE(fs::file_size(files[0]), 32 + 2 + 9 * kFrameSize);
+  // The header, the metadata "{}", the joint count (no joints), the frames.
+  EXPECT_GE(fs::file_size(files[0]), 32 + 2 + 4 + 9 * kFrameSize);
   writer.finish();
-  EXPECT_EQ(fs::file_size(file), 32 + 2 + 10 * kFrameSize);
+  EXPECT_EQ(fs::file_size(file), 32 + 2 + 4 + 10 * kFrameSize);
   EXPECT_THAT(files_in(dir.path()), ElementsAre(file));
 }
 
@@ -266,7 +359,7 @@ TEST(Recording, FinishReplacesAnExistingFile) {
   const fs::path file = dir.write("old.sphysrec", std::string(100000, 'x'));
   RecordingWriter writer(file, 3, 0.5, "");
   writer.finish();
-  EXPECT_EQ(read_whole(file), Bytes().header(1, 3, 0.5, 0, "").str());
+  EXPECT_EQ(read_whole(file), Bytes().header(2, 3, 0.5, 0, "").u32(0).str());
   EXPECT_THAT(files_in(dir.path()), ElementsAre(file));
 }
 
@@ -367,6 +460,23 @@ TEST(RecordingWriter, BadTimeStepThrowsBeforeCreatingTheFile) {
   EXPECT_THAT(files_in(dir.path()), IsEmpty());
 }
 
+TEST(RecordingWriter, BadJointThrowsBeforeCreatingTheFile) {
+  const test::TempDir dir;
+  const fs::path file = dir.path() / "w.sphysrec";
+  const std::vector<RecordedJoint> joints = {
+      {JointType::kBall, 0, std::nullopt, Vec3::Zero(), Vec3::Zero()},
+      {JointType::kHinge, 0, 3, Vec3::Zero(), Vec3::Zero()}};
+  try {
+    RecordingWriter writer(file, 2, 0.01, "", joints);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_THAT(
+        error.what(),
+        HasSubstr(file.string() + ": cannot record joint 1: body_b 3 is not one of the 2 bodies"));
+  }
+  EXPECT_THAT(files_in(dir.path()), IsEmpty());
+}
+
 TEST(RecordingWriter, MissingDirectoryThrows) {
   const test::TempDir dir;
   try {
@@ -406,9 +516,11 @@ TEST(RecordingErrors, BadMagic) {
 
 TEST(RecordingErrors, UnsupportedVersion) {
   Bytes bytes;
-  bytes.header(2, 2, 0.01, 0, "");
+  bytes.header(3, 2, 0.01, 0, "");
   EXPECT_THAT(bytes_error(bytes.str()),
-              HasSubstr("unsupported recording version 2 (this build reads version 1)"));
+              HasSubstr("unsupported recording version 3 (this build reads versions 1 to 2)"));
+  EXPECT_THAT(bytes_error(Bytes().header(0, 2, 0.01, 0, "").str()),
+              HasSubstr("unsupported recording version 0"));
   // A version is read before the rest of the header, whose layout it may change.
   EXPECT_THAT(bytes_error(Bytes().text("SPHYSREC").u32(7).str()),
               HasSubstr("unsupported recording version 7"));

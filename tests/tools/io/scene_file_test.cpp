@@ -155,6 +155,7 @@ void expect_same_joints(const std::vector<JointSpec>& a, const std::vector<Joint
     EXPECT_EQ(bits(x.spring.target), bits(y.spring.target));
     EXPECT_EQ(x.cone.enabled, y.cone.enabled);
     EXPECT_EQ(bits(x.cone.angle), bits(y.cone.angle));
+    EXPECT_EQ(bits(x.friction), bits(y.friction));
     EXPECT_EQ(bits(x.length), bits(y.length));
     EXPECT_EQ(x.collide_connected, y.collide_connected);
   }
@@ -232,7 +233,7 @@ constexpr std::string_view kFullScene = R"({
      "limit": {"enabled": true, "lower": -0.5, "upper": 1.5},
      "motor": {"enabled": false, "speed": 2, "max_effort": 30},
      "spring": {"hertz": 4, "damping_ratio": 0.7, "target": 0.25},
-     "cone": {"angle": 0.5}, "length": 2.5, "collide_connected": true}
+     "cone": {"angle": 0.5}, "friction": 3.5, "length": 2.5, "collide_connected": true}
   ]
 })";
 
@@ -292,6 +293,7 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   // An object given is on unless it says otherwise.
   slider.desc.spring = {.enabled = true, .hertz = 4.0f, .damping_ratio = 0.7f, .target = 0.25f};
   slider.desc.cone = {.enabled = true, .angle = 0.5f};
+  slider.desc.friction = 3.5f;
   slider.desc.length = 2.5f;
   slider.desc.collide_connected = true;
   expect_same_joints(scene.joints, {slider});
@@ -610,6 +612,7 @@ class RandomScene {
                 .damping_ratio = std::abs(any_float()),
                 .target = within(1e5f)};
     d.cone = {.enabled = coin(), .angle = 3.0f * unit_float()};
+    d.friction = std::abs(any_float());
     d.length = static_cast<float>(in_range(1e-5, 1e5));
     d.collide_connected = coin();
     return joint;
@@ -1033,6 +1036,8 @@ TEST(SceneFile, BadJointsNameTheirPathAndReason) {
        "/joints/0/limit", "lower 0 > upper -0.5"},
       {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "motor": {"max_effort": -5}})"),
        "/joints/0/motor/max_effort", "must not be negative, got -5"},
+      {joints(R"({"type": "ball", "body_a": 0, "body_b": 1, "friction": -0.5})"),
+       "/joints/0/friction", "must not be negative, got -0.5"},
       {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "motor": {"speed": 1e5}})"),
        "/joints/0/motor/speed", "must be between -10000 and 10000 rad/s or m/s, got 100000"},
       {joints(R"({"type": "hinge", "body_a": 0, "body_b": 1, "spring": {"hertz": -1}})"),
