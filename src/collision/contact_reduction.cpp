@@ -1,6 +1,7 @@
 #include "collision/contact_reduction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -85,26 +86,40 @@ float twice_area_added(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   return std::max(outside_ab, 0.0f) + std::max(outside_bc, 0.0f) + std::max(outside_ca, 0.0f);
 }
 
-float distance_to_chosen_squared(const Vec3& p, std::span<const Contact> run,
-                                 std::span<const std::uint32_t> chosen, const Vec3& normal) {
-  float nearest = std::numeric_limits<float>::infinity();
-  for (const std::uint32_t c : chosen) {
-    nearest = std::min(nearest, plane_distance_squared(run[c].point, p, normal));
+// Each contact's nearest chosen point across the plane, kept up to date as points are chosen:
+// its squared distance and the chosen point's slot.
+struct Nearest {
+  std::vector<float>& distance_squared;
+  std::vector<std::uint32_t>& slot;
+
+  void start(std::size_t contacts) {
+    fill_buffer(distance_squared, contacts, std::numeric_limits<float>::infinity());
+    resize_buffer(slot, contacts);
   }
-  return nearest;
-}
+  // `chosen` (a contact of `run`) is the chosen point of slot `new_slot`; ties keep the earlier
+  // slot.
+  void add(std::span<const Contact> run, std::uint32_t chosen, std::uint32_t new_slot,
+           const Vec3& normal) {
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      const float distance = plane_distance_squared(run[chosen].point, run[i].point, normal);
+      if (distance < distance_squared[i]) {
+        distance_squared[i] = distance;
+        slot[i] = new_slot;
+      }
+    }
+  }
+};
 
 // The candidate with the largest positive `score(point, distance_squared_to_chosen)` among those
 // apart from every chosen point, so that no point is chosen twice; a contact kept in the previous
 // call scores kPersistentScoreBonus times more; ties go to the earlier one.
 template <typename Score>
 std::uint32_t best_candidate(std::span<const Contact> run, std::span<const std::uint8_t> was_kept,
-                             std::span<const std::uint32_t> chosen, const Vec3& normal,
-                             Score score) {
+                             const Nearest& nearest, Score score) {
   std::uint32_t best = kNoCandidate;
   float best_score = 0.0f;
   for (std::uint32_t i = 0; i < run.size(); ++i) {
-    const float apart = distance_to_chosen_squared(run[i].point, run, chosen, normal);
+    const float apart = nearest.distance_squared[i];
     if (!(apart > 0.0f)) continue;
     float candidate_score = score(run[i].point, apart);
     if (was_kept[i] != 0) candidate_score *= ContactReducer::kPersistentScoreBonus;
@@ -117,27 +132,27 @@ std::uint32_t best_candidate(std::span<const Contact> run, std::span<const std::
 }
 
 std::uint32_t next_point(std::span<const Contact> run, std::span<const std::uint8_t> was_kept,
-                         std::span<const std::uint32_t> chosen, const Vec3& normal) {
+                         std::span<const std::uint32_t> chosen, const Nearest& nearest,
+                         const Vec3& normal) {
   std::uint32_t next = kNoCandidate;
   if (chosen.size() == 2) {
     const Vec3& a = run[chosen[0]].point;
     const Vec3& b = run[chosen[1]].point;
-    next = best_candidate(run, was_kept, chosen, normal, [&](const Vec3& p, float) {
+    next = best_candidate(run, was_kept, nearest, [&](const Vec3& p, float) {
       return std::abs(twice_signed_area(a, b, p, normal));
     });
   } else if (chosen.size() == 3) {
     const Vec3& a = run[chosen[0]].point;
     const Vec3& b = run[chosen[1]].point;
     const Vec3& c = run[chosen[2]].point;
-    next = best_candidate(run, was_kept, chosen, normal, [&](const Vec3& p, float) {
+    next = best_candidate(run, was_kept, nearest, [&](const Vec3& p, float) {
       return twice_area_added(p, a, b, c, normal);
     });
   }
   // Collinear contacts (an edge resting on a face) add no area: spreading them along their line
   // still gives the solver the widest support there is.
   if (next == kNoCandidate) {
-    next = best_candidate(run, was_kept, chosen, normal,
-                          [](const Vec3&, float apart) { return apart; });
+    next = best_candidate(run, was_kept, nearest, [](const Vec3&, float apart) { return apart; });
   }
   return next;
 }
@@ -157,53 +172,41 @@ std::uint32_t first_point(std::span<const Contact> run, std::span<const std::uin
   return first;
 }
 
+// Up to `max_points` contacts, each as far from the chosen ones as the rules above ask, and every
+// contact's nearest chosen one (`nearest`).
 void choose_points(std::span<const Contact> run, std::span<const std::uint8_t> was_kept,
-                   std::uint32_t max_points, const Vec3& normal,
-                   std::vector<std::uint32_t>& chosen) {
+                   std::uint32_t max_points, const Vec3& normal, std::vector<std::uint32_t>& chosen,
+                   Nearest& nearest) {
   chosen.clear();
-  chosen.push_back(first_point(run, was_kept));
-  while (chosen.size() < max_points) {
-    const std::uint32_t next = next_point(run, was_kept, chosen, normal);
-    if (next == kNoCandidate) return;  // every remaining contact coincides with a chosen one
+  nearest.start(run.size());
+  std::uint32_t next = first_point(run, was_kept);
+  while (true) {
+    nearest.add(run, next, static_cast<std::uint32_t>(chosen.size()), normal);
     chosen.push_back(next);
+    if (chosen.size() == max_points) return;
+    next = next_point(run, was_kept, chosen, nearest, normal);
+    if (next == kNoCandidate) return;  // every remaining contact coincides with a chosen one
   }
 }
 
-std::uint32_t nearest_chosen_slot(const Vec3& p, std::span<const Contact> run,
-                                  std::span<const std::uint32_t> chosen, const Vec3& normal) {
-  std::uint32_t nearest = 0;
-  float nearest_distance = std::numeric_limits<float>::infinity();
-  for (std::uint32_t slot = 0; slot < chosen.size(); ++slot) {
-    const float distance = plane_distance_squared(run[chosen[slot]].point, p, normal);
-    if (distance < nearest_distance) {
-      nearest = slot;
-      nearest_distance = distance;
-    }
-  }
-  return nearest;
-}
-
-void assign_clusters(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
-                     const Vec3& normal, std::vector<std::uint32_t>& cluster) {
-  resize_buffer(cluster, run.size());
+// A chosen contact stands for its whole cluster (the contacts nearest to it): the cluster's
+// deepest overlap must still be resolved, and its normals together describe the surface there
+// better than any single one.
+void append_cluster_contacts(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
+                             std::span<const std::uint32_t> cluster,
+                             std::vector<Contact>& reduced) {
+  std::array<WeightedNormalSum, kMaxManifoldPoints> normals{};
+  const std::size_t first = reduced.size();
+  for (const std::uint32_t c : chosen) reduced.push_back(run[c]);
   for (std::size_t i = 0; i < run.size(); ++i) {
-    cluster[i] = nearest_chosen_slot(run[i].point, run, chosen, normal);
-  }
-}
-
-// A chosen contact stands for its whole cluster: the cluster's deepest overlap must still be
-// resolved, and its normals together describe the surface there better than any single one.
-Contact cluster_contact(std::span<const Contact> run, std::span<const std::uint32_t> chosen,
-                        std::span<const std::uint32_t> cluster, std::uint32_t slot) {
-  Contact merged = run[chosen[slot]];
-  WeightedNormalSum normals;
-  for (std::size_t i = 0; i < run.size(); ++i) {
-    if (cluster[i] != slot) continue;
-    normals.add(run[i]);
+    normals[cluster[i]].add(run[i]);
+    Contact& merged = reduced[first + cluster[i]];
     merged.depth = std::max(merged.depth, run[i].depth);
   }
-  merged.normal = normals.mean_or(merged.normal);
-  return merged;
+  for (std::size_t slot = 0; slot < chosen.size(); ++slot) {
+    Contact& merged = reduced[first + slot];
+    merged.normal = normals[slot].mean_or(merged.normal);
+  }
 }
 
 bool same_leaves(const Contact& a, const Contact& b) {
@@ -229,11 +232,9 @@ void ContactReducer::reduce(std::span<const Contact> run, std::uint32_t max_poin
                                [&](const Contact& k) { return same_leaves(k, run[i]); });
   }
   const Vec3 normal = run_plane_normal(run);
-  choose_points(run, was_kept_, max_points, normal, chosen_);
-  assign_clusters(run, chosen_, normal, cluster_);
-  for (std::uint32_t slot = 0; slot < chosen_.size(); ++slot) {
-    reduced.push_back(cluster_contact(run, chosen_, cluster_, slot));
-  }
+  Nearest nearest{nearest_distance_, cluster_};
+  choose_points(run, was_kept_, max_points, normal, chosen_, nearest);
+  append_cluster_contacts(run, chosen_, cluster_, reduced);
 }
 
 void ContactReducer::reduce_by_parts(std::span<const Contact> run,

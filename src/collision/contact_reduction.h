@@ -54,7 +54,8 @@ class ContactReducer {
 
  private:
   std::vector<std::uint32_t> chosen_;
-  std::vector<std::uint32_t> cluster_;
+  std::vector<std::uint32_t> cluster_;   // per contact: the slot of its nearest chosen one
+  std::vector<float> nearest_distance_;  // per contact: its squared distance to that one
   std::vector<std::uint8_t> was_kept_;   // per contact of the run
   std::vector<std::uint8_t> part_done_;  // per contact of a run reduced by parts
   std::vector<Contact> part_run_;        // one pair of parts' contacts
