@@ -121,18 +121,28 @@ struct RowTurns {
 };
 
 template <int N>
-void apply(const RowBlock<N>& rows, const RowTurns<N>& turns, const RowVector<N>& impulse,
-           JointBody& a, JointBody& b) {
+void apply_linear(const RowBlock<N>& rows, const RowVector<N>& impulse, JointBody& a,
+                  JointBody& b) {
   const Vec3 linear = rows.linear * impulse;
   a.linear -= a.inverse_mass * linear;
   b.linear += b.inverse_mass * linear;
+}
+
+template <int N>
+void apply(const RowBlock<N>& rows, const RowTurns<N>& turns, const RowVector<N>& impulse,
+           JointBody& a, JointBody& b) {
+  apply_linear(rows, impulse, a, b);
   a.angular -= turns.a * impulse;
   b.angular += turns.b * impulse;
 }
 
+// An impulse alone (a warm start): the rows' angular parts times it first, then I⁻¹, fewer
+// products than the turns.
 template <int N>
 void apply(const RowBlock<N>& rows, const RowVector<N>& impulse, JointBody& a, JointBody& b) {
-  apply(rows, RowTurns<N>(rows, a, b), impulse, a, b);
+  apply_linear(rows, impulse, a, b);
+  a.angular -= a.inverse_inertia * (rows.angular_a * impulse);
+  b.angular += b.inverse_inertia * (rows.angular_b * impulse);
 }
 
 // One solve of the rows towards `target` rates with position error `error` (unit: m or rad),
