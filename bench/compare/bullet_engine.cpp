@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine.h"
+#include "jointed_scenes.h"
 #include "principal_axes.h"
 #include "sphys/error.h"
 
@@ -175,12 +176,8 @@ class BulletEngine final : public Engine {
       const btTransform frame_b =
           b.getCenterOfMassTransform().inverse() * a.getCenterOfMassTransform() * frame_a;
       auto cone = std::make_unique<btConeTwistConstraint>(a, b, frame_a, frame_b);
-      // Bullet's twist span is symmetric: the limit's larger side.
-      const btScalar twist = desc.limit.enabled
-                                 ? std::max(std::abs(desc.limit.lower), std::abs(desc.limit.upper))
-                                 : SIMD_PI;
       const btScalar swing = desc.cone.enabled ? desc.cone.angle : SIMD_PI;
-      cone->setLimit(swing, swing, twist);
+      cone->setLimit(swing, swing, twist_span(desc));
       joints_.push_back(std::move(cone));
     } else {
       throw Error("bullet: the comparison builds hinges and ball joints only");

@@ -203,6 +203,11 @@ int counted(std::istringstream& in, int most, const std::string& name, const cha
 
 }  // namespace
 
+float twist_span(const JointDesc& ball) {
+  if (!ball.limit.enabled) return std::numbers::pi_v<float>;
+  return std::max(std::abs(ball.limit.lower), std::abs(ball.limit.upper));
+}
+
 bool is_jointed_scene(const std::string& name) {
   return name.starts_with("ragdolls:") || name.starts_with("chains:");
 }

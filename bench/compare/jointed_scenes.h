@@ -21,6 +21,10 @@ namespace sphys::compare {
 // True for a jointed scene's name ("ragdolls:..." or "chains:..."), well formed or not.
 [[nodiscard]] bool is_jointed_scene(const std::string& name);
 
+// A ball joint's twist limit as one span either way, the larger side of its limits (π without
+// them): what an engine with a symmetric twist limit takes (Bullet, ODE). unit: rad
+[[nodiscard]] float twist_span(const JointDesc& ball);
+
 // The scene a name describes. Throws sphys::Error naming the scene and its valid forms for a
 // malformed name or a count out of range.
 [[nodiscard]] BenchScene make_jointed_scene(const std::string& name);

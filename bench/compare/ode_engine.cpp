@@ -1,9 +1,11 @@
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <ode/ode.h>
 #include <vector>
 
 #include "engine.h"
+#include "jointed_scenes.h"
 #include "sphys/error.h"
 
 namespace sphys::compare {
@@ -13,9 +15,11 @@ namespace {
 // a hash space of one simple space per body, auto-disable (sleep) on. Each body carries its
 // shape's leaf spheres as sphere geoms at their offsets, in its own space, so that they are
 // tested against other bodies' only. Hinges are dJointCreateHinge with the scene's angle limits
-// as stops; ball joints dJointCreateBall, which has no cone or twist limit in ODE 0.16 (an
-// angular motor's Euler-angle stops are a box, not the cone), so ODE's ball joints turn freely.
-// A joint's bodies make no contacts with each other.
+// as stops; ball joints dJointCreateBall, which has no cone or twist limit in ODE 0.16, with an
+// angular motor in Euler mode beside it for the limits (ODE's way for a ragdoll): stops at ± the
+// cone's angle about two axes across the joint's axis and ± the twist span about it, a box of
+// swing angles around the cone (as wide across, √2 wider along the diagonals). A joint's bodies
+// make no contacts with each other.
 class OdeEngine final : public Engine {
  public:
   explicit OdeEngine(const BenchScene& bench)
@@ -101,6 +105,22 @@ class OdeEngine final : public Engine {
  private:
   using Vec3d = Eigen::Vector3d;
 
+  // Euler angles: axis 0 across the joint's axis on body a, axis 2 the joint's axis on body b,
+  // their angles 0 at the start.
+  void add_swing_limits(dBodyID a, dBodyID b, const Vec3& axis, const JointDesc& ball) {
+    const dJointID motor = dJointCreateAMotor(world_, nullptr);
+    dJointAttach(motor, a, b);
+    dJointSetAMotorMode(motor, dAMotorEuler);
+    const Vec3 across = axis.unitOrthogonal();
+    dJointSetAMotorAxis(motor, 0, 1, across.x(), across.y(), across.z());
+    dJointSetAMotorAxis(motor, 2, 2, axis.x(), axis.y(), axis.z());
+    const std::array<dReal, 3> spans = {ball.cone.angle, ball.cone.angle, twist_span(ball)};
+    for (int i = 0; i < 3; ++i) {
+      dJointSetAMotorParam(motor, dParamLoStop + i * dParamGroup, -spans[i]);
+      dJointSetAMotorParam(motor, dParamHiStop + i * dParamGroup, spans[i]);
+    }
+  }
+
   // ODE takes a joint's anchor and axis in the world, at the bodies' start poses.
   void add_joint(const BenchScene& bench, const tools::JointSpec& joint) {
     const dBodyID a = joint.body_a ? bodies_[*joint.body_a] : nullptr;
@@ -122,6 +142,7 @@ class OdeEngine final : public Engine {
       id = dJointCreateBall(world_, nullptr);
       dJointAttach(id, a, b);
       dJointSetBallAnchor(id, anchor.x(), anchor.y(), anchor.z());
+      if (joint.desc.cone.enabled && a != nullptr) add_swing_limits(a, b, axis, joint.desc);
     } else {
       throw Error("ode: the comparison builds hinges and ball joints only");
     }
