@@ -1,10 +1,18 @@
 #pragma once
 
-// The benchmark scene of every engine (S stacks of N bunnies over the plane y = 0, 1/60 s steps,
-// restitution 0.3 and friction 0.5 on every contact): one bunny model, its mass properties and
-// leaf spheres from sphys, and the starting poses.
+// The benchmark scenes of every engine, described once: bodies of a few shapes (each a set of
+// leaf spheres with its mass properties), their starting poses, the joints between them, over
+// the plane y = 0, 1/60 s steps, restitution 0.3 and friction 0.5 on every contact.
+//
+// - "SxN": S stacks of N bunnies (bunny_stacks_scene), one bunny model from sphys: its mass
+//   properties and the leaf spheres of its sphere-tree.
+// - the jointed scenes (jointed_scenes.h): ragdolls and chains of limbs made of spheres, joined
+//   by hinges and ball joints with limits, some falling into bunnies.
 
 #include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "sphys/math.h"
@@ -14,27 +22,47 @@
 
 namespace sphys::compare {
 
+// One shape of the scene's bodies, in its body frame (centre of mass at the origin).
+struct BenchShape {
+  std::string name;
+  float mass = 0.0f;                 // unit: kg
+  Mat3 inertia = Mat3::Identity();   // about the centre of mass, body axes. unit: kg·m²
+  std::vector<Sphere> leaves;        // the leaves of its sphere-tree, body frame. unit: m
+  float max_vertex_distance = 0.0f;  // r_max of the moving-body test. unit: m
+  // The bunny's mesh (its convex hull for bullet-hull); none for a shape made of spheres.
+  std::optional<tools::TriangleMesh> mesh;
+  // The sphere-tree sphys gives a body of this shape that the bunnies' tools::Scene does not
+  // build (a limb: its leaves under one root).
+  std::shared_ptr<const SphereTree> tree;
+};
+
 struct BenchScene {
-  tools::Scene scene;  // what sphys runs: the stacks over the exact plane
-  int stacks = 0;
-  int per_stack = 0;
-  int depth = 0;
+  std::string name;  // as the tables head it: "4x25", "ragdolls:100", "chains:20x20"
+  // What sphys builds with tools::build_world: the bunnies (the scene's first bodies) over the
+  // exact plane, and the world's settings. Bodies after them are added from their shape's tree.
+  tools::Scene scene;
+  int depth = 0;                  // of the bunnies' sphere-trees (a limb's tree has 2 levels)
   double time_step = 1.0 / 60.0;  // unit: s
   float restitution = 0.3f;
   float friction = 0.5f;
 
-  // The bunny, in its body frame (centre of mass at the origin, mesh axes).
-  tools::TriangleMesh mesh;
-  float mass = 0.0f;                 // unit: kg
-  Mat3 inertia = Mat3::Identity();   // about the centre of mass, body axes. unit: kg·m²
-  std::vector<Sphere> leaves;        // of its sphere-tree at `depth`, body frame. unit: m
-  float max_vertex_distance = 0.0f;  // r_max of the moving-body test. unit: m
+  std::vector<BenchShape> shapes;
+  std::vector<std::uint32_t> shape_of;  // per body: its index into shapes
+  std::vector<Transform> start;         // per body
+  // Hinges and ball joints, body b the child of body a (or of the world): every body is the
+  // body b of one joint at most and the joints make trees, as MuJoCo's bodies. The joints'
+  // anchors and axes are in the body frames above.
+  std::vector<tools::JointSpec> joints;
 
-  std::vector<Transform> start;  // per body
+  [[nodiscard]] const BenchShape& shape(std::size_t body) const { return shapes[shape_of[body]]; }
 };
 
-// Builds the bunny's tree (or takes it from the sphere-tree cache). Throws sphys::Error for
-// counts or a depth out of range.
+// S stacks of N bunnies. Builds the bunny's tree (or takes it from the sphere-tree cache).
+// Throws sphys::Error for counts or a depth out of range.
 [[nodiscard]] BenchScene make_bench_scene(int stacks, int per_stack, int depth);
+
+// The bunny shape and the scene's plane, restitution and friction over `bunnies`: what every
+// scene with bunnies shares. The scene's bodies and shapes are the bunnies (shape 0).
+[[nodiscard]] BenchScene bunny_bench_scene(std::string name, tools::Scene bunnies, int depth);
 
 }  // namespace sphys::compare

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -20,6 +21,7 @@
 #include <CLI/CLI.hpp>
 
 #include "engine_rows.h"
+#include "jointed_scenes.h"
 #include "results_csv.h"
 #include "run_engine.h"
 #include "sphys/error.h"
@@ -33,6 +35,7 @@ namespace {
 struct Options {
   std::vector<std::string> layouts = {"4x25", "4x50", "8x10", "8x20"};
   std::vector<int> depths = {2, 3};
+  std::vector<std::string> jointed;  // jointed_scenes.h, after the layouts
   std::vector<std::string> engines = {"sphys", "bullet-spheres", "bullet-hull", "ode", "mujoco"};
   int frames = 880;
   int runs = 1;
@@ -69,7 +72,26 @@ std::pair<int, int> parse_layout(const std::string& layout) {
   return {stacks, per_stack};
 }
 
-constexpr int kColumns = 17;
+// The bunny scenes of the layouts and depths ("none": no layout), then the jointed ones.
+std::vector<std::function<BenchScene()>> scene_makers(const Options& options) {
+  std::vector<std::function<BenchScene()>> makers;
+  const bool no_layout = options.layouts == std::vector<std::string>{"none"};
+  for (const std::string& layout : no_layout ? std::vector<std::string>{} : options.layouts) {
+    const auto [stacks, per_stack] = parse_layout(layout);
+    for (const int depth : options.depths) {
+      makers.emplace_back([=] { return make_bench_scene(stacks, per_stack, depth); });
+    }
+  }
+  for (const std::string& name : options.jointed) {
+    if (!is_jointed_scene(name)) {
+      throw Error("--jointed: '" + name + "' is not ragdolls:R or chains:CxL");
+    }
+    makers.emplace_back([=] { return make_jointed_scene(name); });
+  }
+  return makers;
+}
+
+constexpr int kColumns = 17;  // and two more for a scene with joints
 
 std::string ratio_text(const std::optional<double>& ratio, const EngineRow& row, int frames) {
   if (!ratio) return {};
@@ -81,21 +103,24 @@ std::string table(const SceneRows& scene, double time_limit) {
   std::ostringstream out;
   const int frames = scene.frames;
   out << formatted("\n### %s, depth %d, %d frames\n\n", scene.layout.c_str(), scene.depth, frames);
+  const int columns = scene.jointed ? kColumns + 2 : kColumns;
   if (!scene.reference.empty() && scene.reference != "sphys") {
     out << "× sphys: over `" << scene.reference << "` (single-threaded sphys did not run).\n\n";
   }
   out << "| engine | frames run | median ms/step | steps/s | × sphys median | mean ms/step | "
          "× sphys mean | mean µs/body/step | contacts/step | deepest (m) | "
          "deepest, last second (m) | overlap at end (m) | KE at end (J) | moving at end | "
-         "asleep at end | below plane | peak memory (MiB) |\n"
-      << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-         "---: | ---: | ---: | ---: | ---: |\n";
+         "asleep at end | below plane | peak memory (MiB) |"
+      << (scene.jointed ? " largest joint gap (m) | joint gap at end (m) |" : "")
+      << "\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+         "---: | ---: | ---: | ---: | ---: |"
+      << (scene.jointed ? " ---: | ---: |" : "") << "\n";
   bool partial_ratios = false;
   for (const EngineRow& row : scene.rows) {
     const RunResult& worst = row.worst;
     if (!row.ran) {
       out << "| " << row.engine << " | " << worst.warnings << " |";
-      for (int column = 2; column < kColumns; ++column) out << " |";
+      for (int column = 2; column < columns; ++column) out << " |";
       out << "\n";
       continue;
     }
@@ -117,6 +142,9 @@ std::string table(const SceneRows& scene, double time_limit) {
                      worst.bodies)
         << (worst.asleep ? std::to_string(*worst.asleep) : "–") << " | " << worst.below << " | "
         << memory_text(worst.peak_memory_mib) << " |"
+        << (scene.jointed ? formatted(" %.4f | %.4f |", static_cast<double>(worst.largest_gap),
+                                      static_cast<double>(worst.largest_gap_at_end))
+                          : std::string())
         << (worst.warnings.empty() ? "" : " " + worst.warnings) << "\n";
   }
   if (!scene.stops.empty()) {
@@ -149,39 +177,36 @@ int run(const Options& options) {
                             : std::string("none")) +
                        "\n";
   std::vector<SceneRows> scenes;
-  for (const std::string& layout : options.layouts) {
-    const auto [stacks, per_stack] = parse_layout(layout);
-    for (const int depth : options.depths) {
-      const BenchScene scene = make_bench_scene(stacks, per_stack, depth);
-      std::map<std::string, Pooled> results;
-      // Alternating: run r of every engine before run r + 1 of any, so that a slow spell of the
-      // machine falls on all of them.
-      for (int r = 0; r < options.runs; ++r) {
-        for (const std::string& engine : options.engines) {
-          RunResult result;
-          try {
-            result = run_engine(engine, scene, options.frames, options.time_limit);
-          } catch (const std::exception& error) {
-            // One engine failing (e.g. out of memory for its contacts) leaves the others' rows.
-            result.warnings = std::string("failed: ") + error.what();
-          }
-          const std::string stopped =
-              result.stopped
-                  ? formatted(": stopped at frame %zu (time limit)", result.step_ms.size())
-                  : std::string();
-          Pooled& pooled = results[engine];
-          pooled.step_ms.insert(pooled.step_ms.end(), result.step_ms.begin(), result.step_ms.end());
-          pooled.runs.push_back(std::move(result));
-          std::fprintf(stderr, "%s d%d %s run %d done%s\n", layout.c_str(), depth, engine.c_str(),
-                       r + 1, stopped.c_str());
+  for (const std::function<BenchScene()>& make : scene_makers(options)) {
+    const BenchScene scene = make();
+    std::map<std::string, Pooled> results;
+    // Alternating: run r of every engine before run r + 1 of any, so that a slow spell of the
+    // machine falls on all of them.
+    for (int r = 0; r < options.runs; ++r) {
+      for (const std::string& engine : options.engines) {
+        RunResult result;
+        try {
+          result = run_engine(engine, scene, options.frames, options.time_limit);
+        } catch (const std::exception& error) {
+          // One engine failing (e.g. out of memory for its contacts) leaves the others' rows.
+          result.warnings = std::string("failed: ") + error.what();
         }
+        const std::string stopped =
+            result.stopped ? formatted(": stopped at frame %zu (time limit)", result.step_ms.size())
+                           : std::string();
+        Pooled& pooled = results[engine];
+        pooled.step_ms.insert(pooled.step_ms.end(), result.step_ms.begin(), result.step_ms.end());
+        pooled.runs.push_back(std::move(result));
+        std::fprintf(stderr, "%s d%d %s run %d done%s\n", scene.name.c_str(), scene.depth,
+                     engine.c_str(), r + 1, stopped.c_str());
       }
-      scenes.push_back(scene_rows(layout, depth, options.frames, options.engines, results));
-      const std::string part = table(scenes.back(), options.time_limit);
-      std::fputs(part.c_str(), stdout);
-      std::fflush(stdout);
-      report += part;
     }
+    scenes.push_back(scene_rows(scene.name, scene.depth, options.frames, options.engines, results));
+    scenes.back().jointed = !scene.joints.empty();
+    const std::string part = table(scenes.back(), options.time_limit);
+    std::fputs(part.c_str(), stdout);
+    std::fflush(stdout);
+    report += part;
   }
   if (!options.out.empty()) {
     tools::write_text_file(options.out, report);
@@ -203,12 +228,16 @@ int run(const Options& options) {
 int main(int argc, char** argv) {
   sphys::compare::Options options;
   CLI::App app("sphys-compare: the bunny scene in sphys, Bullet, ODE and MuJoCo, side by side");
-  app.add_option("--layouts", options.layouts, "Layouts SxN")
+  app.add_option("--layouts", options.layouts, "Layouts SxN of bunny stacks ('none': none)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--depths", options.depths, "Sphere-tree depths")
       ->delimiter(',')
       ->capture_default_str();
+  app.add_option("--jointed", options.jointed,
+                 "Jointed scenes after the layouts: ragdolls:R (R ragdolls of 11 limbs), "
+                 "chains:CxL (C chains of L links swinging into bunnies)")
+      ->delimiter(',');
   app.add_option("--engines", options.engines, "Engines, in the order they run")
       ->delimiter(',')
       ->capture_default_str();

@@ -33,6 +33,8 @@ class Engine {
   // How many of the bodies the engine itself has put to sleep now (asleep, deactivated,
   // disabled); nullopt for an engine without sleeping.
   [[nodiscard]] virtual std::optional<std::uint32_t> asleep() const { return std::nullopt; }
+  // How many joints the engine holds between the bodies (its free joints aside).
+  [[nodiscard]] virtual std::uint32_t joints() const = 0;
   // What went wrong so far that makes the run suspect (e.g. contacts dropped); empty if nothing.
   [[nodiscard]] virtual std::string warnings() const { return {}; }
 };

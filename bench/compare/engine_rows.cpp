@@ -52,6 +52,8 @@ void add_runs(const Pooled& pooled, int frames, EngineRow& row, std::vector<std:
     worst.deepest = std::max(worst.deepest, run.deepest);
     worst.deepest_last_second = std::max(worst.deepest_last_second, run.deepest_last_second);
     worst.end_overlap = std::max(worst.end_overlap, run.end_overlap);
+    worst.largest_gap = std::max(worst.largest_gap, run.largest_gap);
+    worst.largest_gap_at_end = std::max(worst.largest_gap_at_end, run.largest_gap_at_end);
     worst.kinetic_energy = std::max(worst.kinetic_energy, run.kinetic_energy);
     worst.moving = std::max(worst.moving, run.moving);
     worst.below = std::max(worst.below, run.below);

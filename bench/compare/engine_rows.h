@@ -39,12 +39,13 @@ struct EngineRow {
 };
 
 struct SceneRows {
-  std::string layout;  // SxN
+  std::string layout;  // SxN, or a jointed scene's name
   int depth = 0;
   int frames = 0;         // asked for
   std::string reference;  // the engine the ratios divide by; empty: none ran
   std::vector<EngineRow> rows;
   std::vector<std::string> stops;  // the runs stopped at the time limit, in words
+  bool jointed = false;            // the scene has joints: its rows' joint gaps mean something
 };
 
 // The engine the ratios divide by: single-threaded sphys, else the first sphys:T listed (e.g. a

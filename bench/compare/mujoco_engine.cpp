@@ -10,47 +10,102 @@
 #include <vector>
 
 #include "engine.h"
+#include "sphys/error.h"
 #include "sphys/tools/text_file.h"
 
 namespace sphys::compare {
 namespace {
 
-// The scene as MJCF: y up, the plane's normal +y, each bunny a free body with the bunny's mass
-// and full inertia tensor at its centre of mass and its leaf spheres as geoms. MuJoCo has no
-// coefficient of restitution: its soft contacts keep their defaults (critically damped, no
-// bounce); friction 0.5 (sliding). Its defaults elsewhere: the Newton solver, pyramidal friction
-// cones; a sparse Jacobian for the many bodies; no sleeping (MuJoCo 2.2 has none).
-std::string mjcf(const BenchScene& bench) {
+// One body of the MJCF and, nested in it, the bodies its joints hold: its pose from its parent's
+// (the world's for none), the joint to its parent at its anchor (a free joint for a body without
+// one), its mass and full inertia tensor at its centre of mass and its leaf spheres as geoms.
+void body_xml(std::ostringstream& xml, const BenchScene& bench,
+              const std::vector<std::vector<std::size_t>>& children,
+              const std::vector<const tools::JointSpec*>& parent_joint, std::size_t body,
+              int indent) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  const tools::JointSpec* joint = parent_joint[body];
+  const Transform parent = joint && joint->body_a ? bench.start[*joint->body_a] : Transform{};
+  const Transform& start = bench.start[body];
+  const Vec3 p = parent.rotation.conjugate() * (start.translation - parent.translation);
+  const Quat q = (parent.rotation.conjugate() * start.rotation).normalized();
+  const BenchShape& shape = bench.shape(body);
+  const Mat3& I = shape.inertia;
+  xml << pad << "<body name=\"b" << body << "\" pos=\"" << p.x() << ' ' << p.y() << ' ' << p.z()
+      << "\" quat=\"" << q.w() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << "\">\n";
+  if (joint == nullptr) {
+    xml << pad << "  <freejoint/>\n";
+  } else {
+    const JointDesc& desc = joint->desc;
+    const Vec3& at = desc.anchor_b;
+    const Vec3& axis = desc.axis_b;
+    xml << pad << "  <joint pos=\"" << at.x() << ' ' << at.y() << ' ' << at.z() << '"';
+    if (desc.type == JointType::kHinge) {
+      xml << " type=\"hinge\" axis=\"" << axis.x() << ' ' << axis.y() << ' ' << axis.z() << '"';
+      if (desc.limit.enabled) {
+        xml << " limited=\"true\" range=\"" << desc.limit.lower << ' ' << desc.limit.upper << '"';
+      }
+    } else if (desc.type == JointType::kBall) {
+      xml << " type=\"ball\"";
+      if (desc.cone.enabled) xml << " limited=\"true\" range=\"0 " << desc.cone.angle << '"';
+    } else {
+      throw Error("mujoco: the comparison builds hinges and ball joints only");
+    }
+    xml << "/>\n";
+  }
+  xml << pad << "  <inertial pos=\"0 0 0\" mass=\"" << shape.mass << "\" fullinertia=\"" << I(0, 0)
+      << ' ' << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 2)
+      << "\"/>\n";
+  for (const Sphere& leaf : shape.leaves) {
+    xml << pad << "  <geom type=\"sphere\" size=\"" << leaf.radius << "\" pos=\"" << leaf.center.x()
+        << ' ' << leaf.center.y() << ' ' << leaf.center.z() << "\"/>\n";
+  }
+  for (const std::size_t child : children[body]) {
+    body_xml(xml, bench, children, parent_joint, child, indent + 2);
+  }
+  xml << pad << "</body>\n";
+}
+
+// The scene as MJCF: y up, the plane's normal +y, its bodies as kinematic trees, each joint's
+// body b a child of its body a (of the world for none): hinges with their angle range, ball
+// joints whose range is the cone's angle (MuJoCo's ball range bounds the whole rotation angle,
+// swing and twist together; there is no separate twist limit). MuJoCo has no coefficient of
+// restitution: its soft contacts keep their defaults (critically damped, no bounce); friction
+// 0.5 (sliding). Its defaults elsewhere: the Newton solver, pyramidal friction cones, a parent's
+// and its child's geoms not colliding; a sparse Jacobian for the many bodies; no sleeping
+// (MuJoCo 2.2 has none).
+// Room for the contacts of a pile, 40 per bunny (sphys makes 15 to 20 at depth 3). unit: contacts
+std::size_t contact_room(const BenchScene& bench) {
+  return std::max<std::size_t>(1000, 40 * bench.start.size());
+}
+
+// `rows`: MuJoCo's njmax, its room for constraint rows.
+std::string mjcf(const BenchScene& bench, std::size_t rows) {
   std::ostringstream xml;
   xml.precision(9);
   const std::size_t bodies = bench.start.size();
-  // Room for the contacts of a pile, 40 per bunny (sphys makes 15 to 20 at depth 3), and for 4
-  // constraint rows each (pyramidal cones), up to 12,000: MuJoCo 2.2 allocates an njmax² matrix
-  // (1.1 GB at 12,000). More are dropped with a warning, which the comparison reports.
-  const std::size_t contacts = std::max<std::size_t>(1000, 40 * bodies);
-  const std::size_t rows = std::min<std::size_t>(4 * contacts, 12000);
-  xml << "<mujoco model=\"bunnies\">\n"
+  const std::size_t contacts = contact_room(bench);
+  xml << "<mujoco model=\"" << bench.name << "\">\n"
+      << "  <compiler angle=\"radian\"/>\n"
       << "  <option timestep=\"" << bench.time_step
       << "\" gravity=\"0 -9.81 0\" jacobian=\"sparse\"/>\n"
       << "  <size nconmax=\"" << contacts << "\" njmax=\"" << rows << "\"/>\n"
       << "  <default><geom friction=\"" << bench.friction << " 0.005 0.0001\"/></default>\n"
       << "  <worldbody>\n"
       << "    <geom name=\"ground\" type=\"plane\" size=\"0 0 1\" zaxis=\"0 1 0\"/>\n";
-  const Mat3& I = bench.inertia;
-  for (const Transform& start : bench.start) {
-    const Vec3& p = start.translation;
-    const Quat& q = start.rotation;
-    xml << "    <body pos=\"" << p.x() << ' ' << p.y() << ' ' << p.z() << "\" quat=\"" << q.w()
-        << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << "\">\n"
-        << "      <freejoint/>\n"
-        << "      <inertial pos=\"0 0 0\" mass=\"" << bench.mass << "\" fullinertia=\"" << I(0, 0)
-        << ' ' << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 2)
-        << "\"/>\n";
-    for (const Sphere& leaf : bench.leaves) {
-      xml << "      <geom type=\"sphere\" size=\"" << leaf.radius << "\" pos=\"" << leaf.center.x()
-          << ' ' << leaf.center.y() << ' ' << leaf.center.z() << "\"/>\n";
+  std::vector<std::vector<std::size_t>> children(bodies);
+  std::vector<const tools::JointSpec*> parent_joint(bodies, nullptr);
+  for (const tools::JointSpec& joint : bench.joints) {
+    const std::size_t child = joint.body_b.value();
+    if (parent_joint[child] != nullptr) {
+      throw Error("mujoco: body " + std::to_string(child) + " is the child of two joints");
     }
-    xml << "    </body>\n";
+    parent_joint[child] = &joint;
+    if (joint.body_a) children[*joint.body_a].push_back(child);
+  }
+  for (std::size_t body = 0; body < bodies; ++body) {
+    const tools::JointSpec* joint = parent_joint[body];
+    if (joint == nullptr || !joint->body_a) body_xml(xml, bench, children, parent_joint, body, 4);
   }
   xml << "  </worldbody>\n</mujoco>\n";
   return xml.str();
@@ -62,13 +117,25 @@ class MujocoEngine final : public Engine {
     // MuJoCo 2.2 reads models from files; the model goes through a temporary one.
     const std::filesystem::path file =
         std::filesystem::temp_directory_path() / "sphys-compare-mujoco.xml";
-    tools::write_text_file(file, mjcf(bench));
     std::array<char, 1000> error{};
-    model_ = mj_loadXML(file.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+    // Room for 4 constraint rows per contact (pyramidal cones), up to 12,000: MuJoCo 2.2
+    // allocates an njmax² matrix (1.1 GB at 12,000), and with many degrees of freedom (1,100
+    // limbs) cannot make its data at all; the room is then halved until it can, down to 1,500
+    // rows. More rows than the room are dropped with a warning, which the comparison reports.
+    for (std::size_t rows = std::min<std::size_t>(4 * contact_room(bench), 12000);
+         model_ == nullptr && rows >= 1500; rows /= 2) {
+      tools::write_text_file(file, mjcf(bench, rows));
+      model_ = mj_loadXML(file.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+    }
     std::filesystem::remove(file);
     if (model_ == nullptr) throw std::runtime_error(std::string("MuJoCo: ") + error.data());
     data_ = mj_makeData(model_);
     mj_forward(model_, data_);
+    for (std::size_t b = 0; b < bench.start.size(); ++b) {
+      std::string name = "b";  // as body_xml names it
+      name += std::to_string(b);
+      body_ids_.push_back(mj_name2id(model_, mjOBJ_BODY, name.c_str()));
+    }
   }
   ~MujocoEngine() override {
     mj_deleteData(data_);
@@ -80,26 +147,34 @@ class MujocoEngine final : public Engine {
   void step() override { mj_step(model_, data_); }
 
   void read(std::vector<BodyState>& out) const override {
+    // mj_step leaves the poses and velocities of the positions before its integration: they are
+    // computed afresh for the state it reached.
+    mj_kinematics(model_, data_);
+    mj_comPos(model_, data_);
+    mj_comVel(model_, data_);
     out.clear();
-    for (int body = 1; body < model_->nbody; ++body) {  // body 0 is the world
+    for (const int body : body_ids_) {
       const mjtNum* p = data_->xpos + 3 * body;
       const mjtNum* q = data_->xquat + 4 * body;
-      const mjtNum* r = data_->xmat + 9 * body;  // row-major body-to-world rotation
-      const int dof = model_->jnt_dofadr[model_->body_jntadr[body]];
-      const mjtNum* v = data_->qvel + dof;  // linear velocity (world), then angular (body frame)
+      std::array<mjtNum, 6> v{};  // angular, then linear velocity, world frame, at the body's
+      mj_objectVelocity(model_, data_, mjOBJ_BODY, body, v.data(), 0);  // centre of mass
       BodyState state;
       state.pose.translation =
           Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
       state.pose.rotation = Quat(static_cast<float>(q[0]), static_cast<float>(q[1]),
                                  static_cast<float>(q[2]), static_cast<float>(q[3]));
-      state.linear_velocity =
+      state.angular_velocity =
           Vec3(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
-      for (int row = 0; row < 3; ++row) {
-        state.angular_velocity[row] =
-            static_cast<float>(r[3 * row] * v[3] + r[3 * row + 1] * v[4] + r[3 * row + 2] * v[5]);
-      }
+      state.linear_velocity =
+          Vec3(static_cast<float>(v[3]), static_cast<float>(v[4]), static_cast<float>(v[5]));
       out.push_back(state);
     }
+  }
+
+  [[nodiscard]] std::uint32_t joints() const override {
+    std::uint32_t count = 0;
+    for (int j = 0; j < model_->njnt; ++j) count += model_->jnt_type[j] != mjJNT_FREE ? 1 : 0;
+    return count;
   }
 
   [[nodiscard]] std::uint32_t contacts() const override {
@@ -111,6 +186,11 @@ class MujocoEngine final : public Engine {
     return static_cast<float>(deepest);
   }
   [[nodiscard]] std::string warnings() const override {
+    // MuJoCo resets a simulation whose accelerations blew up, and goes on from the start.
+    if (data_->warning[mjWARN_BADQACC].number > 0) {
+      return "unstable: MuJoCo reset the simulation (resets: " +
+             std::to_string(data_->warning[mjWARN_BADQACC].number) + ")";
+    }
     if (data_->warning[mjWARN_CONTACTFULL].number > 0) return "contact list full: contacts dropped";
     if (data_->warning[mjWARN_CNSTRFULL].number > 0)
       return "constraint rows full: contacts dropped";
@@ -120,6 +200,7 @@ class MujocoEngine final : public Engine {
  private:
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
+  std::vector<int> body_ids_;  // per scene body: MuJoCo's, in the trees' order
 };
 
 }  // namespace

@@ -1,21 +1,32 @@
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <ode/ode.h>
 #include <vector>
 
 #include "engine.h"
+#include "jointed_scenes.h"
+#include "sphys/error.h"
 
 namespace sphys::compare {
 namespace {
 
 // ODE with its defaults where the scene is silent: QuickStep (20 iterations), ERP 0.2, CFM 1e-5,
-// a hash space of one simple space per bunny, auto-disable (sleep) on. Each bunny is one body
-// carrying its leaf spheres as sphere geoms at their offsets, in its own space, so that they are
-// tested against other bunnies' only.
+// a hash space of one simple space per body, auto-disable (sleep) on. Each body carries its
+// shape's leaf spheres as sphere geoms at their offsets, in its own space, so that they are
+// tested against other bodies' only. Hinges are dJointCreateHinge with the scene's angle limits
+// as stops; ball joints dJointCreateBall, which has no cone or twist limit in ODE 0.16, with an
+// angular motor in Euler mode beside it for the limits (ODE's way for a ragdoll): stops at ± the
+// cone's angle about two axes across the joint's axis and ± the twist span about it, a box of
+// swing angles around the cone (as wide across, √2 wider along the diagonals). A joint's bodies
+// make no contacts with each other.
 class OdeEngine final : public Engine {
  public:
   explicit OdeEngine(const BenchScene& bench)
-      : dt_(bench.time_step), friction_(bench.friction), restitution_(bench.restitution) {
+      : dt_(bench.time_step),
+        friction_(bench.friction),
+        restitution_(bench.restitution),
+        jointed_(!bench.joints.empty()) {
     dInitODE2(0);
     world_ = dWorldCreate();
     dWorldSetGravity(world_, 0, -9.81, 0);
@@ -23,15 +34,17 @@ class OdeEngine final : public Engine {
     space_ = dHashSpaceCreate(nullptr);
     contacts_group_ = dJointGroupCreate(0);
     dCreatePlane(space_, 0, 1, 0, 0);
-    const Mat3& I = bench.inertia;
-    for (const Transform& start : bench.start) {
+    for (std::size_t b = 0; b < bench.start.size(); ++b) {
+      const BenchShape& shape = bench.shape(b);
+      const Transform& start = bench.start[b];
+      const Mat3& I = shape.inertia;
       const dBodyID body = dBodyCreate(world_);
       dMass mass;
-      dMassSetParameters(&mass, bench.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2),
+      dMassSetParameters(&mass, shape.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2),
                          I(1, 2));
       dBodySetMass(body, &mass);
       const dSpaceID body_space = dSimpleSpaceCreate(space_);
-      for (const Sphere& leaf : bench.leaves) {
+      for (const Sphere& leaf : shape.leaves) {
         const dGeomID geom = dCreateSphere(body_space, leaf.radius);
         dGeomSetBody(geom, body);
         dGeomSetOffsetPosition(geom, leaf.center.x(), leaf.center.y(), leaf.center.z());
@@ -42,6 +55,7 @@ class OdeEngine final : public Engine {
       dBodySetQuaternion(body, q);
       bodies_.push_back(body);
     }
+    for (const tools::JointSpec& joint : bench.joints) add_joint(bench, joint);
   }
 
   ~OdeEngine() override {
@@ -79,6 +93,7 @@ class OdeEngine final : public Engine {
   }
 
   [[nodiscard]] std::uint32_t contacts() const override { return contacts_; }
+  [[nodiscard]] std::uint32_t joints() const override { return joints_; }
   [[nodiscard]] float deepest_penetration() const override { return static_cast<float>(deepest_); }
   // Auto-disable: a disabled body is ODE's sleeping one.
   [[nodiscard]] std::optional<std::uint32_t> asleep() const override {
@@ -89,6 +104,50 @@ class OdeEngine final : public Engine {
 
  private:
   using Vec3d = Eigen::Vector3d;
+
+  // Euler angles: axis 0 across the joint's axis on body a, axis 2 the joint's axis on body b,
+  // their angles 0 at the start.
+  void add_swing_limits(dBodyID a, dBodyID b, const Vec3& axis, const JointDesc& ball) {
+    const dJointID motor = dJointCreateAMotor(world_, nullptr);
+    dJointAttach(motor, a, b);
+    dJointSetAMotorMode(motor, dAMotorEuler);
+    const Vec3 across = axis.unitOrthogonal();
+    dJointSetAMotorAxis(motor, 0, 1, across.x(), across.y(), across.z());
+    dJointSetAMotorAxis(motor, 2, 2, axis.x(), axis.y(), axis.z());
+    const std::array<dReal, 3> spans = {ball.cone.angle, ball.cone.angle, twist_span(ball)};
+    for (int i = 0; i < 3; ++i) {
+      dJointSetAMotorParam(motor, dParamLoStop + i * dParamGroup, -spans[i]);
+      dJointSetAMotorParam(motor, dParamHiStop + i * dParamGroup, spans[i]);
+    }
+  }
+
+  // ODE takes a joint's anchor and axis in the world, at the bodies' start poses.
+  void add_joint(const BenchScene& bench, const tools::JointSpec& joint) {
+    const dBodyID a = joint.body_a ? bodies_[*joint.body_a] : nullptr;
+    const dBodyID b = bodies_[joint.body_b.value()];
+    const Transform& start_b = bench.start[*joint.body_b];
+    const Vec3 anchor = start_b.apply(joint.desc.anchor_b);
+    const Vec3 axis = start_b.rotation * joint.desc.axis_b;
+    dJointID id = nullptr;
+    if (joint.desc.type == JointType::kHinge) {
+      id = dJointCreateHinge(world_, nullptr);
+      dJointAttach(id, a, b);
+      dJointSetHingeAnchor(id, anchor.x(), anchor.y(), anchor.z());
+      dJointSetHingeAxis(id, axis.x(), axis.y(), axis.z());
+      if (joint.desc.limit.enabled) {
+        dJointSetHingeParam(id, dParamLoStop, joint.desc.limit.lower);
+        dJointSetHingeParam(id, dParamHiStop, joint.desc.limit.upper);
+      }
+    } else if (joint.desc.type == JointType::kBall) {
+      id = dJointCreateBall(world_, nullptr);
+      dJointAttach(id, a, b);
+      dJointSetBallAnchor(id, anchor.x(), anchor.y(), anchor.z());
+      if (joint.desc.cone.enabled && a != nullptr) add_swing_limits(a, b, axis, joint.desc);
+    } else {
+      throw Error("ode: the comparison builds hinges and ball joints only");
+    }
+    ++joints_;
+  }
 
   static void near(void* data, dGeomID a, dGeomID b) {
     if (dGeomIsSpace(a) != 0 || dGeomIsSpace(b) != 0) {
@@ -102,6 +161,10 @@ class OdeEngine final : public Engine {
     const bool a_still = body_a == nullptr || dBodyIsEnabled(body_a) == 0;
     const bool b_still = body_b == nullptr || dBodyIsEnabled(body_b) == 0;
     if (body_a == body_b || (a_still && b_still)) return;
+    if (engine->jointed_ && body_a != nullptr && body_b != nullptr &&
+        dAreConnectedExcluding(body_a, body_b, dJointTypeContact) != 0) {
+      return;
+    }
     dContact contact{};
     if (dCollide(a, b, 1, &contact.geom, sizeof(dContact)) == 0) return;
     contact.surface.mode = dContactBounce | dContactApprox1;
@@ -117,11 +180,13 @@ class OdeEngine final : public Engine {
   dReal dt_;
   dReal friction_;
   dReal restitution_;
+  bool jointed_;  // whether contacts between joined bodies must be left out
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID contacts_group_ = nullptr;
   std::vector<dBodyID> bodies_;
   std::uint32_t contacts_ = 0;
+  std::uint32_t joints_ = 0;  // created between the bodies
   dReal deepest_ = 0.0;
 };
 

@@ -45,9 +45,12 @@ void write_results_csv(const std::filesystem::path& path, const RunDescription& 
                                             "kinetic_energy_at_end_j",
                                             "moving_at_end",
                                             "bodies",
+                                            "joints",
                                             "asleep_at_end",
                                             "below_plane",
                                             "peak_memory_mib",
+                                            "largest_joint_gap_m",
+                                            "joint_gap_at_end_m",
                                             "warnings"};
   const tools::Machine machine = tools::this_machine();
   std::vector<std::vector<CsvCell>> rows;
@@ -84,9 +87,12 @@ void write_results_csv(const std::filesystem::path& path, const RunDescription& 
           figure(worst.kinetic_energy),
           figure(static_cast<double>(worst.moving)),
           figure(static_cast<double>(worst.bodies)),
+          figure(static_cast<double>(worst.joints)),
           worst.asleep ? static_cast<double>(*worst.asleep) : kNone,
           figure(static_cast<double>(worst.below)),
-          number(worst.peak_memory_mib)};
+          number(worst.peak_memory_mib),
+          scene.jointed ? figure(static_cast<double>(worst.largest_gap)) : kNone,
+          scene.jointed ? figure(static_cast<double>(worst.largest_gap_at_end)) : kNone};
       cells.insert(cells.end(), figures.begin(), figures.end());
       cells.emplace_back(worst.warnings);
       rows.push_back(std::move(cells));

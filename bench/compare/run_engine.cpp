@@ -15,15 +15,35 @@ constexpr float kBelowPlane = -0.5f;
 // The last second of the run, in frames. unit: frames
 constexpr int kLastSecond = 60;
 
-// The deepest leaf-sphere overlap between bodies, or with the plane y = 0, at these poses: bodies
-// are swept along x by their bounding spheres, then every leaf pair of a close pair is tested.
+using BodyPair = std::pair<std::size_t, std::size_t>;  // smaller index, larger
+
+BodyPair ordered(std::size_t a, std::size_t b) { return {std::min(a, b), std::max(a, b)}; }
+
+// Pairs of joined bodies, which collide in no engine, sorted.
+std::vector<BodyPair> joined_pairs(const BenchScene& scene) {
+  std::vector<BodyPair> pairs;
+  for (const tools::JointSpec& joint : scene.joints) {
+    if (joint.body_a && joint.body_b) pairs.push_back(ordered(*joint.body_a, *joint.body_b));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// The deepest leaf-sphere overlap between bodies that are not joined, or with the plane y = 0,
+// at these poses: bodies are swept along x by their bounding spheres, then every leaf pair of a
+// close pair is tested.
 float deepest_overlap(const BenchScene& scene, const std::vector<BodyState>& bodies) {
   float reach = 0.0f;  // of a leaf sphere from the centre of mass. unit: m
-  for (const Sphere& leaf : scene.leaves) reach = std::max(reach, leaf.center.norm() + leaf.radius);
+  for (const BenchShape& shape : scene.shapes) {
+    for (const Sphere& leaf : shape.leaves) {
+      reach = std::max(reach, leaf.center.norm() + leaf.radius);
+    }
+  }
+  const std::vector<BodyPair> joined = joined_pairs(scene);
   std::vector<std::vector<Sphere>> placed(bodies.size());
   float deepest = 0.0f;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    for (const Sphere& leaf : scene.leaves) {
+    for (const Sphere& leaf : scene.shape(b).leaves) {
       const Sphere world{bodies[b].pose.apply(leaf.center), leaf.radius};
       deepest = std::max(deepest, world.radius - world.center.y());
       placed[b].push_back(world);
@@ -38,6 +58,7 @@ float deepest_overlap(const BenchScene& scene, const std::vector<BodyState>& bod
     for (std::size_t j = i + 1; j < order.size() && x(order[j]) - x(a) <= 2.0f * reach; ++j) {
       const std::size_t b = order[j];
       if ((bodies[a].pose.translation - bodies[b].pose.translation).norm() > 2.0f * reach) continue;
+      if (std::binary_search(joined.begin(), joined.end(), ordered(a, b))) continue;
       for (const Sphere& p : placed[a]) {
         for (const Sphere& q : placed[b]) {
           deepest = std::max(deepest, p.radius + q.radius - (p.center - q.center).norm());
@@ -46,6 +67,20 @@ float deepest_overlap(const BenchScene& scene, const std::vector<BodyState>& bod
     }
   }
   return deepest;
+}
+
+// The largest distance between a joint's two anchor points at these poses. unit: m
+float largest_gap(const BenchScene& scene, const std::vector<BodyState>& bodies) {
+  float largest = 0.0f;
+  for (const tools::JointSpec& joint : scene.joints) {
+    const auto anchor = [&](std::optional<std::size_t> body, const Vec3& local) {
+      return body ? bodies[*body].pose.apply(local) : local;
+    };
+    const Vec3 a = anchor(joint.body_a, joint.desc.anchor_a);
+    const Vec3 b = anchor(joint.body_b, joint.desc.anchor_b);
+    largest = std::max(largest, (a - b).norm());
+  }
+  return largest;
 }
 
 }  // namespace
@@ -60,6 +95,7 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
   double step_seconds = 0.0;  // the step times summed. unit: s
   // The deepest penetration of the last kLastSecond frames run, oldest overwritten first.
   std::vector<float> last_second(kLastSecond, 0.0f);
+  std::vector<BodyState> bodies;
   for (int frame = 0; frame < frames; ++frame) {
     const auto start = std::chrono::steady_clock::now();
     engine->step();
@@ -70,6 +106,10 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
     const float deepest = engine->deepest_penetration();
     result.deepest = std::max(result.deepest, deepest);
     last_second[static_cast<std::size_t>(frame % kLastSecond)] = deepest;
+    if (!scene.joints.empty()) {  // read outside the step's time
+      engine->read(bodies);
+      result.largest_gap = std::max(result.largest_gap, largest_gap(scene, bodies));
+    }
     if (time_limit > 0.0 && step_seconds > time_limit && frame + 1 < frames) {
       result.stopped = true;
       break;
@@ -79,16 +119,19 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
   result.contacts_per_step = frames_run > 0.0 ? contacts / frames_run : 0.0;
   result.deepest_last_second = *std::max_element(last_second.begin(), last_second.end());
   result.peak_memory_mib = memory.added_mib();
-  std::vector<BodyState> bodies;
   engine->read(bodies);
   result.bodies = static_cast<std::uint32_t>(bodies.size());
-  for (const BodyState& body : bodies) {
+  result.joints = engine->joints();
+  result.largest_gap_at_end = largest_gap(scene, bodies);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyState& body = bodies[b];
+    const BenchShape& shape = scene.shape(b);
     const Mat3 rotation = body.pose.rotation.toRotationMatrix();
-    const Mat3 inertia = rotation * scene.inertia * rotation.transpose();
-    result.kinetic_energy += 0.5 * scene.mass * body.linear_velocity.squaredNorm() +
+    const Mat3 inertia = rotation * shape.inertia * rotation.transpose();
+    result.kinetic_energy += 0.5 * shape.mass * body.linear_velocity.squaredNorm() +
                              0.5 * body.angular_velocity.dot(inertia * body.angular_velocity);
     const float speed =
-        body.linear_velocity.norm() + body.angular_velocity.norm() * scene.max_vertex_distance;
+        body.linear_velocity.norm() + body.angular_velocity.norm() * shape.max_vertex_distance;
     result.moving += speed > kMovingSpeed ? 1 : 0;
     result.below += body.pose.translation.y() < kBelowPlane ? 1 : 0;
   }

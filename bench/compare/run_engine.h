@@ -23,12 +23,18 @@ struct RunResult {
   // those spheres; for a convex hull, an over-estimate (the spheres stick out of the mesh).
   // unit: m
   float end_overlap = 0.0f;
+  // The largest joint gap: the distance between a joint's two anchor points (each body's, at
+  // the poses the engine reports), the worst over the joints and the frames run, and at the
+  // end; both 0 without joints. unit: m
+  float largest_gap = 0.0f;
+  float largest_gap_at_end = 0.0f;
   double kinetic_energy = 0.0;  // at the end, from sphys's mass properties. unit: J
   std::uint32_t moving = 0;     // at the end: |v| + |ω| r_max > 1 cm/s
   std::uint32_t below = 0;      // at the end: centre of mass below y = -0.5 m
   // At the end: the bodies the engine itself reports asleep; nullopt for one without sleeping.
   std::optional<std::uint32_t> asleep;
   std::uint32_t bodies = 0;
+  std::uint32_t joints = 0;  // as the engine counts them
   // Resident memory the engine added at its peak (building it and the steps), where the kernel
   // tells. unit: MiB
   std::optional<double> peak_memory_mib;

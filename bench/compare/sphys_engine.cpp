@@ -19,6 +19,25 @@ class SphysEngine final : public Engine {
     // The deepest penetration the comparison prints for every engine.
     build.plausibility_figures = true;
     setup_ = tools::build_world(scene, build);
+    // The bodies the tools::Scene does not hold (limbs), from their shapes' trees.
+    for (std::size_t b = setup_.bodies.size(); b < bench.start.size(); ++b) {
+      const BenchShape& shape = bench.shape(b);
+      BodyDesc desc;
+      desc.tree = shape.tree;
+      desc.pose = bench.start[b];
+      desc.mass = shape.mass;
+      desc.inertia = shape.inertia;
+      desc.restitution = bench.restitution;
+      desc.friction = bench.friction;
+      setup_.bodies.push_back(setup_.world->add_body(desc));
+    }
+    for (const tools::JointSpec& joint : bench.joints) {
+      JointDesc desc = joint.desc;
+      desc.body_a = joint.body_a ? setup_.bodies[*joint.body_a] : BodyId{};
+      desc.body_b = joint.body_b ? setup_.bodies[*joint.body_b] : BodyId{};
+      setup_.world->add_joint(desc);
+      ++joints_;
+    }
   }
 
   void step() override { stats_ = setup_.world->step(dt_); }
@@ -32,6 +51,7 @@ class SphysEngine final : public Engine {
   }
 
   [[nodiscard]] std::uint32_t contacts() const override { return stats_.contacts; }
+  [[nodiscard]] std::uint32_t joints() const override { return joints_; }
   [[nodiscard]] float deepest_penetration() const override { return stats_.deepest_penetration; }
   [[nodiscard]] std::optional<std::uint32_t> asleep() const override {
     return stats_.bodies_asleep;
@@ -41,6 +61,7 @@ class SphysEngine final : public Engine {
   float dt_;
   tools::SimulationSetup setup_;
   StepStats stats_;
+  std::uint32_t joints_ = 0;  // added to the world
 };
 
 }  // namespace

@@ -27,6 +27,7 @@ JointGeometry joint_geometry(const JointModel& joint, const JointBody& a, const 
   g.d = (b.pose.translation + g.rb) - (a.pose.translation + g.ra);
   g.frame_a = a.pose.rotation * joint.frame_a;
   g.frame_b = b.pose.rotation * joint.frame_b;
+  g.axes_a = g.frame_a.toRotationMatrix();
   return g;
 }
 

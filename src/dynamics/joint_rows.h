@@ -52,15 +52,12 @@ struct JointGeometry {
   Vec3 d = Vec3::Zero();            // body b's anchor from body a's. unit: m
   Quat frame_a = Quat::Identity();  // the joint frames in the world
   Quat frame_b = Quat::Identity();
-  [[nodiscard]] Vec3 axis_a() const { return frame_a * Vec3::UnitX(); }
+  // Frame a's axes as columns, turned once here: its rows read them several times a solve.
+  Mat3 axes_a = Mat3::Identity();
+  [[nodiscard]] Vec3 axis_a() const { return axes_a.col(0); }
   [[nodiscard]] Vec3 axis_b() const { return frame_b * Vec3::UnitX(); }
   // The two directions across body a's axis (its frame's y and z).
-  [[nodiscard]] Eigen::Matrix<float, 3, 2> across() const {
-    Eigen::Matrix<float, 3, 2> axes;
-    axes.col(0) = frame_a * Vec3::UnitY();
-    axes.col(1) = frame_a * Vec3::UnitZ();
-    return axes;
-  }
+  [[nodiscard]] Eigen::Matrix<float, 3, 2> across() const { return axes_a.rightCols<2>(); }
 };
 [[nodiscard]] JointGeometry joint_geometry(const JointModel& joint, const JointBody& a,
                                            const JointBody& b);
@@ -113,11 +110,37 @@ RowVector<N> rates(const RowBlock<N>& rows, const JointBody& a, const JointBody&
          rows.angular_a.transpose() * a.angular;
 }
 
+// The turn an impulse P on the rows gives each body per unit of P: I⁻¹ times the rows' angular
+// parts, worked out once for a block's effective mass and its impulse.
 template <int N>
-void apply(const RowBlock<N>& rows, const RowVector<N>& impulse, JointBody& a, JointBody& b) {
+struct RowTurns {
+  Eigen::Matrix<float, 3, N> a;
+  Eigen::Matrix<float, 3, N> b;
+  RowTurns(const RowBlock<N>& rows, const JointBody& body_a, const JointBody& body_b)
+      : a(body_a.inverse_inertia * rows.angular_a), b(body_b.inverse_inertia * rows.angular_b) {}
+};
+
+template <int N>
+void apply_linear(const RowBlock<N>& rows, const RowVector<N>& impulse, JointBody& a,
+                  JointBody& b) {
   const Vec3 linear = rows.linear * impulse;
   a.linear -= a.inverse_mass * linear;
   b.linear += b.inverse_mass * linear;
+}
+
+template <int N>
+void apply(const RowBlock<N>& rows, const RowTurns<N>& turns, const RowVector<N>& impulse,
+           JointBody& a, JointBody& b) {
+  apply_linear(rows, impulse, a, b);
+  a.angular -= turns.a * impulse;
+  b.angular += turns.b * impulse;
+}
+
+// An impulse alone (a warm start): the rows' angular parts times it first, then I⁻¹, fewer
+// products than the turns.
+template <int N>
+void apply(const RowBlock<N>& rows, const RowVector<N>& impulse, JointBody& a, JointBody& b) {
+  apply_linear(rows, impulse, a, b);
   a.angular -= a.inverse_inertia * (rows.angular_a * impulse);
   b.angular += b.inverse_inertia * (rows.angular_b * impulse);
 }
@@ -132,24 +155,37 @@ void solve_rows(const RowBlock<N>& rows, const std::type_identity_t<RowVector<N>
                 float lowest = -std::numeric_limits<float>::infinity(),
                 float highest = std::numeric_limits<float>::infinity()) {
   using Square = Eigen::Matrix<float, N, N>;
-  const Square k = (a.inverse_mass + b.inverse_mass) * (rows.linear.transpose() * rows.linear) +
-                   rows.angular_a.transpose() * a.inverse_inertia * rows.angular_a +
-                   rows.angular_b.transpose() * b.inverse_inertia * rows.angular_b;
-  const Square compliance = soft.relative * k + soft.absolute * Square::Identity();
+  const bool rigid = soft.relative == 0.0f && soft.absolute == 0.0f;
+  RowVector<N> rhs = rates(rows, a, b) - target + soft.bias_rate * error;
+  if constexpr (N == 1) {
+    // A row that only pushes (a limit), has not pushed yet in this substep and whose bias asks
+    // for no push (short of its bound and not closing on it within the substep): its impulse
+    // stays 0 and the bodies as they are, as the clamp below would leave them, so its effective
+    // mass is not worked out.
+    if (rigid && lowest == 0.0f && impulse(0) == 0.0f && rhs(0) >= 0.0f) return;
+  }
+  const RowTurns<N> turns(rows, a, b);
+  Square k = (a.inverse_mass + b.inverse_mass) * (rows.linear.transpose() * rows.linear);
+  k.noalias() += rows.angular_a.transpose() * turns.a;
+  k.noalias() += rows.angular_b.transpose() * turns.b;
+  Square softened = k;
+  if (!rigid) {
+    const Square compliance = soft.relative * k + soft.absolute * Square::Identity();
+    softened += compliance;
+    rhs += compliance * impulse;
+  }
   Square inverse;
   bool invertible = false;
   if constexpr (N == 1) {
     invertible = k(0, 0) > 0.0f;
-    if (invertible) inverse(0, 0) = 1.0f / (k(0, 0) + compliance(0, 0));
+    if (invertible) inverse(0, 0) = 1.0f / softened(0, 0);
   } else {
-    (k + compliance).computeInverseWithCheck(inverse, invertible);
+    softened.computeInverseWithCheck(inverse, invertible);
   }
   if (!invertible) return;
-  const RowVector<N> rhs =
-      rates(rows, a, b) - target + soft.bias_rate * error + compliance * impulse;
   const RowVector<N> before = impulse;
   impulse = (impulse - inverse * rhs).cwiseMax(lowest).cwiseMin(highest);
-  apply(rows, RowVector<N>(impulse - before), a, b);
+  apply(rows, turns, RowVector<N>(impulse - before), a, b);
 }
 
 // A scalar row's rate, impulse and solve, as the blocks'.
