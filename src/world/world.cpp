@@ -7,6 +7,7 @@
 
 #include "sphys/error.h"
 #include "world/pipeline.h"
+#include "world/robot_control.h"
 #include "world/world_state.h"
 
 namespace sphys {
@@ -281,7 +282,10 @@ const StepStats& World::step(float dt) {
   if (!(dt > 0.0f) || !std::isfinite(dt)) {
     throw Error("the time step must be positive and finite, got " + std::to_string(dt));
   }
-  if (!world.stopped) world.stats = run_step(world, dt);
+  if (!world.stopped) {
+    control_robots(world, dt);
+    world.stats = run_step(world, dt);
+  }
   return world.stats;
 }
 

@@ -56,7 +56,10 @@ void WorldState::wake(std::uint32_t body) {
 }
 
 void WorldState::joints_changed() {
-  detector.set_unpaired(joints.joined_pairs(true));
+  std::vector<JointStore::BodyPair> unpaired = joints.joined_pairs(true);
+  const std::vector<JointStore::BodyPair> robot_pairs = robots.unpaired_bodies();
+  unpaired.insert(unpaired.end(), robot_pairs.begin(), robot_pairs.end());
+  detector.set_unpaired(unpaired);
   sleep.set_joined(joints.joined_pairs(false));
 }
 

@@ -18,6 +18,7 @@
 #include "sphys/step_stats.h"
 #include "sphys/world.h"
 #include "world/joint_store.h"
+#include "world/robot_store.h"
 #include "world/sleep_tracker.h"
 #include "world/world_access.h"
 
@@ -42,8 +43,9 @@ struct WorldState {
   // Wakes a sleeping body and counts it restless: a velocity, an impulse or a force set it
   // moving from outside, or a body it touched left.
   void wake(std::uint32_t body);
-  // After joints were added or removed: the body pairs whose contacts do not count (the
-  // detector's) and the bodies that sleep and wake together (the sleep tracker's).
+  // After joints or robots were added or removed: the body pairs whose contacts do not count
+  // (the detector's: joined bodies, robots' allowed link pairs) and the bodies that sleep and
+  // wake together (the sleep tracker's).
   void joints_changed();
   // Wakes a joint's bodies (not the world, nor a static body).
   void wake_joined(const JointModel& joint);
@@ -66,6 +68,7 @@ struct WorldState {
   SleepTracker sleep;                      // plausible mode
   JointStore joints;                       // plausible mode
   JointSolver joint_solver;                // solves `joints` in the soft step
+  RobotStore robots;                       // plausible mode; their joints are in `joints`
   std::vector<JointId> removed_joints;     // by the last remove_body
   std::vector<std::uint32_t> joint_slots;  // remove_body's scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials;
