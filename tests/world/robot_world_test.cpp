@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -14,8 +15,10 @@
 
 #include "sphys/error.h"
 #include "sphys/robot_model.h"
+#include "sphys/tools/build_world.h"
 #include "sphys/tools/robot.h"
 #include "sphys/tools/robot_model_file.h"
+#include "sphys/tools/scene.h"
 #include "sphys/tools/spherize.h"
 #include "sphys/world.h"
 #include "support/temp_file.h"
@@ -196,6 +199,19 @@ std::pair<double, double> quintic(double from, double to, double duration, doubl
   return {from + (to - from) * shape, (to - from) * rate};
 }
 
+// One step at time t (unit: s) of the quintics from `from` to `to`, the robot's position
+// targets and speeds on them.
+void step_on_quintic(World& world, RobotId robot, std::span<const double> from,
+                     std::span<const double> to, double duration, double t) {
+  std::vector<RobotJointControl> controls = hold(from);
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    std::tie(controls[j].target_position, controls[j].target_velocity) =
+        quintic(from[j], to[j], duration, t);
+  }
+  world.set_robot_controls(robot, controls);
+  world.step(kControlStep);
+}
+
 TEST(RobotWorld, TracksAQuinticTrajectory) {
   const RobotModel& model = test_robot();
   World world(awake_world());
@@ -213,17 +229,10 @@ TEST(RobotWorld, TracksAQuinticTrajectory) {
   ASSERT_FALSE(self_colliding(model, to));
   constexpr double kDuration = 2.0;  // unit: s
   world.set_robot_configuration(robot, from);
-  std::vector<RobotJointControl> controls = hold(from);
-  world.set_robot_controls(robot, controls);
   double worst = 0.0;
   for (int step = 1; step <= 2500; ++step) {
     const double t = step * double{kControlStep};
-    for (std::size_t j = 0; j < to.size(); ++j) {
-      std::tie(controls[j].target_position, controls[j].target_velocity) =
-          quintic(from[j], to[j], kDuration, t);
-    }
-    world.set_robot_controls(robot, controls);
-    world.step(kControlStep);
+    step_on_quintic(world, robot, from, to, kDuration, t);
     const RobotJointStates states = world.robot_joint_states(robot);
     for (std::size_t j = 0; j < to.size(); ++j) {
       // 1° for a turning joint, 1 mm for a sliding one.
@@ -269,6 +278,22 @@ TEST(RobotWorld, VelocityControlTurnsAtItsSpeed) {
   EXPECT_NEAR(states.positions[0], 0.5, 0.02);
 }
 
+TEST(RobotWorld, TorqueControlTurnsTheJointAndIsBoundedByTheEffort) {
+  const RobotModel& model = test_robot();
+  World world(awake_world());
+  const RobotId robot = world.add_robot(model, upright_base(1.0f));
+  std::vector<RobotJointControl> controls = hold(std::vector<double>(model.joints.size(), 0.015));
+  controls[0].mode = RobotControlMode::kTorque;
+  controls[0].torque = 3.0 * model.joints[0].effort;
+  world.set_robot_controls(robot, controls);
+  for (int step = 0; step < 20; ++step) world.step(kControlStep);
+  const RobotJointStates states = world.robot_joint_states(robot);
+  ASSERT_LT(states.positions[0], model.joints[0].upper - 0.5);  // its limit not yet met
+  EXPECT_GT(states.speeds[0], 0.1);
+  // The torque applied, and the little the hinge's rows across the axis add along it.
+  EXPECT_NEAR(states.efforts[0], model.joints[0].effort, 0.01 * model.joints[0].effort);
+}
+
 TEST(RobotWorld, AFreeRobotFallsAndRestsOnThePlane) {
   const RobotModel& model = test_robot();
   World world(arm_world());
@@ -308,6 +333,110 @@ TEST(RobotWorld, RemovingARobotRemovesItsBodiesAndJoints) {
   for (const JointId joint : joints) EXPECT_FALSE(world.joint_alive(joint));
   EXPECT_THROW((void)world.robot_joint_states(robot), Error);
   world.step(kControlStep);
+}
+
+// The deepest overlap of a leaf of body `a` with a leaf of body `b`, now. unit: m
+float deepest_leaf_overlap(const World& world, BodyId a, BodyId b) {
+  const RigidBody body_a = world.body(a);
+  const RigidBody body_b = world.body(b);
+  const SphereTree& tree_a = world.tree(a);
+  const SphereTree& tree_b = world.tree(b);
+  float deepest = -std::numeric_limits<float>::infinity();
+  for (const std::uint32_t leaf_a : tree_a.leaves()) {
+    const Sphere& sa = tree_a.sphere(leaf_a);
+    const Vec3 ca = body_a.pose.apply(sa.center);
+    for (const std::uint32_t leaf_b : tree_b.leaves()) {
+      const Sphere& sb = tree_b.sphere(leaf_b);
+      deepest =
+          std::max(deepest, sa.radius + sb.radius - (ca - body_b.pose.apply(sb.center)).norm());
+    }
+  }
+  return deepest;
+}
+
+TEST(RobotWorld, TheArmSweepsABunnyAsideAndRecovers) {
+  const RobotModel& model = test_robot();
+  RobotModel placed = model;
+  placed.base = to_isometry(upright_base(0.0f));
+  std::vector<double> reach(model.joints.size(), 0.015);
+  // Bent down without meeting itself, its lowest sphere 1 to 4 cm over the ground, so that it
+  // passes through a lying 15 cm bunny there.
+  const auto lowest_sphere = [&](std::span<const double> values) {
+    const std::vector<Eigen::Isometry3d> poses = robot_link_poses(placed, values);
+    Eigen::Vector3d lowest = Eigen::Vector3d::Constant(1e9);
+    for (std::size_t s = 0; s < model.spheres.size(); ++s) {
+      const auto link = static_cast<std::size_t>(model.sphere_links[s]);
+      if (link == 0) continue;  // the base stands on the ground
+      Eigen::Vector3d bottom = poses[link] * model.spheres[s].center.cast<double>();
+      bottom.y() -= model.spheres[s].radius;
+      if (bottom.y() < lowest.y()) lowest = bottom;
+    }
+    return lowest;
+  };
+  bool found = false;
+  for (double elbow = 0.5; elbow < 2.4 && !found; elbow += 0.05) {
+    for (double lift = 0.0; lift < 1.8 && !found; lift += 0.05) {
+      reach[1] = lift;
+      reach[2] = elbow;
+      const double low = lowest_sphere(reach).y();
+      found = low > 0.01 && low < 0.04 && !self_colliding(model, reach);
+    }
+  }
+  ASSERT_TRUE(found);
+  reach[0] = 0.0;
+  const Eigen::Vector3d hand_at = lowest_sphere(reach);
+
+  tools::Scene scene;
+  scene.ground.kind = tools::GroundSpec::Kind::kPlane;
+  tools::BodySpec bunny;
+  bunny.size = 0.15;
+  bunny.tree.depth = 3;
+  bunny.position = Vec3(static_cast<float>(hand_at.x()), 0.1f, static_cast<float>(hand_at.z()));
+  scene.bodies.push_back(bunny);
+  tools::SimulationSetup setup = tools::build_world(scene);
+  World& world = *setup.world;
+  const BodyId target = setup.bodies.front();
+  for (int step = 0; step < 1500; ++step) world.step(kControlStep);
+  const Vec3 rested = world.body(target).pose.translation;
+
+  const RobotId robot = world.add_robot(model, upright_base(0.0f));
+  std::vector<double> from = reach;
+  std::vector<double> to = reach;
+  from[0] = -0.8;
+  to[0] = 0.8;
+  world.set_robot_configuration(robot, from);
+  constexpr double kDuration = 3.0;  // the sweep. unit: s
+  double worst_share = 0.0;          // a leaf overlap over its link's size
+  double last_touch = -1.0;          // unit: s
+  std::vector<double> errors;        // per frame, the worst joint's. unit: rad or m
+  for (int step = 1; step <= 4500; ++step) {
+    const double t = step * double{kControlStep};
+    step_on_quintic(world, robot, from, to, kDuration, t);
+    for (const BodyId link : world.robot_bodies(robot)) {
+      const float overlap = deepest_leaf_overlap(world, link, target);
+      if (overlap > -0.002f) last_touch = t;
+      worst_share = std::max(worst_share, overlap / (2.0 * world.tree(link).root().radius));
+    }
+    const RobotJointStates states = world.robot_joint_states(robot);
+    double error = 0.0;
+    for (std::size_t j = 0; j < to.size(); ++j) {
+      error = std::max(error,
+                       std::abs(states.positions[j] - quintic(from[j], to[j], kDuration, t).first));
+    }
+    errors.push_back(error);
+  }
+  const float moved = (world.body(target).pose.translation - rested).norm();
+  std::cout << "contact: bunny moved " << moved << " m, worst leaf overlap " << worst_share
+            << " of the link's size, last touch at " << last_touch << " s\n";
+  EXPECT_GT(moved, 0.05f);
+  EXPECT_GT(last_touch, 0.0);
+  EXPECT_LT(worst_share, 0.05);
+  // Within 0.5 s of the last touch, every joint back within 1° of the trajectory, and after.
+  const auto recovered = static_cast<std::size_t>((last_touch + 0.5) / double{kControlStep});
+  ASSERT_LT(recovered, errors.size());
+  for (std::size_t frame = recovered; frame < errors.size(); ++frame) {
+    ASSERT_LT(errors[frame], kDegree) << "frame " << frame;
+  }
 }
 
 // A one-joint robot whose moving link has neither an <inertial> nor geometry.
