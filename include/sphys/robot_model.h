@@ -36,14 +36,14 @@ struct RobotModel {
     // The joint that moves it: its index in joints, or -1 where it is fixed to its
     // parent.
     std::int32_t joint = -1;
-    // Its mass (the URDF's <inertial>); 0 for none. A simulated robot (World::add_robot) needs
-    // mass on every link its joints move, counting the links fixed to it. unit: kg
+    // Its mass (the URDF's `inertial` element); 0 for none. A simulated robot (World::add_robot)
+    // needs mass on every link its joints move, counting the links fixed to it. unit: kg
     double mass = 0.0;
     // Its centre of mass in its frame. unit: m
     Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
     // Its inertia about its centre of mass, in its frame's axes. unit: kg·m²
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-    // The URDF gave no <inertial>: mass, centre and inertia are its geometry's at
+    // The URDF gave no `inertial` element: mass, centre and inertia are its geometry's at
     // tools::kDefaultLinkDensity (sphys/tools/robot_model_file.h).
     bool mass_from_geometry = false;
   };

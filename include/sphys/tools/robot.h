@@ -55,12 +55,12 @@ struct RobotJoint {
   double lower = 0.0;
   double upper = 0.0;  // unit: rad or m
   std::string mimics;  // the joint it mimics, or empty
-  // The URDF's <limit effort> and <limit velocity>; infinite where it gives none (or 0).
+  // The URDF's `limit` element's effort and velocity; infinite where it gives none (or 0).
   double effort = std::numeric_limits<double>::infinity();    // unit: N·m or N
   double velocity = std::numeric_limits<double>::infinity();  // unit: rad/s or m/s
 };
 
-// A link's <inertial> element.
+// A link's `inertial` element.
 struct LinkInertial {
   double mass = 0.0;                     // unit: kg
   Vec3d center_of_mass = Vec3d::Zero();  // in the link's frame. unit: m
@@ -75,7 +75,8 @@ struct Robot {
   std::vector<LinkGeometry> links;       // the links that have geometry, by name
   std::vector<std::string> empty_links;  // links with neither collision nor visual geometry
   std::vector<RobotJoint> joints;        // every joint of the URDF, by name
-  std::map<std::string, LinkInertial> inertials;  // the links that have an <inertial>, by name
+  std::map<std::string, LinkInertial>
+      inertials;  // the links that have an `inertial` element, by name
 };
 
 // Reads the URDF, resolving mesh files given as `package://NAME/...` (through `packages`), as
