@@ -145,7 +145,7 @@ class World {
   // The body leaves the world with its contacts, pair materials, sleep and joints (listed by
   // joints_removed()); the sleeping bodies it touched or was joined to wake. Its id, and every copy
   // of it, is stale from then on. Every call taking a BodyId throws sphys::Error for a stale or
-  // unknown id, or the null one (BodyId{}).
+  // unknown id, or the null one (BodyId{}), and remove_body for a robot's link (remove_robot).
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
   [[nodiscard]] RigidBody body(BodyId body) const;

@@ -57,8 +57,7 @@ void WorldState::wake(std::uint32_t body) {
 
 void WorldState::joints_changed() {
   std::vector<JointStore::BodyPair> unpaired = joints.joined_pairs(true);
-  const std::vector<JointStore::BodyPair> robot_pairs = robots.unpaired_bodies();
-  unpaired.insert(unpaired.end(), robot_pairs.begin(), robot_pairs.end());
+  if (robots) robots->append_unpaired(unpaired);
   detector.set_unpaired(unpaired);
   sleep.set_joined(joints.joined_pairs(false));
 }

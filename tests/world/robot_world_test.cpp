@@ -329,10 +329,22 @@ TEST(RobotWorld, RemovingARobotRemovesItsBodiesAndJoints) {
                                    world.robot_bodies(robot).end());
   const std::vector<JointId> joints(world.robot_joints(robot).begin(),
                                     world.robot_joints(robot).end());
+  EXPECT_THAT([&] { world.remove_body(bodies[1]); },
+              testing::ThrowsMessage<Error>(testing::HasSubstr("remove_robot")));
+  // A joint taken out by hand drives nothing from then on, nor does a joint given its slot.
+  world.remove_joint(joints[0]);
+  JointDesc hinge;
+  hinge.type = JointType::kHinge;
+  hinge.body_b = bodies[2];
+  const JointId other = world.add_joint(hinge);
+  world.set_robot_controls(robot, hold(std::vector<double>(joints.size(), 0.5)));
+  world.step(kControlStep);
+  EXPECT_FALSE(world.joint(other).motor.enabled);
   world.remove_robot(robot);
   EXPECT_FALSE(world.robot_alive(robot));
   for (const BodyId body : bodies) EXPECT_FALSE(world.alive(body));
   for (const JointId joint : joints) EXPECT_FALSE(world.joint_alive(joint));
+  EXPECT_FALSE(world.joint_alive(other));  // it went with its body
   EXPECT_THROW((void)world.robot_joint_states(robot), Error);
   world.step(kControlStep);
 }

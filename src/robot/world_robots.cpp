@@ -2,21 +2,33 @@
 // joints, controlling, placing and reading them (docs/robots.md).
 
 #include <cmath>
+#include <memory>
 #include <string>
 
+#include "robot/robot_bodies.h"
+#include "robot/robot_control.h"
 #include "sphys/error.h"
 #include "sphys/world.h"
-#include "world/robot_bodies.h"
-#include "world/robot_control.h"
 #include "world/world_state.h"
 
 namespace sphys {
 namespace {
 
+// The world's robots, made with the first.
+RobotStore& robots_of(WorldState& world) {
+  if (!world.robots) world.robots = std::make_unique<RobotStore>();
+  return static_cast<RobotStore&>(*world.robots);
+}
+
+// The world's robots as they are: none before the first is added.
+const RobotStore* robots_in(const WorldState& world) {
+  return static_cast<const RobotStore*>(world.robots.get());
+}
+
 // The slot of a robot in the world, for a call that holds its turn.
 std::uint32_t checked_robot(const WorldState& world, RobotId id) {
   if (id.is_null()) throw Error("the null robot id (RobotId{}) names no robot");
-  if (!world.robots.alive(id)) {
+  if (robots_in(world) == nullptr || !robots_in(world)->alive(id)) {
     throw Error("no robot with id " + std::to_string(id.index) + "." +
                 std::to_string(id.generation) + " in the world (removed, or never added)");
   }
@@ -98,9 +110,9 @@ RobotId World::add_robot(const RobotModel& model, const Transform& base, RobotBa
   }
   WorldState& world = *state_;
   const WorldAccess::Alone turn(world.access, WorldAccess::Holder::kChange, "add_robot");
-  const RobotId id = world.robots.add(std::move(robot));
+  const RobotId id = robots_of(world).add(std::move(robot));
   world.joints_changed();
-  if (start != zeros) place_robot(world, world.robots.at(id.index), start);
+  if (start != zeros) place_robot(world, robots_of(world).at(id.index), start);
   return id;
 }
 
@@ -110,9 +122,9 @@ void World::remove_robot(RobotId id) {
     WorldState& world = *state_;
     const WorldAccess::Alone turn(world.access, WorldAccess::Holder::kChange, "remove_robot");
     const std::uint32_t slot = checked_robot(world, id);
-    bodies = world.robots.at(slot).bodies;
+    bodies = robots_of(world).at(slot).bodies;
     // Its allowed pairs go before its bodies, whose slots a later body may take.
-    world.robots.remove(slot);
+    robots_of(world).remove(slot);
     world.joints_changed();
   }
   for (const BodyId body : bodies) remove_body(body);
@@ -120,28 +132,28 @@ void World::remove_robot(RobotId id) {
 
 bool World::robot_alive(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_alive");
-  return state_->robots.alive(id);
+  return robots_in(*state_) != nullptr && robots_in(*state_)->alive(id);
 }
 
 std::span<const BodyId> World::robot_bodies(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_bodies");
-  return state_->robots.at(checked_robot(*state_, id)).bodies;
+  return robots_in(*state_)->at(checked_robot(*state_, id)).bodies;
 }
 
 std::span<const JointId> World::robot_joints(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_joints");
-  return state_->robots.at(checked_robot(*state_, id)).joints;
+  return robots_in(*state_)->at(checked_robot(*state_, id)).joints;
 }
 
 const RobotModel& World::robot_model(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_model");
-  return state_->robots.at(checked_robot(*state_, id)).model;
+  return robots_in(*state_)->at(checked_robot(*state_, id)).model;
 }
 
 void World::set_robot_controls(RobotId id, std::span<const RobotJointControl> controls) {
   WorldState& world = *state_;
   const WorldAccess::Alone turn(world.access, WorldAccess::Holder::kChange, "set_robot_controls");
-  SimulatedRobot& robot = world.robots.at(checked_robot(world, id));
+  SimulatedRobot& robot = robots_of(world).at(checked_robot(world, id));
   if (controls.size() != robot.joints.size()) {
     throw Error("set_robot_controls: " + std::to_string(controls.size()) + " controls for " +
                 std::to_string(robot.joints.size()) + " joints");
@@ -166,7 +178,7 @@ void World::set_robot_configuration(RobotId id, std::span<const double> values) 
   WorldState& world = *state_;
   const WorldAccess::Alone turn(world.access, WorldAccess::Holder::kChange,
                                 "set_robot_configuration");
-  SimulatedRobot& robot = world.robots.at(checked_robot(world, id));
+  SimulatedRobot& robot = robots_of(world).at(checked_robot(world, id));
   check_joint_values(robot.model, values, "set_robot_configuration");
   if (values.size() != robot.joints.size()) {
     throw Error("set_robot_configuration: " + std::to_string(values.size()) + " values for " +
@@ -177,7 +189,7 @@ void World::set_robot_configuration(RobotId id, std::span<const double> values) 
 
 RobotJointStates World::robot_joint_states(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_joint_states");
-  const SimulatedRobot& robot = state_->robots.at(checked_robot(*state_, id));
+  const SimulatedRobot& robot = robots_in(*state_)->at(checked_robot(*state_, id));
   RobotJointStates states;
   for (std::size_t j = 0; j < robot.joints.size(); ++j) {
     const JointReading reading = read_robot_joint(*state_, robot, j);
@@ -193,7 +205,7 @@ RobotJointStates World::robot_joint_states(RobotId id) const {
 
 std::vector<Eigen::Isometry3d> World::robot_link_poses_in_world(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_link_poses_in_world");
-  return simulated_link_poses(*state_, state_->robots.at(checked_robot(*state_, id)));
+  return simulated_link_poses(*state_, robots_in(*state_)->at(checked_robot(*state_, id)));
 }
 
 }  // namespace sphys

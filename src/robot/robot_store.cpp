@@ -1,4 +1,8 @@
-#include "world/robot_store.h"
+#include "robot/robot_store.h"
+
+#include <algorithm>
+
+#include "robot/robot_control.h"
 
 namespace sphys {
 
@@ -23,8 +27,16 @@ void RobotStore::remove(std::uint32_t slot) {
   free_.push_back(slot);
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> RobotStore::unpaired_bodies() const {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+bool RobotStore::holds(BodyId body) const {
+  return std::ranges::any_of(robots_, [&](const SimulatedRobot& robot) {
+    return robot.alive && std::ranges::find(robot.bodies, body) != robot.bodies.end();
+  });
+}
+
+void RobotStore::before_step(WorldState& world, float dt) { control_robots(world, *this, dt); }
+
+void RobotStore::append_unpaired(
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) const {
   for (const SimulatedRobot& robot : robots_) {
     if (!robot.alive) continue;
     for (const auto& [a, b] : robot.model.allowed_link_pairs) {
@@ -35,7 +47,6 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> RobotStore::unpaired_bodies
       }
     }
   }
-  return pairs;
 }
 
 }  // namespace sphys

@@ -1,4 +1,4 @@
-#include "world/robot_bodies.h"
+#include "robot/robot_bodies.h"
 
 #include <algorithm>
 #include <deque>

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "world/robot_store.h"
+#include "robot/robot_store.h"
 
 namespace sphys {
 
@@ -37,7 +37,7 @@ struct JointReading {
 
 // Before a step of dt (unit: s): every robot joint's motor set from its control, and kTorque's
 // torques applied to its links.
-void control_robots(WorldState& world, float dt);
+void control_robots(WorldState& world, RobotStore& robots, float dt);
 
 // The robot's bodies where the joint values place them, the root's where it stands, all at
 // rest and awake. `values`: one per joint, checked by the caller.

@@ -12,6 +12,7 @@
 #include "sphys/joint.h"
 #include "sphys/robot_model.h"
 #include "sphys/robot_world.h"
+#include "world/robots_in_world.h"
 
 namespace sphys {
 
@@ -35,7 +36,7 @@ struct SimulatedRobot {
   bool alive = false;
 };
 
-class RobotStore {
+class RobotStore final : public RobotsInWorld {
  public:
   // Takes a free slot for `robot`, alive from now on.
   RobotId add(SimulatedRobot robot);
@@ -49,8 +50,11 @@ class RobotStore {
   [[nodiscard]] const SimulatedRobot& at(std::uint32_t slot) const { return robots_[slot]; }
   // Every slot's robot, dead ones included (SimulatedRobot::alive).
   [[nodiscard]] std::vector<SimulatedRobot>& all() { return robots_; }
-  // The body pairs (store slots) the live robots' allowed_link_pairs keep apart.
-  [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> unpaired_bodies() const;
+  // The world's robots through its face (world/robots_in_world.h): control_robots, the live
+  // robots' allowed_link_pairs as body pairs, and whether a live robot is made of the body.
+  void before_step(WorldState& world, float dt) override;
+  void append_unpaired(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const override;
+  [[nodiscard]] bool holds(BodyId body) const override;
 
  private:
   std::vector<SimulatedRobot> robots_;

@@ -1,4 +1,4 @@
-#include "world/robot_control.h"
+#include "robot/robot_control.h"
 
 #include <algorithm>
 #include <cmath>
@@ -119,10 +119,12 @@ JointReading read_robot_joint(const WorldState& world, const SimulatedRobot& rob
   return reading;
 }
 
-void control_robots(WorldState& world, float dt) {
-  for (SimulatedRobot& robot : world.robots.all()) {
+void control_robots(WorldState& world, RobotStore& robots, float dt) {
+  for (SimulatedRobot& robot : robots.all()) {
     if (!robot.alive) continue;
     for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+      // A joint removed by remove_joint drives nothing, nor may its slot's next joint be driven.
+      if (!world.joints.alive(robot.joints[j])) continue;
       const RobotJointControl& control = robot.controls[j];
       const RobotModel::Joint& model = robot.model.joints[j];
       const double effort = std::min(control.max_effort, model.effort);
