@@ -201,6 +201,40 @@ std::pair<double, double> quintic(double from, double to, double duration, doubl
   return {from + (to - from) * shape, (to - from) * rate};
 }
 
+// Why position control is a motor and not the joint's spring (docs/robots.md): the arm held out
+// 0.9 rad from upright under gravity for 2 s, the motor stays on its target within the URDF's
+// effort, where a stiff, critically damped spring about the same target sags by the load over its
+// stiffness.
+TEST(RobotWorld, PositionControlHoldsWhereASpringSags) {
+  const RobotModel& model = test_robot();
+  const std::vector<double> held = {0.0, 0.9, 0.0, 0.015, 0.015};
+  ASSERT_FALSE(self_colliding(model, held));
+  const auto worst_error = [&](bool spring) {
+    World world(awake_world());
+    const RobotId robot = world.add_robot(model, upright_base(1.0f));
+    world.set_robot_configuration(robot, held);
+    if (spring) {
+      for (std::size_t j = 0; j < held.size(); ++j) {
+        world.set_joint_spring(world.robot_joints(robot)[j],
+                               {true, 10.0f, 1.0f, static_cast<float>(held[j])});
+      }
+    } else {
+      world.set_robot_controls(robot, hold(held));
+    }
+    for (int step = 0; step < 2000; ++step) world.step(kControlStep);
+    const RobotJointStates states = world.robot_joint_states(robot);
+    double worst = 0.0;
+    for (std::size_t j = 0; j < 3; ++j)
+      worst = std::max(worst, std::abs(states.positions[j] - held[j]));
+    return worst / kDegree;
+  };
+  const double motor = worst_error(false);
+  const double spring = worst_error(true);
+  std::cout << "held out: motor " << motor << " deg, 10 Hz spring " << spring << " deg\n";
+  EXPECT_LT(motor, 0.5);
+  EXPECT_GT(spring, 10.0 * motor);
+}
+
 // One step at time t (unit: s) of the quintics from `from` to `to`, the robot's position
 // targets and speeds on them.
 void step_on_quintic(World& world, RobotId robot, std::span<const double> from,
