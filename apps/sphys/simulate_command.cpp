@@ -25,6 +25,7 @@
 #include "sphys/tools/run_summary.h"
 #include "sphys/tools/scenarios.h"
 #include "sphys/tools/scene_file.h"
+#include "sphys/tools/scene_robots.h"
 #include "sphys/tools/setting_text.h"
 #include "sphys/tools/tree_cache.h"
 #include "standard_output.h"
@@ -97,6 +98,12 @@ std::string recorded_scene(tools::Scene scene) {
   for (tools::BodySpec& body : scene.bodies) {
     if (body.mesh != tools::kBunnyName) body.mesh = absolute(body.mesh).string();
     if (body.tree.sph_file) body.tree.sph_file = absolute(*body.tree.sph_file);
+  }
+  for (tools::SceneRobot& robot : scene.robots) {
+    robot.urdf = absolute(robot.urdf);
+    robot.spheres = absolute(robot.spheres);
+    if (robot.srdf) robot.srdf = absolute(*robot.srdf);
+    for (auto& [name, folder] : robot.packages) folder = absolute(folder);
   }
   return tools::scene_to_json(scene);
 }
@@ -264,6 +271,8 @@ void run(const SimulateOptions& options) {
     build.progress = [&bar](double fraction) { bar.update(fraction); };
     return tools::build_world(scene, build);
   }();
+  // Simulated with the bodies; the recording keeps the scene's bodies alone for now.
+  tools::add_scene_robots(scene, *setup.world);
 
   const fs::path out =
       options.out ? fs::path(*options.out) : fs::path("out") / folder_name(scene.name);

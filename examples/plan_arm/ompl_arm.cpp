@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <stdexcept>
 #include <string>
 
 #include "sphys/error.h"
@@ -10,6 +15,7 @@
 namespace sphys::examples {
 
 namespace ob = ompl::base;
+namespace og = ompl::geometric;
 
 std::vector<double> values_of(const ob::State* state, std::size_t joints) {
   const auto* real = state->as<ob::RealVectorStateSpace::StateType>();
@@ -107,6 +113,59 @@ std::shared_ptr<ob::RealVectorStateSpace> arm_space(const RobotArm& arm) {
   }
   space->setBounds(bounds);
   return space;
+}
+
+std::map<std::string, std::string> example_options(int argc, char** argv,
+                                                   std::initializer_list<std::string_view> names) {
+  std::map<std::string, std::string> options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string name = argv[i];
+    if (std::ranges::find(names, name) == names.end()) throw Error("unknown option " + name);
+    if (i + 1 >= argc) throw Error(name + ": needs a value");
+    options[name] = argv[++i];
+  }
+  return options;
+}
+
+int run_example(const char* name, const std::function<int()>& run) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  try {
+    return run();
+  } catch (const Error& error) {
+    std::fprintf(stderr, "%s: error: %s\n", name, error.what());
+  } catch (const std::invalid_argument& error) {
+    std::fprintf(stderr, "%s: error: a number was expected (%s)\n", name, error.what());
+  }
+  return 2;
+}
+
+std::vector<std::vector<double>> plan_path(const RobotArm& arm, ArmChecker& checker,
+                                           const std::vector<double>& start,
+                                           const std::vector<double>& goal, double seconds) {
+  const std::size_t joints = arm.joints.size();
+  const auto space = arm_space(arm);
+  og::SimpleSetup setup(space);
+  const ob::SpaceInformationPtr si = setup.getSpaceInformation();
+  setup.setStateValidityChecker(
+      [&](const ob::State* state) { return checker.free_one(values_of(state, joints)); });
+  si->setMotionValidator(std::make_shared<SphysMotionValidator>(si, checker, joints));
+  ob::ScopedState<> start_state(space);
+  ob::ScopedState<> goal_state(space);
+  for (std::size_t j = 0; j < joints; ++j) {
+    start_state[static_cast<unsigned>(j)] = start[j];
+    goal_state[static_cast<unsigned>(j)] = goal[j];
+  }
+  setup.setStartAndGoalStates(start_state, goal_state);
+  setup.setPlanner(std::make_shared<og::RRTConnect>(si));
+  setup.setup();
+  if (setup.solve(seconds) != ob::PlannerStatus::EXACT_SOLUTION) return {};
+  setup.simplifySolution();
+  const og::PathGeometric& path = setup.getSolutionPath();
+  std::vector<std::vector<double>> waypoints;
+  for (std::size_t w = 0; w < path.getStateCount(); ++w) {
+    waypoints.push_back(values_of(path.getState(static_cast<unsigned>(w)), joints));
+  }
+  return waypoints;
 }
 
 }  // namespace sphys::examples

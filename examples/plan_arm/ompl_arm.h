@@ -6,11 +6,16 @@
 // between them).
 
 #include <cstddef>
+#include <functional>
+#include <initializer_list>
+#include <map>
 #include <memory>
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <random>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "robot_arm/robot_arm.h"
@@ -79,5 +84,22 @@ struct ArmProblem {
 
 // OMPL's real vector space over the arm's joints, within their limits.
 [[nodiscard]] std::shared_ptr<ompl::base::RealVectorStateSpace> arm_space(const RobotArm& arm);
+
+// The examples' command lines: "--name value" pairs, each name one of `names`, by name. Throws
+// sphys::Error for another name or a name without a value.
+[[nodiscard]] std::map<std::string, std::string> example_options(
+    int argc, char** argv, std::initializer_list<std::string_view> names);
+
+// An example's main: `run`'s exit code, or 2 after printing "<name>: error: ..." for a
+// sphys::Error or a number that does not read.
+int run_example(const char* name, const std::function<int()>& run);
+
+// RRT-Connect from `start` to `goal` with `checker` as OMPL's state-validity checker and motion
+// validator, for at most `seconds`, the path simplified: its waypoints, start and goal included;
+// none when no exact solution was found.
+[[nodiscard]] std::vector<std::vector<double>> plan_path(const RobotArm& arm, ArmChecker& checker,
+                                                         const std::vector<double>& start,
+                                                         const std::vector<double>& goal,
+                                                         double seconds);
 
 }  // namespace sphys::examples

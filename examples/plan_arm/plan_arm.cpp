@@ -12,12 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
-#include <ompl/base/MotionValidator.h>
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
 #include <random>
 #include <string>
 #include <unistd.h>
@@ -33,15 +27,11 @@
 
 namespace {
 
-namespace ob = ompl::base;
-namespace og = ompl::geometric;
 using sphys::examples::ArmChecker;
 using sphys::examples::kFinerChecks;
 using sphys::examples::kMotionStep;
 using sphys::examples::RobotArm;
-using sphys::examples::SphysMotionValidator;
 using sphys::examples::steps_between;
-using sphys::examples::values_of;
 
 struct Arguments {
   int stacks = 3;
@@ -52,21 +42,12 @@ struct Arguments {
 
 Arguments parse(int argc, char** argv) {
   Arguments out;
-  for (int i = 1; i < argc; ++i) {
-    const std::string name = argv[i];
-    if (i + 1 >= argc) throw sphys::Error(name + ": needs a value");
-    const std::string value = argv[++i];
-    if (name == "--stacks") {
-      out.stacks = std::stoi(value);
-    } else if (name == "--per-stack") {
-      out.per_stack = std::stoi(value);
-    } else if (name == "--time") {
-      out.time = std::stod(value);
-    } else if (name == "--seed") {
-      out.seed = static_cast<unsigned>(std::stoul(value));
-    } else {
-      throw sphys::Error("unknown option " + name);
-    }
+  for (const auto& [name, value] : sphys::examples::example_options(
+           argc, argv, {"--stacks", "--per-stack", "--time", "--seed"})) {
+    if (name == "--stacks") out.stacks = std::stoi(value);
+    if (name == "--per-stack") out.per_stack = std::stoi(value);
+    if (name == "--time") out.time = std::stod(value);
+    if (name == "--seed") out.seed = static_cast<unsigned>(std::stoul(value));
   }
   return out;
 }
@@ -84,47 +65,25 @@ int run(const Arguments& arguments) {
   ArmChecker checker(arm, query);
   const std::size_t joints = arm.joints.size();
 
-  const auto space = sphys::examples::arm_space(arm);
-  og::SimpleSetup setup(space);
-  const ob::SpaceInformationPtr si = setup.getSpaceInformation();
-  setup.setStateValidityChecker(
-      [&](const ob::State* state) { return checker.free_one(values_of(state, joints)); });
-  auto motions = std::make_shared<SphysMotionValidator>(si, checker, joints);
-  si->setMotionValidator(motions);
-
   // A start and a goal that are free but not joined by a free straight motion: the planner must
   // go around the bunnies.
   std::mt19937 rng(arguments.seed);
   const auto [start, goal] = sphys::examples::blocked_problem(arm, checker, rng);
-  ob::ScopedState<> start_state(space);
-  ob::ScopedState<> goal_state(space);
-  for (std::size_t j = 0; j < joints; ++j) {
-    start_state[static_cast<unsigned>(j)] = start[j];
-    goal_state[static_cast<unsigned>(j)] = goal[j];
-  }
-  setup.setStartAndGoalStates(start_state, goal_state);
-  setup.setPlanner(std::make_shared<og::RRTConnect>(si));
-  setup.setup();
-
   const auto begin = std::chrono::steady_clock::now();
-  const ob::PlannerStatus status = setup.solve(arguments.time);
-  const bool solved = status == ob::PlannerStatus::EXACT_SOLUTION;
-  std::size_t waypoints = 0;
+  const std::vector<std::vector<double>> path =
+      sphys::examples::plan_path(arm, checker, start, goal, arguments.time);
+  const bool solved = !path.empty();
+  const std::size_t waypoints = path.size();
   std::size_t finer_states = 0;
   std::size_t colliding_states = 0;
-  if (solved) setup.simplifySolution();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   if (solved) {
-    const og::PathGeometric& path = setup.getSolutionPath();
-    waypoints = path.getStateCount();
     // Every state at finer steps, each sphere asked of the world by sphys's overlap query.
     std::vector<float> spheres(arm.spheres() * 4);
     for (std::size_t w = 0; w + 1 < waypoints; ++w) {
       for (const std::vector<double>& v :
-           steps_between(values_of(path.getState(static_cast<unsigned>(w)), joints),
-                         values_of(path.getState(static_cast<unsigned>(w + 1)), joints),
-                         kMotionStep / kFinerChecks)) {
+           steps_between(path[w], path[w + 1], kMotionStep / kFinerChecks)) {
         arm.posed_spheres(v, spheres);
         ++finer_states;
         for (std::size_t i = 0; i < arm.spheres(); ++i) {
@@ -151,14 +110,5 @@ int run(const Arguments& arguments) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  try {
-    return run(parse(argc, argv));
-  } catch (const sphys::Error& error) {
-    std::fprintf(stderr, "plan_arm: error: %s\n", error.what());
-    return 2;
-  } catch (const std::invalid_argument& error) {
-    std::fprintf(stderr, "plan_arm: error: a number was expected (%s)\n", error.what());
-    return 2;
-  }
+  return sphys::examples::run_example("plan_arm", [&] { return run(parse(argc, argv)); });
 }

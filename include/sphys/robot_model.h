@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -35,6 +36,16 @@ struct RobotModel {
     // The joint that moves it: its index in joints, or -1 where it is fixed to its
     // parent.
     std::int32_t joint = -1;
+    // Its mass (the URDF's `inertial` element); 0 for none. A simulated robot (World::add_robot)
+    // needs mass on every link its joints move, counting the links fixed to it. unit: kg
+    double mass = 0.0;
+    // Its centre of mass in its frame. unit: m
+    Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
+    // Its inertia about its centre of mass, in its frame's axes. unit: kg·m²
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+    // The URDF gave no `inertial` element: mass, centre and inertia are its geometry's at
+    // tools::kDefaultLinkDensity (sphys/tools/robot_model_file.h).
+    bool mass_from_geometry = false;
   };
 
   // A joint that moves one link; fixed joints are no Joint (Link::joint -1).
@@ -44,6 +55,12 @@ struct RobotModel {
     Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // a unit vector in the moved link's frame
     double lower = 0.0;  // limits, unit: rad or m (both infinite for a continuous joint)
     double upper = 0.0;  // unit: rad or m
+    // The most torque or force a simulated joint applies (the URDF's effort), > 0. unit: N·m
+    // or N
+    double effort = std::numeric_limits<double>::infinity();
+    // The fastest a simulated joint's position control drives it (the URDF's velocity), > 0.
+    // unit: rad/s or m/s
+    double velocity = std::numeric_limits<double>::infinity();
   };
 
   std::string name;           // as the URDF names it, if from one

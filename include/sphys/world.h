@@ -15,6 +15,7 @@
 #include "sphys/joint.h"
 #include "sphys/material.h"
 #include "sphys/rigid_body.h"
+#include "sphys/robot_world.h"
 #include "sphys/solver_settings.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/step_stats.h"
@@ -102,6 +103,7 @@ struct BodyDesc {
 
 class WorldAccess;
 struct WorldState;
+struct RobotModel;
 
 // One world may be called from any thread, one call at a time: calls that overlap throw
 // sphys::Error ("... the world is being stepped on another thread ...") rather than race, whatever
@@ -143,7 +145,7 @@ class World {
   // The body leaves the world with its contacts, pair materials, sleep and joints (listed by
   // joints_removed()); the sleeping bodies it touched or was joined to wake. Its id, and every copy
   // of it, is stale from then on. Every call taking a BodyId throws sphys::Error for a stale or
-  // unknown id, or the null one (BodyId{}).
+  // unknown id, or the null one (BodyId{}), and remove_body for a robot's link (remove_robot).
   void remove_body(BodyId body);
   // A copy of the body's state and mass properties.
   [[nodiscard]] RigidBody body(BodyId body) const;
@@ -200,6 +202,39 @@ class World {
   void set_joint_spring(JointId joint, const JointSpring& spring);
   // The joints the last remove_body removed with its body (stale ids now), in slot order.
   [[nodiscard]] std::span<const JointId> joints_removed() const;
+
+  // Adds a robot (plausible mode; docs/robots.md): one body per link a joint moves, carrying the
+  // links fixed to it, with the links' masses, centres and inertias and their spheres as its
+  // tree; one joint per moving joint with the model's limits; the root link's body static at
+  // `base` (kFixed) or free. Joined links and the model's allowed_link_pairs do not collide; all
+  // other pairs do. It stands with every joint at 0 (or at the limit nearest 0), limp (torque
+  // control, no torque). Made by add_body and add_joint calls (not one change: another thread
+  // may call between them). Throws sphys::Error naming the link for a moving link with no mass
+  // or no spheres, and as check_robot_model for a bad model.
+  RobotId add_robot(const RobotModel& model, const Transform& base,
+                    RobotBase base_kind = RobotBase::kFixed);
+  // The robot's bodies and joints leave the world; its id is stale from then on. Every call
+  // taking a RobotId throws sphys::Error for a stale or unknown id, or the null one.
+  void remove_robot(RobotId robot);
+  // True for the id of a robot in the world.
+  [[nodiscard]] bool robot_alive(RobotId robot) const;
+  // The robot's bodies: the root link's first, then the link of each model joint in joint order.
+  [[nodiscard]] std::span<const BodyId> robot_bodies(RobotId robot) const;
+  // The robot's joints, one per model joint, in joint order.
+  [[nodiscard]] std::span<const JointId> robot_joints(RobotId robot) const;
+  // The model the robot was added with (its base at `base`).
+  [[nodiscard]] const RobotModel& robot_model(RobotId robot) const;
+  // Every joint's control from the next step on (one per model joint); its bodies wake. Throws
+  // sphys::Error naming the joint for another count, a value that is not finite or a
+  // max_effort that is not positive.
+  void set_robot_controls(RobotId robot, std::span<const RobotJointControl> controls);
+  // Puts the links where the joint values place them (one per joint, within the limits), the
+  // root where it is, every link at rest: a reset. Throws sphys::Error as robot_link_poses.
+  void set_robot_configuration(RobotId robot, std::span<const double> values);
+  // The joints' positions, speeds and efforts (RobotJointStates).
+  [[nodiscard]] RobotJointStates robot_joint_states(RobotId robot) const;
+  // Every link's pose in the world (the model's links' order), from its body's. unit: m
+  [[nodiscard]] std::vector<Eigen::Isometry3d> robot_link_poses_in_world(RobotId robot) const;
 
   // Advances the world by dt (unit: s, positive and finite, else sphys::Error). Never throws
   // otherwise, but for a call on another thread under way (see above); when a body's state stops

@@ -71,9 +71,10 @@ Quat quat_from(const py::handle& value, const char* what);
 void bind_mesh(py::module_& m);
 void bind_tree(py::module_& m);
 void bind_world(py::module_& m);
-void bind_joints(py::module_& m);  // after bind_world: it adds to World
-void bind_query(py::module_& m);   // after bind_world: it adds to World
-void bind_robot(py::module_& m);   // after bind_query: it adds to World and WorldQuery
+void bind_joints(py::module_& m);       // after bind_world: it adds to World
+void bind_query(py::module_& m);        // after bind_world: it adds to World
+void bind_robot(py::module_& m);        // after bind_query: it adds to World and WorldQuery
+void bind_robot_world(py::module_& m);  // after bind_robot: it adds to World
 void bind_scene(py::module_& m);
 void bind_experiment(py::module_& m);
 

@@ -72,6 +72,7 @@ PYBIND11_MODULE(_sphys, m) {
   bind_joints(m);
   bind_query(m);
   bind_robot(m);
+  bind_robot_world(m);
   bind_scene(m);
   bind_experiment(m);
 }

@@ -14,6 +14,7 @@
 #include "sphys/tools/run_summary.h"
 #include "sphys/tools/scenarios.h"
 #include "sphys/tools/scene_file.h"
+#include "sphys/tools/scene_robots.h"
 #include "sphys/tools/tree_cache.h"
 
 namespace sphys::python {
@@ -193,6 +194,7 @@ void bind_scene(py::module_& m) {
              if (cache) options.cache_dir = tools::default_cache_dir();
              py::gil_scoped_release unlocked;
              sim->setup = tools::build_world(sim->scene, options);
+             tools::add_scene_robots(sim->scene, *sim->setup.world);  // as `sphys simulate`
              return sim;
            }),
            py::arg("scene"), py::kw_only(), py::arg("depth") = std::nullopt, py::arg("threads") = 1,

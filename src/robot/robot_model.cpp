@@ -43,6 +43,11 @@ void check_robot_model(const RobotModel& model) {
     if (link.joint >= static_cast<std::int32_t>(model.joints.size()) || link.joint < -1) {
       throw Error(what + ": no joint " + std::to_string(link.joint));
     }
+    if (!std::isfinite(link.mass) || link.mass < 0.0 || !link.center_of_mass.allFinite() ||
+        !link.inertia.allFinite()) {
+      throw Error(what + ": its mass must be finite and not negative, its centre of mass and " +
+                  "inertia finite");
+    }
     if (link.joint >= 0) {
       if (l == 0) throw Error(what + ": the root link has no joint");
       ++joint_users[static_cast<std::size_t>(link.joint)];
@@ -56,6 +61,10 @@ void check_robot_model(const RobotModel& model) {
     }
     if (!joint.axis.allFinite() || std::abs(joint.axis.norm() - 1.0) > kUnitAxisTolerance) {
       throw Error(joint_text(model, j) + ": its axis is not a unit vector");
+    }
+    if (!(joint.effort > 0.0) || !(joint.velocity > 0.0)) {
+      throw Error(joint_text(model, j) + ": its effort and velocity bounds must be positive " +
+                  "(infinite for none)");
     }
     if (joint.type == RobotJointType::kContinuous) {
       if (!(std::isinf(joint.lower) && joint.lower < 0 && std::isinf(joint.upper) &&

@@ -188,6 +188,9 @@ void World::remove_body(BodyId id) {
   WorldState& world = *state_;
   const WorldAccess::Alone turn(world.access, WorldAccess::Holder::kChange, "remove_body");
   const std::uint32_t index = checked_slot(world, id);
+  if (world.robots && world.robots->holds(id)) {
+    throw Error("remove_body: the body is a robot's link; remove_robot removes a robot whole");
+  }
   // The sleeping bodies it touched (which may rest on it, asleep, awake or static) lose a
   // support.
   world.wake(index);
@@ -281,7 +284,10 @@ const StepStats& World::step(float dt) {
   if (!(dt > 0.0f) || !std::isfinite(dt)) {
     throw Error("the time step must be positive and finite, got " + std::to_string(dt));
   }
-  if (!world.stopped) world.stats = run_step(world, dt);
+  if (!world.stopped) {
+    if (world.robots) world.robots->before_step(world, dt);
+    world.stats = run_step(world, dt);
+  }
   return world.stats;
 }
 

@@ -56,7 +56,9 @@ void WorldState::wake(std::uint32_t body) {
 }
 
 void WorldState::joints_changed() {
-  detector.set_unpaired(joints.joined_pairs(true));
+  std::vector<JointStore::BodyPair> unpaired = joints.joined_pairs(true);
+  if (robots) robots->append_unpaired(unpaired);
+  detector.set_unpaired(unpaired);
   sleep.set_joined(joints.joined_pairs(false));
 }
 

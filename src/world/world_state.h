@@ -6,6 +6,7 @@
 // the sleep tracker keep the store's address, the detector the threads'.
 
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "sphys/step_stats.h"
 #include "sphys/world.h"
 #include "world/joint_store.h"
+#include "world/robots_in_world.h"
 #include "world/sleep_tracker.h"
 #include "world/world_access.h"
 
@@ -42,8 +44,9 @@ struct WorldState {
   // Wakes a sleeping body and counts it restless: a velocity, an impulse or a force set it
   // moving from outside, or a body it touched left.
   void wake(std::uint32_t body);
-  // After joints were added or removed: the body pairs whose contacts do not count (the
-  // detector's) and the bodies that sleep and wake together (the sleep tracker's).
+  // After joints or robots were added or removed: the body pairs whose contacts do not count
+  // (the detector's: joined bodies, robots' allowed link pairs) and the bodies that sleep and
+  // wake together (the sleep tracker's).
   void joints_changed();
   // Wakes a joint's bodies (not the world, nor a static body).
   void wake_joined(const JointModel& joint);
@@ -62,10 +65,12 @@ struct WorldState {
   BodyStore store;
   Parallel parallel;
   CollisionDetector detector;
-  SoftStepSolver solver;                   // plausible mode
-  SleepTracker sleep;                      // plausible mode
-  JointStore joints;                       // plausible mode
-  JointSolver joint_solver;                // solves `joints` in the soft step
+  SoftStepSolver solver;     // plausible mode
+  SleepTracker sleep;        // plausible mode
+  JointStore joints;         // plausible mode
+  JointSolver joint_solver;  // solves `joints` in the soft step
+  // The robots simulated (plausible mode; their joints are in `joints`), once one is added.
+  std::unique_ptr<RobotsInWorld> robots;
   std::vector<JointId> removed_joints;     // by the last remove_body
   std::vector<std::uint32_t> joint_slots;  // remove_body's scratch
   std::unordered_map<std::uint64_t, PairMaterial> pair_materials;

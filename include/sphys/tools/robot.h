@@ -4,6 +4,7 @@
 // geometry as one triangle mesh in the link's frame, and the joints that place the links.
 
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <span>
 #include <string>
@@ -54,6 +55,16 @@ struct RobotJoint {
   double lower = 0.0;
   double upper = 0.0;  // unit: rad or m
   std::string mimics;  // the joint it mimics, or empty
+  // The URDF's `limit` element's effort and velocity; infinite where it gives none (or 0).
+  double effort = std::numeric_limits<double>::infinity();    // unit: N·m or N
+  double velocity = std::numeric_limits<double>::infinity();  // unit: rad/s or m/s
+};
+
+// A link's `inertial` element.
+struct LinkInertial {
+  double mass = 0.0;                     // unit: kg
+  Vec3d center_of_mass = Vec3d::Zero();  // in the link's frame. unit: m
+  Mat3d inertia = Mat3d::Zero();         // about the centre of mass, the link's axes. unit: kg·m²
 };
 
 // A robot as load_robot reads it from its URDF.
@@ -64,6 +75,8 @@ struct Robot {
   std::vector<LinkGeometry> links;       // the links that have geometry, by name
   std::vector<std::string> empty_links;  // links with neither collision nor visual geometry
   std::vector<RobotJoint> joints;        // every joint of the URDF, by name
+  std::map<std::string, LinkInertial>
+      inertials;  // the links that have an `inertial` element, by name
 };
 
 // Reads the URDF, resolving mesh files given as `package://NAME/...` (through `packages`), as

@@ -17,11 +17,17 @@
 
 namespace sphys::tools {
 
+// The density a link without an `inertial` element is given its mass by, from its collision (or
+// visual) mesh (RobotModel::Link::mass_from_geometry): water's, about a plastic's. unit: kg/m³
+inline constexpr double kDefaultLinkDensity = 1000.0;
+
 // The model of a loaded robot with its links' spheres: every link of the URDF (those without
 // geometry or spheres too), parents first, breadth first from the root, siblings by name; its
-// moving joints in the same order (a chain's from the base out). `disabled`: pairs of link names
-// never checked against each other. Throws sphys::Error naming the file and the joint for a
-// mimic, floating or planar joint, and the link for spheres on a link the robot does not have.
+// moving joints in the same order (a chain's from the base out). Each link's mass from its
+// `inertial` element, or else from its geometry at kDefaultLinkDensity (a link with neither has
+// none). `disabled`: pairs of link names never checked against each other. Throws sphys::Error
+// naming the file and the joint for a mimic, floating or planar joint, and the link for spheres on
+// a link the robot does not have.
 [[nodiscard]] RobotModel robot_model(const Robot& robot, std::span<const LinkSpheres> links,
                                      std::span<const std::array<std::string, 2>> disabled = {});
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -87,6 +88,25 @@ struct JointSpec {
   JointDesc desc;  // everything else (its body ids unused: build_world sets them)
 };
 
+// A robot of the scene (World::add_robot, docs/robots.md), added after the joints by
+// tools::add_scene_robots (sphys/tools/scene_robots.h): its files, where its root link stands, its
+// joint values at the start and the targets position control holds them to.
+struct SceneRobot {
+  // Paths as written: a relative one is taken from Scene::base_directory.
+  std::filesystem::path urdf;
+  std::filesystem::path spheres;  // what `sphys spherize` wrote for it, any of its formats
+  std::optional<std::filesystem::path> srdf;  // its disabled collision pairs, if any
+  // Where `package://NAME/...` meshes of the URDF are: NAME's folder, by NAME.
+  std::map<std::string, std::filesystem::path> packages;
+  Vec3 position = Vec3::Zero();         // the root link in the world. unit: m
+  Quat orientation = Quat::Identity();  // the root link's axes in the world
+  bool fixed_base = true;               // RobotBase::kFixed, else kFree
+  // One value per joint, in the model's order; empty: every joint at 0. unit: rad or m
+  std::vector<double> configuration;
+  // Position control's targets, one per joint; empty: the robot is limp. unit: rad or m
+  std::vector<double> targets;
+};
+
 // "paper", "plausible": the response modes by name, as scene files and the command line write
 // them.
 [[nodiscard]] std::string_view response_mode_name(ResponseMode mode);
@@ -124,6 +144,7 @@ struct Scene {
   std::vector<BodySpec> bodies;  // at most kMaxSceneBodies
   std::vector<PairMaterialSpec> pair_materials;  // pairs of bodies with their own material
   std::vector<JointSpec> joints;                 // added after the bodies, in order
+  std::vector<SceneRobot> robots;                // added after the joints, in order
   // Folder that relative mesh and .sph paths are taken from.
   std::filesystem::path base_directory;
 };

@@ -34,9 +34,10 @@ constexpr double kUnitTolerance = 1e-6;
 // Every integer up to here is exact in a double, as a JSON number is read.
 constexpr long long kMaxExactInteger = 9'007'199'254'740'992;  // 2^53
 
-constexpr std::array<ArrayLimit, 2> kArrayLimits = {
+constexpr std::array<ArrayLimit, 3> kArrayLimits = {
     {{"/bodies", kMaxSceneBodies, "bodies; a scene holds at most that many"},
-     {"/joints", kMaxSceneBodies, "joints; a scene holds at most as many as bodies"}}};
+     {"/joints", kMaxSceneBodies, "joints; a scene holds at most as many as bodies"},
+     {"/robots", kMaxSceneBodies, "robots; a scene holds at most as many as bodies"}}};
 
 template <typename Enum, std::size_t N>
 Enum read_choice(const JsonNode& node, const NameTable<Enum, N>& table) {
@@ -385,6 +386,56 @@ std::vector<JointSpec> read_joints(const JsonNode& node, std::size_t body_count)
   return joints;
 }
 
+// Joint values, one per joint (the model's count is checked when the robot is added).
+std::vector<double> read_joint_values(const JsonNode& node) {
+  if (!node.json().is_array()) fail_type(node, "an array of joint values (rad or m)");
+  std::vector<double> values;
+  for (std::size_t k = 0; k < node.json().size(); ++k) {
+    values.push_back(read_bounded(node.element(k), kMaxCoordinate, "rad or m"));
+  }
+  return values;
+}
+
+SceneRobot read_robot(const JsonNode& node) {
+  check_keys(node, kRobotKeys);
+  SceneRobot robot;
+  robot.urdf = read_existing_file(node.required("urdf", "a robot names its URDF"), "a URDF",
+                                  InputKind::kRobot);
+  robot.spheres = read_existing_file(node.required("spheres", "a robot names its spheres' file"),
+                                     "the spheres `sphys spherize` wrote", InputKind::kRobot);
+  if (const auto n = node.find("srdf"); n && !n->json().is_null()) {
+    robot.srdf = read_existing_file(*n, "an SRDF", InputKind::kRobot);
+  }
+  if (const auto n = node.find("packages")) {
+    if (!n->json().is_object()) fail_type(*n, "an object of package folders by name");
+    for (const auto& item : n->json().items()) {
+      const JsonNode folder = n->child(item.key());
+      const fs::path written = read_string(folder);
+      if (!fs::is_directory(folder.source().base_directory / written)) {
+        folder.fail("no such folder: " + (folder.source().base_directory / written).string());
+      }
+      robot.packages[item.key()] = written;
+    }
+  }
+  if (const auto n = node.find("position")) {
+    robot.position = read_bounded_vec3(*n, kMaxCoordinate, "m");
+  }
+  if (const auto n = node.find("orientation")) robot.orientation = read_orientation(*n);
+  if (const auto n = node.find("fixed_base")) robot.fixed_base = read_bool(*n);
+  if (const auto n = node.find("configuration")) robot.configuration = read_joint_values(*n);
+  if (const auto n = node.find("targets")) robot.targets = read_joint_values(*n);
+  return robot;
+}
+
+std::vector<SceneRobot> read_robots(const JsonNode& node) {
+  if (!node.json().is_array()) fail_type(node, "an array of robots");
+  std::vector<SceneRobot> robots;
+  for (std::size_t k = 0; k < node.json().size(); ++k) {
+    robots.push_back(read_robot(node.element(k)));
+  }
+  return robots;
+}
+
 void read_header(const JsonNode& root) {
   const JsonNode format =
       root.required("format", "a scene file starts with \"format\": \"sphys-scene\"");
@@ -442,6 +493,7 @@ Scene read_scene(const Json& document, const fs::path& name) {
     scene.pair_materials = read_pair_materials(*n, scene.bodies);
   }
   if (const auto n = root.find("joints")) scene.joints = read_joints(*n, scene.bodies.size());
+  if (const auto n = root.find("robots")) scene.robots = read_robots(*n);
   return scene;
 }
 

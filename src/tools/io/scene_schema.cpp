@@ -9,9 +9,9 @@ namespace {
 
 // The keys of the top level and of "ground" besides the world's settings, which the settings
 // table lists.
-constexpr std::array<std::string_view, 11> kSceneOwnKeys = {
+constexpr std::array<std::string_view, 12> kSceneOwnKeys = {
     "format", "version",  "time_step", "frames",         "solver", "sleep",
-    "ground", "defaults", "bodies",    "pair_materials", "joints"};
+    "ground", "defaults", "bodies",    "pair_materials", "joints", "robots"};
 constexpr std::array<std::string_view, 5> kGroundOwnKeys = {"type", "height", "size", "thickness",
                                                             "depth"};
 

@@ -54,6 +54,9 @@ inline constexpr std::array<std::string_view, 3> kJointMotorKeys = {"enabled", "
 inline constexpr std::array<std::string_view, 4> kJointSpringKeys = {"enabled", "hertz",
                                                                      "damping_ratio", "target"};
 inline constexpr std::array<std::string_view, 2> kJointConeKeys = {"enabled", "angle"};
+inline constexpr std::array<std::string_view, 9> kRobotKeys = {
+    "urdf",        "spheres",    "srdf",          "packages", "position",
+    "orientation", "fixed_base", "configuration", "targets"};
 inline constexpr std::array<std::string_view, 13> kBodyKeys = {"mesh",
                                                                "triangles",
                                                                "size",

@@ -20,6 +20,13 @@ Json vec3_json(const Vec3& v) {
   return Json::array({shortest_double(v.x()), shortest_double(v.y()), shortest_double(v.z())});
 }
 
+Json quaternion_json(const Quat& q) {
+  return {{"w", shortest_double(q.w())},
+          {"x", shortest_double(q.x())},
+          {"y", shortest_double(q.y())},
+          {"z", shortest_double(q.z())}};
+}
+
 template <typename T>
 Json optional_json(const std::optional<T>& value) {
   return value ? Json(*value) : Json(nullptr);
@@ -41,11 +48,7 @@ Json body_json(const BodySpec& body) {
   out["size"] = optional_json(body.size);
   out["sphere_tree"] = tree_json(body.tree);
   out["position"] = vec3_json(body.position);
-  const Quat& q = body.orientation;
-  out["orientation"] = {{"w", shortest_double(q.w())},
-                        {"x", shortest_double(q.x())},
-                        {"y", shortest_double(q.y())},
-                        {"z", shortest_double(q.z())}};
+  out["orientation"] = quaternion_json(body.orientation);
   out["linear_velocity"] = vec3_json(body.linear_velocity);
   out["angular_velocity"] = vec3_json(body.angular_velocity);
   out["density"] = body.density;
@@ -99,6 +102,22 @@ Json joint_json(const JointSpec& joint) {
   return out;
 }
 
+Json robot_json(const SceneRobot& robot) {
+  Json out = Json::object();
+  out["urdf"] = robot.urdf.generic_string();
+  out["spheres"] = robot.spheres.generic_string();
+  out["srdf"] = robot.srdf ? Json(robot.srdf->generic_string()) : Json(nullptr);
+  Json packages = Json::object();
+  for (const auto& [name, folder] : robot.packages) packages[name] = folder.generic_string();
+  out["packages"] = std::move(packages);
+  out["position"] = vec3_json(robot.position);
+  out["orientation"] = quaternion_json(robot.orientation);
+  out["fixed_base"] = robot.fixed_base;
+  out["configuration"] = robot.configuration;
+  out["targets"] = robot.targets;
+  return out;
+}
+
 }  // namespace
 
 std::string scene_to_json(const Scene& scene) {
@@ -124,6 +143,9 @@ std::string scene_to_json(const Scene& scene) {
   Json joints = Json::array();
   for (const JointSpec& joint : scene.joints) joints.push_back(joint_json(joint));
   out["joints"] = std::move(joints);
+  Json robots = Json::array();
+  for (const SceneRobot& robot : scene.robots) robots.push_back(robot_json(robot));
+  out["robots"] = std::move(robots);
   return out.dump(2) + "\n";
 }
 

@@ -200,6 +200,23 @@ std::string joint_type_name(int type) {
   }
 }
 
+// A link's <inertial>, its inertia turned from the element's origin into the link's axes.
+LinkInertial link_inertial(const fs::path& urdf, const std::string& link,
+                           const urdf::Inertial& element) {
+  LinkInertial inertial;
+  inertial.mass = element.mass;
+  const Pose3d origin = to_pose(element.origin);
+  inertial.center_of_mass = origin.translation();
+  Mat3d inertia;
+  inertia << element.ixx, element.ixy, element.ixz, element.ixy, element.iyy, element.iyz,
+      element.ixz, element.iyz, element.izz;
+  inertial.inertia = origin.linear() * inertia * origin.linear().transpose();
+  if (!std::isfinite(inertial.mass) || inertial.mass < 0.0 || !inertial.inertia.allFinite()) {
+    throw link_error(urdf, link, "its <inertial> mass must be finite and not negative");
+  }
+  return inertial;
+}
+
 }  // namespace
 
 RobotPackage parse_robot_package(std::string_view text) {
@@ -232,6 +249,7 @@ Robot load_robot(const fs::path& urdf, std::span<const RobotPackage> packages) {
       geometry = merge_elements(urdf, name, link->visual_array, packages);
       geometry.from_visual = true;
     }
+    if (link->inertial) robot.inertials[name] = link_inertial(urdf, name, *link->inertial);
     if (geometry.mesh.triangles.empty()) {
       robot.empty_links.push_back(name);
     } else {
@@ -256,6 +274,11 @@ Robot load_robot(const fs::path& urdf, std::span<const RobotPackage> packages) {
     } else if (joint->limits) {
       j.lower = joint->limits->lower;
       j.upper = joint->limits->upper;
+    }
+    if (joint->limits) {
+      // urdfdom reads a missing effort or velocity as 0: no bound.
+      if (joint->limits->effort > 0.0) j.effort = joint->limits->effort;
+      if (joint->limits->velocity > 0.0) j.velocity = joint->limits->velocity;
     }
     if (joint->mimic) j.mimics = joint->mimic->joint_name;
     robot.joints.push_back(std::move(j));

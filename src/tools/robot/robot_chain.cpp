@@ -43,7 +43,7 @@ RobotModel robot_chain(const Robot& robot, const ChainJoint& chain_joint) {
       link.origin = j.origin;
       if (const std::optional<RobotJointType> type = chain_joint(j)) {
         link.joint = static_cast<std::int32_t>(model.joints.size());
-        model.joints.push_back({j.name, *type, j.axis, j.lower, j.upper});
+        model.joints.push_back({j.name, *type, j.axis, j.lower, j.upper, j.effort, j.velocity});
       }
     }
     const auto index = static_cast<std::int32_t>(model.links.size());

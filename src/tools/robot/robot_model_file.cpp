@@ -11,6 +11,7 @@
 #include "io/input_file.h"
 #include "robot_chain.h"
 #include "sphys/error.h"
+#include "sphys/tools/mass_properties.h"
 
 namespace sphys::tools {
 namespace {
@@ -26,6 +27,26 @@ RobotJointType joint_type(const Robot& robot, const RobotJoint& joint) {
                                        "fixed joints");
 }
 
+// A link's mass, centre and inertia: its <inertial>'s, or else its geometry's at the default
+// density (flagged), or none.
+void give_mass(const Robot& robot, RobotModel::Link& link) {
+  if (const auto inertial = robot.inertials.find(link.name); inertial != robot.inertials.end()) {
+    link.mass = inertial->second.mass;
+    link.center_of_mass = inertial->second.center_of_mass;
+    link.inertia = inertial->second.inertia;
+    return;
+  }
+  const auto geometry = std::ranges::find(robot.links, link.name, &LinkGeometry::link);
+  if (geometry == robot.links.end()) return;
+  MassPropertiesOptions options;
+  options.density = kDefaultLinkDensity;
+  const MassProperties mass = compute_mass_properties(geometry->mesh, options);
+  link.mass = mass.mass;
+  link.center_of_mass = mass.center_of_mass;
+  link.inertia = mass.inertia;
+  link.mass_from_geometry = true;
+}
+
 }  // namespace
 
 RobotModel robot_model(const Robot& robot, std::span<const LinkSpheres> links,
@@ -33,6 +54,7 @@ RobotModel robot_model(const Robot& robot, std::span<const LinkSpheres> links,
   RobotModel model = robot_chain(robot, [&](const RobotJoint& joint) {
     return joint.type == "fixed" ? std::nullopt : std::optional(joint_type(robot, joint));
   });
+  for (RobotModel::Link& link : model.links) give_mass(robot, link);
   for (const LinkSpheres& link : links) {
     std::int32_t index = -1;
     try {

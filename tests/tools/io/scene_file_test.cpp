@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <random>
 #include <set>
@@ -161,6 +162,22 @@ void expect_same_joints(const std::vector<JointSpec>& a, const std::vector<Joint
   }
 }
 
+void expect_same_robots(const std::vector<SceneRobot>& a, const std::vector<SceneRobot>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    SCOPED_TRACE("robot " + std::to_string(k));
+    EXPECT_EQ(a[k].urdf, b[k].urdf);
+    EXPECT_EQ(a[k].spheres, b[k].spheres);
+    EXPECT_EQ(a[k].srdf, b[k].srdf);
+    EXPECT_EQ(a[k].packages, b[k].packages);
+    expect_same(a[k].position, b[k].position, "position");
+    EXPECT_EQ(a[k].orientation.coeffs(), b[k].orientation.coeffs());
+    EXPECT_EQ(a[k].fixed_base, b[k].fixed_base);
+    EXPECT_EQ(a[k].configuration, b[k].configuration);
+    EXPECT_EQ(a[k].targets, b[k].targets);
+  }
+}
+
 void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.base_directory, b.base_directory);
@@ -176,6 +193,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   expect_same_sleep(a.sleep, b.sleep);
   expect_same_pairs(a.pair_materials, b.pair_materials);
   expect_same_joints(a.joints, b.joints);
+  expect_same_robots(a.robots, b.robots);
   EXPECT_EQ(a.ground.kind, b.ground.kind);
   EXPECT_EQ(bits(a.ground.height), bits(b.ground.height));
   EXPECT_EQ(bits(a.ground.size), bits(b.ground.size));
@@ -234,6 +252,12 @@ constexpr std::string_view kFullScene = R"({
      "motor": {"enabled": false, "speed": 2, "max_effort": 30},
      "spring": {"hertz": 4, "damping_ratio": 0.7, "target": 0.25},
      "cone": {"angle": 0.5}, "friction": 3.5, "length": 2.5, "collide_connected": true}
+  ],
+  "robots": [
+    {"urdf": "robot/arm.urdf", "spheres": "robot/arm.yml", "srdf": "robot/arm.srdf",
+     "packages": {"arm_pkg": "robot"}, "position": [0.5, 0, -1],
+     "orientation": {"yaw_degrees": 90}, "fixed_base": false, "configuration": [0.25, -0.5],
+     "targets": [1, 0.125]}
   ]
 })";
 
@@ -245,6 +269,10 @@ class SceneFileOnDisk : public testing::Test {
     // Only their existence is checked when a scene is read.
     dir_.write("meshes/box.obj", "v 0 0 0\n");
     dir_.write("trees/bunny.sph", "1 2\n0 0 0 1 1\n");
+    fs::create_directories(dir_.path() / "robot");
+    for (const char* file : {"robot/arm.urdf", "robot/arm.yml", "robot/arm.srdf"}) {
+      dir_.write(file, "<robot/>\n");
+    }
   }
 
   [[nodiscard]] fs::path scene_path() const { return dir_.path() / "scene.json"; }
@@ -297,6 +325,17 @@ TEST_F(SceneFileOnDisk, FullSceneReadsEveryValue) {
   slider.desc.length = 2.5f;
   slider.desc.collide_connected = true;
   expect_same_joints(scene.joints, {slider});
+  ASSERT_EQ(scene.robots.size(), 1U);
+  const SceneRobot& robot = scene.robots.front();
+  EXPECT_EQ(robot.urdf, "robot/arm.urdf");
+  EXPECT_EQ(robot.spheres, "robot/arm.yml");
+  EXPECT_EQ(robot.srdf, std::optional<fs::path>("robot/arm.srdf"));
+  EXPECT_EQ(robot.packages, (std::map<std::string, fs::path>{{"arm_pkg", "robot"}}));
+  expect_same(robot.position, Vec3(0.5f, 0.0f, -1.0f), "robot position");
+  expect_rotation(robot.orientation, Vec3::UnitX(), -Vec3::UnitZ());
+  EXPECT_FALSE(robot.fixed_base);
+  EXPECT_EQ(robot.configuration, (std::vector<double>{0.25, -0.5}));
+  EXPECT_EQ(robot.targets, (std::vector<double>{1.0, 0.125}));
   EXPECT_EQ(scene.ground.kind, GroundSpec::Kind::kPlane);
   EXPECT_EQ(scene.ground.height, -1.5);
   EXPECT_EQ(scene.ground.size, 20.0);
@@ -1234,6 +1273,7 @@ TEST(SceneFileSchema, ListsTheKeysOfTheFormat) {
   EXPECT_EQ(property_names(defs.at("sleep")), object_keys(full.at("sleep")));
   EXPECT_EQ(property_names(defs.at("pair_material")), object_keys(full.at("pair_materials").at(0)));
   EXPECT_EQ(property_names(defs.at("joint")), object_keys(full.at("joints").at(0)));
+  EXPECT_EQ(property_names(defs.at("robot")), object_keys(full.at("robots").at(0)));
   // The writer writes every key of a joint's parts.
   const nlohmann::json written = nlohmann::json::parse(scene_to_json(parse_scene(
       scene_text(R"("bodies": [{}], "joints": [{"type": "ball", "body_a": 0, "body_b": null}])"),
