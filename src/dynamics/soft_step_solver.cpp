@@ -95,10 +95,11 @@ void SoftStepSolver::plan_stages(std::size_t awake, std::uint32_t substeps, bool
   // only once the joint shares it, and the share changes the bounce, so the joints' relax and the
   // restitution take turns (a Gauss–Seidel pass over both). Two welded boxes dropped on a
   // frictionless floor then stay within 1.3 mm of one body for 2 s, 1.5 cm without; a scene
-  // without joints plans none of it.
+  // without joints plans none of it, and a pass where nothing bounced skips it (its joints'
+  // impulses, the forces they report, are then the substeps' alone).
   if (!joints) return;
   for (int round = 0; round < kJointRestitutionRounds; ++round) {
-    add_stage(Work::kJointRelax, 0, joint_items);
+    add_stage(Work::kJointShareBounce, 0, joint_items);
     add_pass(Work::kRestituteAgain);
   }
 }
@@ -109,6 +110,9 @@ void SoftStepSolver::run_item(const Stage& stage, std::uint32_t item, BodyStore&
     case Work::kJointWarmStart:
       joints_->warm_start(joint_bodies(bodies));
       return;
+    case Work::kJointShareBounce:
+      if (bounces_.load() == 0) return;
+      [[fallthrough]];
     case Work::kJointSolve:
     case Work::kJointRelax:
       joints_->solve(joint_bodies(bodies), stage.work == Work::kJointSolve);
@@ -153,13 +157,14 @@ void SoftStepSolver::run_pass(const LaneKernels<W>& kernels, Work work,
       bounces_.fetch_add(kernels.restitute(blocks, lanes, settings));
       return;
     case Work::kRestituteAgain:
-      (void)kernels.restitute(blocks, lanes, settings);
+      if (bounces_.load() != 0) (void)kernels.restitute(blocks, lanes, settings);
       return;
     case Work::kIntegrateVelocities:
     case Work::kIntegratePositions:
     case Work::kJointWarmStart:
     case Work::kJointSolve:
     case Work::kJointRelax:
+    case Work::kJointShareBounce:
       return;  // run_item's, per run of bodies or on the joints
   }
 }

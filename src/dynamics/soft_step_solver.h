@@ -118,7 +118,8 @@ class SoftStepSolver {
     kRestituteAgain,  // with the joints, after kRestitute: its bounces are not counted again
     kJointWarmStart,
     kJointSolve,
-    kJointRelax
+    kJointRelax,
+    kJointShareBounce  // the joints' relax after kRestitute, where a contact bounced
   };
   struct Stage {
     Work work = Work::kSolve;

@@ -479,8 +479,11 @@ TEST(RobotWorld, TheArmSweepsABunnyAsideAndRecovers) {
   EXPECT_GT(moved, 0.05f);
   EXPECT_GT(last_touch, 0.0);
   EXPECT_LT(worst_share, 0.05);
-  // Within 0.5 s of the last touch, every joint back within 1° of the trajectory, and after.
-  const auto recovered = static_cast<std::size_t>((last_touch + 0.5) / double{kControlStep});
+  // Within 0.5 s of the last touch, every joint back within 1° of the trajectory, and after. A
+  // bunny pushed to rest against the arm's last pose touches it to the end: from 0.5 s after the
+  // sweep the arm must then hold that pose within 1° with the bunny leaning on it.
+  const double settled_from = std::min(last_touch, kDuration) + 0.5;  // unit: s
+  const auto recovered = static_cast<std::size_t>(settled_from / double{kControlStep});
   ASSERT_LT(recovered, errors.size());
   for (std::size_t frame = recovered; frame < errors.size(); ++frame) {
     ASSERT_LT(errors[frame], kDegree) << "frame " << frame;
