@@ -181,13 +181,17 @@ void SceneDrawer::draw_joints(LineRenderer& lines, std::span<const BodyView> bod
 }
 
 // Tall stacks rise out of view: the live view is for the pile they make. Robots are looked at
-// where their root links stand.
+// from their root links up.
 OrbitCamera frame_scene(const tools::Scene& scene) {
   OrbitCamera camera;
   if (scene.bodies.empty() && scene.robots.empty()) return camera;
   Eigen::AlignedBox3f box;
   for (const tools::BodySpec& body : scene.bodies) box.extend(body.position);
-  for (const tools::SceneRobot& robot : scene.robots) box.extend(robot.position);
+  // A robot stands on its root link's z axis (URDF's up): its root and a metre up that axis.
+  for (const tools::SceneRobot& robot : scene.robots) {
+    box.extend(robot.position);
+    box.extend(robot.position + robot.orientation * Vec3::UnitZ());
+  }
   camera.target = box.center();
   camera.target.y() = std::min(box.center().y(), static_cast<float>(scene.ground.height) + 3.0f);
   float spread = std::max(box.sizes().x(), box.sizes().z());
