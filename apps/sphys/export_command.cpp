@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.h"
 #include "sphys/error.h"
@@ -12,6 +13,7 @@
 #include "sphys/tools/interrupt.h"
 #include "sphys/tools/recording.h"
 #include "sphys/tools/scene_file.h"
+#include "sphys/tools/scene_robots.h"
 
 namespace sphys::cli {
 namespace {
@@ -46,6 +48,19 @@ void read_frames(const std::string& text, tools::GltfExportOptions& options) {
   if (!last.empty()) options.last = frame_number(last, text);
 }
 
+// The meshes of the recording's robots' bodies, when it keeps them (recording_keeps_robots),
+// from a world made for them alone.
+std::vector<std::shared_ptr<const tools::TriangleMesh>> robot_meshes(
+    const tools::Scene& scene, const tools::Recording& recording) {
+  if (scene.robots.empty()) return {};
+  World world(tools::world_settings(scene));
+  const tools::SceneRobots robots = tools::add_scene_robots(scene, world);
+  if (!tools::recording_keeps_robots(scene, robots, recording.body_count)) return {};
+  std::vector<std::shared_ptr<const tools::TriangleMesh>> meshes;
+  for (const tools::BodyShape& shape : robots.shapes) meshes.push_back(shape.body_mesh);
+  return meshes;
+}
+
 void run(const ExportOptions& options) {
   tools::catch_interruptions();
   tools::GltfExportOptions gltf;
@@ -62,7 +77,8 @@ void run(const ExportOptions& options) {
   }
   tools::GltfExportSummary summary;
   try {
-    summary = tools::write_gltf(options.gltf, recording, scene, gltf);
+    summary =
+        tools::write_gltf(options.gltf, recording, scene, gltf, robot_meshes(scene, recording));
   } catch (const Error& error) {
     throw Error(recording_path.string() + ": " + error.what());
   }

@@ -79,11 +79,19 @@ std::string folder_name(const std::string& scene_name) {
   return name.empty() ? "scene" : name;
 }
 
-std::vector<tools::BodyPose> poses(const tools::SimulationSetup& setup) {
+// The bodies a recording keeps: the scene's, then its robots'.
+std::vector<BodyId> recorded_bodies(const tools::SimulationSetup& setup,
+                                    const tools::SceneRobots& robots) {
+  std::vector<BodyId> bodies = setup.bodies;
+  bodies.insert(bodies.end(), robots.bodies.begin(), robots.bodies.end());
+  return bodies;
+}
+
+std::vector<tools::BodyPose> poses(const World& world, const std::vector<BodyId>& bodies) {
   std::vector<tools::BodyPose> result;
-  result.reserve(setup.bodies.size());
-  for (const BodyId body : setup.bodies) {
-    const Transform& pose = setup.world->body(body).pose;
+  result.reserve(bodies.size());
+  for (const BodyId body : bodies) {
+    const Transform& pose = world.body(body).pose;
     result.push_back({pose.translation, pose.rotation});
   }
   return result;
@@ -271,8 +279,8 @@ void run(const SimulateOptions& options) {
     build.progress = [&bar](double fraction) { bar.update(fraction); };
     return tools::build_world(scene, build);
   }();
-  // Simulated with the bodies; the recording keeps the scene's bodies alone for now.
-  tools::add_scene_robots(scene, *setup.world);
+  const tools::SceneRobots robots = tools::add_scene_robots(scene, *setup.world);
+  const std::vector<BodyId> recorded = recorded_bodies(setup, robots);
 
   const fs::path out =
       options.out ? fs::path(*options.out) : fs::path("out") / folder_name(scene.name);
@@ -282,10 +290,10 @@ void run(const SimulateOptions& options) {
   const fs::path csv_path = out / "frames.csv";
   const fs::path recording_path = out / "recording.sphysrec";
 
-  tools::RecordingWriter recording(recording_path, static_cast<std::uint32_t>(setup.bodies.size()),
+  tools::RecordingWriter recording(recording_path, static_cast<std::uint32_t>(recorded.size()),
                                    scene.time_step, recorded_scene(scene),
-                                   tools::recorded_joints(scene));
-  recording.add_frame(poses(setup));
+                                   tools::recorded_joints(scene, robots));
+  recording.add_frame(poses(*setup.world, recorded));
   std::vector<std::vector<double>> rows;
   rows.reserve(static_cast<std::size_t>(scene.frames));
   tools::RunTotals totals;
@@ -313,7 +321,7 @@ void run(const SimulateOptions& options) {
                  "pairs left out)");
       }
       rows.push_back(frame_row(frame, frame * scene.time_step, stats));
-      recording.add_frame(poses(setup));
+      recording.add_frame(poses(*setup.world, recorded));
       bar.update(static_cast<double>(frame) / scene.frames);
     }
   }

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-#include "sphys/tools/scene_file.h"
+#include "sphys/tools/scene_robots.h"
 
 namespace sphys::viewer {
 namespace {
@@ -25,15 +25,23 @@ Quat random_orientation(std::mt19937& random) {
 }  // namespace
 
 LiveSimulation::LiveSimulation(tools::Scene scene, tools::BuildWorldOptions build)
-    : scene_(std::move(scene)), build_(std::move(build)), joints_(tools::recorded_joints(scene_)) {
+    : scene_(std::move(scene)), build_(std::move(build)) {
   reset();
 }
 
 void LiveSimulation::reset() {
   setup_ = tools::build_world(scene_, build_);
   setup_.world->set_detection_budget(max_sphere_tests_, max_microseconds_);
+  const tools::SceneRobots robots = tools::add_scene_robots(scene_, *setup_.world);
+  joints_ = tools::recorded_joints(scene_, robots);
+  shapes_ = setup_.shapes;
   bodies_ = setup_.bodies;
   body_shape_ = setup_.body_shape;
+  for (std::size_t k = 0; k < robots.bodies.size(); ++k) {
+    bodies_.push_back(robots.bodies[k]);
+    body_shape_.push_back(static_cast<std::uint32_t>(shapes_.size()));
+    shapes_.push_back(robots.shapes[k]);
+  }
   added_.reset();
   for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
     if (scene_.bodies[i].is_static) continue;

@@ -1,7 +1,7 @@
 #pragma once
 
-// The scene the window runs live: its world, stepped one frame at a time, reset to the start,
-// with bodies dropped or shot in and the time-critical budget changed as it runs.
+// The scene the window runs live: its world with its robots, stepped one frame at a time, reset to
+// the start, with bodies dropped or shot in and the time-critical budget changed as it runs.
 
 #include <cstdint>
 #include <optional>
@@ -27,12 +27,13 @@ class LiveSimulation {
 
   [[nodiscard]] int frame() const { return frame_; }
   [[nodiscard]] const tools::Scene& scene() const { return scene_; }
-  [[nodiscard]] const std::vector<tools::BodyShape>& shapes() const { return setup_.shapes; }
+  // The scene's bodies' shapes, then its robots' bodies'.
+  [[nodiscard]] const std::vector<tools::BodyShape>& shapes() const { return shapes_; }
   [[nodiscard]] const World& world() const { return *setup_.world; }
   [[nodiscard]] std::size_t body_count() const { return bodies_.size(); }
-  // The bodies as they are now, the scene's first, then those added.
+  // The bodies as they are now: the scene's, its robots', then those added.
   void bodies(std::vector<BodyView>& out) const;
-  // The scene's joints, their bodies indices into bodies().
+  // The scene's joints and its robots', their bodies indices into bodies().
   [[nodiscard]] const std::vector<tools::RecordedJoint>& joints() const { return joints_; }
   // The broad phase's box of every body, the static ground's included.
   void bounds(std::vector<Aabb>& out) const;
@@ -54,6 +55,7 @@ class LiveSimulation {
   tools::Scene scene_;
   tools::BuildWorldOptions build_;
   tools::SimulationSetup setup_;
+  std::vector<tools::BodyShape> shapes_;
   std::vector<tools::RecordedJoint> joints_;
   std::vector<BodyId> bodies_;
   std::vector<std::uint32_t> body_shape_;

@@ -180,19 +180,27 @@ void SceneDrawer::draw_joints(LineRenderer& lines, std::span<const BodyView> bod
   lines.draw(gap_points_, kJointGapColour, true);
 }
 
-// Tall stacks rise out of view: the live view is for the pile they make.
+// Tall stacks rise out of view: the live view is for the pile they make. Robots are looked at
+// from their root links up.
 OrbitCamera frame_scene(const tools::Scene& scene) {
   OrbitCamera camera;
-  if (scene.bodies.empty()) return camera;
+  if (scene.bodies.empty() && scene.robots.empty()) return camera;
   Eigen::AlignedBox3f box;
   for (const tools::BodySpec& body : scene.bodies) box.extend(body.position);
+  // A robot stands on its root link's z axis (URDF's up): its root and a metre up that axis.
+  for (const tools::SceneRobot& robot : scene.robots) {
+    box.extend(robot.position);
+    box.extend(robot.position + robot.orientation * Vec3::UnitZ());
+  }
   camera.target = box.center();
   camera.target.y() = std::min(box.center().y(), static_cast<float>(scene.ground.height) + 3.0f);
   float spread = std::max(box.sizes().x(), box.sizes().z());
   if (scene.ground.kind == tools::GroundSpec::Kind::kOctreeBox) {
     spread = std::max(spread, static_cast<float>(scene.ground.size));
   }
-  camera.distance = std::clamp(1.3f * spread, 12.0f, 150.0f);
+  // Bunny piles are seen from 12 m at least; a robot arm, a metre tall, from 2 m.
+  const float nearest = scene.robots.empty() ? 12.0f : 2.0f;
+  camera.distance = std::clamp(1.3f * spread, nearest, 150.0f);
   return camera;
 }
 

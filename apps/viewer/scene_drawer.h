@@ -61,8 +61,9 @@ class SceneDrawer {
   std::vector<Eigen::Vector3f> gap_points_;  // those of the joints drawn in the gap's colour
 };
 
-// Looks at the middle of the bodies' starting positions, low enough to see the ground, from far
-// enough to see the ground's box (or the bodies' spread) whole.
+// Looks at the middle of the bodies' starting positions and the robots (their roots and a metre
+// above), low enough to see the ground, from far enough to see the ground's box (or their spread)
+// whole.
 [[nodiscard]] OrbitCamera frame_scene(const tools::Scene& scene);
 
 // The plane drawn for an infinite ground plane. unit: m

@@ -25,6 +25,7 @@
 #include "sphys/world.h"
 #include "support/temp_file.h"
 #include "support/test_robot.h"
+#include "support/test_robot_scene.h"
 
 namespace sphys {
 namespace {
@@ -490,36 +491,16 @@ TEST(RobotWorld, TheArmSweepsABunnyAsideAndRecovers) {
   }
 }
 
-// The test robot's URDF and spheres written into `dir`, and a scene standing it upright 1 m up with
-// `robot_keys` added to its entry.
-std::string scene_with_test_robot(const std::filesystem::path& dir, const std::string& robot_keys) {
-  const test::TestRobot written = test::write_test_robot(dir, test::standard_test_robot());
-  const tools::RobotPackage package = tools::parse_robot_package(written.package_option);
-  const tools::Robot robot = tools::load_robot(written.urdf, std::span(&package, 1));
-  tools::SpherizeOptions options;
-  options.total_spheres = 60;
-  tools::write_robot_spheres(dir / "spheres.yml", tools::SphereFileFormat::Curobo, robot,
-                             tools::spherize(robot, options));
-  return R"({"format": "sphys-scene", "version": 1, "ground": {"type": "plane"},
-    "sleep": {"enabled": false}, "bodies": [],
-    "robots": [{"urdf": ")" +
-         written.urdf.string() + R"(", "spheres": "spheres.yml",
-      "packages": {"test_robot_pkg": ")" +
-         written.package_dir.string() + R"("}, "position": [0, 1, 0],
-      "orientation": {"axis": [1, 0, 0], "angle_degrees": -90}, )" +
-         robot_keys + "}]}";
-}
-
 TEST(RobotWorld, AScenesRobotStandsAndHoldsItsTargets) {
   const test::TempDir dir;
   const std::vector<double> held = {0.3, 0.5, 0.4, 0.015, 0.015};
   ASSERT_FALSE(self_colliding(test_robot(), held));
   const tools::Scene scene = tools::parse_scene(
-      scene_with_test_robot(dir.path(), R"("configuration": [0.3, 0.5, 0.4, 0.015, 0.015],
+      test::scene_with_test_robot(dir.path(), R"("configuration": [0.3, 0.5, 0.4, 0.015, 0.015],
         "targets": [0.3, 0.5, 0.4, 0.015, 0.015])"),
       dir.path() / "scene.json");
   const tools::SimulationSetup setup = tools::build_world(scene);
-  const std::vector<RobotId> robots = tools::add_scene_robots(scene, *setup.world);
+  const std::vector<RobotId> robots = tools::add_scene_robots(scene, *setup.world).robots;
   ASSERT_EQ(robots.size(), 1U);
   for (int step = 0; step < 1000; ++step) setup.world->step(kControlStep);
   const RobotJointStates states = setup.world->robot_joint_states(robots[0]);
@@ -533,7 +514,7 @@ TEST(RobotWorld, AScenesRobotStandsAndHoldsItsTargets) {
 TEST(RobotWorld, AScenesRobotWithTheWrongTargetsIsNamed) {
   const test::TempDir dir;
   const tools::Scene scene = tools::parse_scene(
-      scene_with_test_robot(dir.path(), R"("targets": [0.1])"), dir.path() / "scene.json");
+      test::scene_with_test_robot(dir.path(), R"("targets": [0.1])"), dir.path() / "scene.json");
   const tools::SimulationSetup setup = tools::build_world(scene);
   EXPECT_THAT([&] { (void)tools::add_scene_robots(scene, *setup.world); },
               testing::ThrowsMessage<Error>(testing::HasSubstr("scene.json: /robots/0: targets")));

@@ -5,10 +5,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <span>
 
 #include "sphys/tools/recording.h"
 #include "sphys/tools/scene.h"
+#include "sphys/tools/triangle_mesh.h"
 
 namespace sphys::tools {
 
@@ -27,11 +30,15 @@ struct GltfExportSummary {
   std::uint64_t bytes = 0;   // of the file
 };
 
-// `scene` is the recording's (its metadata), for the meshes and the ground. The file is written
-// whole or not at all. Throws sphys::Error for a frame range outside the recording, every = 0, a
-// recording whose body count is not the scene's, a mesh that cannot be loaded, and a file that
-// cannot be written.
-GltfExportSummary write_gltf(const std::filesystem::path& path, const Recording& recording,
-                             const Scene& scene, const GltfExportOptions& options = {});
+// `scene` is the recording's (its metadata), for the meshes and the ground. `robot_meshes`: the
+// meshes of the recording's bodies after the scene's, its robots' (tools::SceneRobots::shapes'),
+// in the body frame; none for a recording of the scene's bodies alone. The file is written whole
+// or not at all. Throws sphys::Error for a frame range outside the recording, every = 0, a
+// recording whose body count is not the scene's and the robot meshes', a mesh that cannot be
+// loaded, and a file that cannot be written.
+GltfExportSummary write_gltf(
+    const std::filesystem::path& path, const Recording& recording, const Scene& scene,
+    const GltfExportOptions& options = {},
+    std::span<const std::shared_ptr<const TriangleMesh>> robot_meshes = {});
 
 }  // namespace sphys::tools

@@ -43,4 +43,17 @@ inline constexpr double kDefaultLinkDensity = 1000.0;
                                           std::span<const RobotPackage> packages = {},
                                           const std::optional<std::filesystem::path>& srdf = {});
 
+// A robot as its files describe it: the URDF's links with their meshes, for drawing, and the
+// model made of them with its spheres, for simulation.
+struct LoadedRobot {
+  Robot robot;       // as load_robot read it
+  RobotModel model;  // as load_robot_model makes it
+};
+
+// load_robot_model, keeping the robot it read.
+[[nodiscard]] LoadedRobot load_robot_files(const std::filesystem::path& urdf,
+                                           const std::filesystem::path& spheres,
+                                           std::span<const RobotPackage> packages = {},
+                                           const std::optional<std::filesystem::path>& srdf = {});
+
 }  // namespace sphys::tools

@@ -185,13 +185,20 @@ void add_animation(tinygltf::Model& model, Builder& builder, const Recording& re
 }  // namespace
 
 GltfExportSummary write_gltf(const std::filesystem::path& path, const Recording& recording,
-                             const Scene& scene, const GltfExportOptions& options) {
-  if (recording.body_count != scene.bodies.size()) {
+                             const Scene& scene, const GltfExportOptions& options,
+                             std::span<const std::shared_ptr<const TriangleMesh>> robot_meshes) {
+  if (recording.body_count != scene.bodies.size() + robot_meshes.size()) {
     throw Error("the recording has " + std::to_string(recording.body_count) +
-                " bodies but its scene " + std::to_string(scene.bodies.size()));
+                " bodies but its scene " + std::to_string(scene.bodies.size()) +
+                (robot_meshes.empty() ? std::string()
+                                      : " and its robots " + std::to_string(robot_meshes.size())));
   }
   const std::vector<std::uint32_t> frames = exported_frames(recording, options);
-  const SceneMeshes meshes = scene_meshes(scene);
+  SceneMeshes meshes = scene_meshes(scene);
+  for (const std::shared_ptr<const TriangleMesh>& mesh : robot_meshes) {
+    meshes.body_shape.push_back(static_cast<std::uint32_t>(meshes.shapes.size()));
+    meshes.shapes.push_back(mesh);
+  }
 
   tinygltf::Model model;
   model.asset.version = "2.0";

@@ -107,14 +107,23 @@ std::vector<std::array<std::string, 2>> read_disabled_collisions(
   return pairs;
 }
 
-RobotModel load_robot_model(const std::filesystem::path& urdf, const std::filesystem::path& spheres,
-                            std::span<const RobotPackage> packages,
-                            const std::optional<std::filesystem::path>& srdf) {
-  const Robot robot = load_robot(urdf, packages);
+LoadedRobot load_robot_files(const std::filesystem::path& urdf,
+                             const std::filesystem::path& spheres,
+                             std::span<const RobotPackage> packages,
+                             const std::optional<std::filesystem::path>& srdf) {
+  LoadedRobot loaded;
+  loaded.robot = load_robot(urdf, packages);
   const std::vector<LinkSpheres> links = read_robot_spheres(spheres);
   const std::vector<std::array<std::string, 2>> disabled =
       srdf ? read_disabled_collisions(*srdf) : std::vector<std::array<std::string, 2>>{};
-  return robot_model(robot, links, disabled);
+  loaded.model = robot_model(loaded.robot, links, disabled);
+  return loaded;
+}
+
+RobotModel load_robot_model(const std::filesystem::path& urdf, const std::filesystem::path& spheres,
+                            std::span<const RobotPackage> packages,
+                            const std::optional<std::filesystem::path>& srdf) {
+  return load_robot_files(urdf, spheres, packages, srdf).model;
 }
 
 }  // namespace sphys::tools
