@@ -8,6 +8,7 @@
 //   properties and the leaf spheres of its sphere-tree.
 // - the jointed scenes (jointed_scenes.h): ragdolls and chains of limbs made of spheres, joined
 //   by hinges and ball joints with limits, some falling into bunnies.
+// - the arm scene (robot_scene.h): a robot under position control sweeping through a pile.
 
 #include <cstdint>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_robot.h"
 #include "sphys/math.h"
 #include "sphys/sphere_tree.h"
 #include "sphys/tools/scene.h"
@@ -53,6 +55,12 @@ struct BenchScene {
   // body b of one joint at most and the joints make trees, as MuJoCo's bodies. The joints'
   // anchors and axes are in the body frames above.
   std::vector<tools::JointSpec> joints;
+  // A robot, whose bodies and joints are among the above: its bodies' start poses are at every
+  // joint 0, and each engine places it at its motion's first waypoint.
+  std::optional<BenchRobot> robot;
+  // How many frames a run takes, for a scene with a length of its own (the arm's motion); 0: as
+  // many as sphys-compare's --frames.
+  int frames = 0;
 
   [[nodiscard]] const BenchShape& shape(std::size_t body) const { return shapes[shape_of[body]]; }
 };

@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -23,6 +24,7 @@
 #include "engine_rows.h"
 #include "jointed_scenes.h"
 #include "results_csv.h"
+#include "robot_scene.h"
 #include "run_engine.h"
 #include "sphys/error.h"
 #include "sphys/solver_settings.h"
@@ -83,15 +85,20 @@ std::vector<std::function<BenchScene()>> scene_makers(const Options& options) {
     }
   }
   for (const std::string& name : options.jointed) {
-    if (!is_jointed_scene(name)) {
-      throw Error("--jointed: '" + name + "' is not ragdolls:R or chains:CxL");
+    if (is_robot_scene(name)) {
+      makers.emplace_back([=] { return make_robot_scene(name); });
+    } else if (is_jointed_scene(name)) {
+      makers.emplace_back([=] { return make_jointed_scene(name); });
+    } else {
+      throw Error("--jointed: '" + name + "' is not ragdolls:R, chains:CxL or arm:B");
     }
-    makers.emplace_back([=] { return make_jointed_scene(name); });
   }
   return makers;
 }
 
-constexpr int kColumns = 17;  // and two more for a scene with joints
+constexpr int kColumns = 17;  // and two more for a scene with joints, three for a robot
+
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
 std::string ratio_text(const std::optional<double>& ratio, const EngineRow& row, int frames) {
   if (!ratio) return {};
@@ -103,7 +110,7 @@ std::string table(const SceneRows& scene, double time_limit) {
   std::ostringstream out;
   const int frames = scene.frames;
   out << formatted("\n### %s, depth %d, %d frames\n\n", scene.layout.c_str(), scene.depth, frames);
-  const int columns = scene.jointed ? kColumns + 2 : kColumns;
+  const int columns = kColumns + (scene.jointed ? 2 : 0) + (scene.robot ? 3 : 0);
   if (!scene.reference.empty() && scene.reference != "sphys") {
     out << "× sphys: over `" << scene.reference << "` (single-threaded sphys did not run).\n\n";
   }
@@ -112,9 +119,13 @@ std::string table(const SceneRows& scene, double time_limit) {
          "deepest, last second (m) | overlap at end (m) | KE at end (J) | moving at end | "
          "asleep at end | below plane | peak memory (MiB) |"
       << (scene.jointed ? " largest joint gap (m) | joint gap at end (m) |" : "")
+      << (scene.robot ? " largest tracking error (°) | mean tracking error (°) | "
+                        "largest finger error (mm) |"
+                      : "")
       << "\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
          "---: | ---: | ---: | ---: | ---: |"
-      << (scene.jointed ? " ---: | ---: |" : "") << "\n";
+      << (scene.jointed ? " ---: | ---: |" : "") << (scene.robot ? " ---: | ---: | ---: |" : "")
+      << "\n";
   bool partial_ratios = false;
   for (const EngineRow& row : scene.rows) {
     const RunResult& worst = row.worst;
@@ -145,6 +156,11 @@ std::string table(const SceneRows& scene, double time_limit) {
         << (scene.jointed ? formatted(" %.4f | %.4f |", static_cast<double>(worst.largest_gap),
                                       static_cast<double>(worst.largest_gap_at_end))
                           : std::string())
+        << (scene.robot
+                ? formatted(" %.3f | %.3f | %.2f |", worst.largest_turn_error * kDegreesPerRadian,
+                            worst.mean_turn_error * kDegreesPerRadian,
+                            worst.largest_slide_error * 1000.0)
+                : std::string())
         << (worst.warnings.empty() ? "" : " " + worst.warnings) << "\n";
   }
   if (!scene.stops.empty()) {
@@ -179,6 +195,7 @@ int run(const Options& options) {
   std::vector<SceneRows> scenes;
   for (const std::function<BenchScene()>& make : scene_makers(options)) {
     const BenchScene scene = make();
+    const int frames = scene.frames > 0 ? scene.frames : options.frames;
     std::map<std::string, Pooled> results;
     // Alternating: run r of every engine before run r + 1 of any, so that a slow spell of the
     // machine falls on all of them.
@@ -186,7 +203,7 @@ int run(const Options& options) {
       for (const std::string& engine : options.engines) {
         RunResult result;
         try {
-          result = run_engine(engine, scene, options.frames, options.time_limit);
+          result = run_engine(engine, scene, frames, options.time_limit);
         } catch (const std::exception& error) {
           // One engine failing (e.g. out of memory for its contacts) leaves the others' rows.
           result.warnings = std::string("failed: ") + error.what();
@@ -201,8 +218,9 @@ int run(const Options& options) {
                      engine.c_str(), r + 1, stopped.c_str());
       }
     }
-    scenes.push_back(scene_rows(scene.name, scene.depth, options.frames, options.engines, results));
+    scenes.push_back(scene_rows(scene.name, scene.depth, frames, options.engines, results));
     scenes.back().jointed = !scene.joints.empty();
+    scenes.back().robot = scene.robot.has_value();
     const std::string part = table(scenes.back(), options.time_limit);
     std::fputs(part.c_str(), stdout);
     std::fflush(stdout);
@@ -236,7 +254,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--jointed", options.jointed,
                  "Jointed scenes after the layouts: ragdolls:R (R ragdolls of 11 limbs), "
-                 "chains:CxL (C chains of L links swinging into bunnies)")
+                 "chains:CxL (C chains of L links swinging into bunnies), arm:B (the test robot "
+                 "sweeping through a pile of B bunnies for 10 s at 1 kHz, whatever --frames)")
       ->delimiter(',');
   app.add_option("--engines", options.engines, "Engines, in the order they run")
       ->delimiter(',')

@@ -31,6 +31,9 @@ std::vector<std::string> engine_names() {
 }
 
 std::unique_ptr<Engine> make_engine(const std::string& name, const BenchScene& scene) {
+  if (scene.robot && !(has_prefix(name, "sphys") || name == "mujoco")) {
+    throw Error("engine '" + name + "' has no robot for the scene's (sphys and mujoco have)");
+  }
   if (has_prefix(name, "sphys")) return make_sphys_engine(scene, false, sphys_threads(name, 5));
   if (has_prefix(name, "sphys-paper")) {
     return make_sphys_engine(scene, true, sphys_threads(name, 11));

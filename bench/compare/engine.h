@@ -33,6 +33,9 @@ class Engine {
   // How many of the bodies the engine itself has put to sleep now (asleep, deactivated,
   // disabled); nullopt for an engine without sleeping.
   [[nodiscard]] virtual std::optional<std::uint32_t> asleep() const { return std::nullopt; }
+  // The scene's robot's joint positions now, in its model's joint order; empty without a robot.
+  // unit: rad or m
+  [[nodiscard]] virtual std::vector<double> robot_positions() const { return {}; }
   // How many joints the engine holds between the bodies (its free joints aside).
   [[nodiscard]] virtual std::uint32_t joints() const = 0;
   // What went wrong so far that makes the run suspect (e.g. contacts dropped); empty if nothing.
@@ -42,7 +45,8 @@ class Engine {
 // The engines by name: "sphys", "sphys-paper", "sphys-sap" (plausible mode with one Sweep &
 // Prune instead of the cells), "bullet-spheres", "bullet-hull", "ode", "mujoco"; "sphys:T",
 // "sphys-paper:T" and "sphys-sap:T" step sphys on T threads (0: all). Throws sphys::Error for an
-// unknown name.
+// unknown name, and for an engine that cannot build the scene's robot (only sphys's plausible mode
+// and MuJoCo can).
 [[nodiscard]] std::unique_ptr<Engine> make_engine(const std::string& name, const BenchScene& scene);
 [[nodiscard]] std::vector<std::string> engine_names();
 

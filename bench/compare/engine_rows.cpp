@@ -54,6 +54,9 @@ void add_runs(const Pooled& pooled, int frames, EngineRow& row, std::vector<std:
     worst.end_overlap = std::max(worst.end_overlap, run.end_overlap);
     worst.largest_gap = std::max(worst.largest_gap, run.largest_gap);
     worst.largest_gap_at_end = std::max(worst.largest_gap_at_end, run.largest_gap_at_end);
+    worst.largest_turn_error = std::max(worst.largest_turn_error, run.largest_turn_error);
+    worst.mean_turn_error = std::max(worst.mean_turn_error, run.mean_turn_error);
+    worst.largest_slide_error = std::max(worst.largest_slide_error, run.largest_slide_error);
     worst.kinetic_energy = std::max(worst.kinetic_energy, run.kinetic_energy);
     worst.moving = std::max(worst.moving, run.moving);
     worst.below = std::max(worst.below, run.below);

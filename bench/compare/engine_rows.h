@@ -46,6 +46,7 @@ struct SceneRows {
   std::vector<EngineRow> rows;
   std::vector<std::string> stops;  // the runs stopped at the time limit, in words
   bool jointed = false;            // the scene has joints: its rows' joint gaps mean something
+  bool robot = false;  // the scene has a robot: its rows' tracking errors mean something
 };
 
 // The engine the ratios divide by: single-threaded sphys, else the first sphys:T listed (e.g. a

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -16,9 +17,17 @@
 namespace sphys::compare {
 namespace {
 
+// The name of the joint that holds body `body` to its parent.
+std::string joint_name(std::size_t body) {
+  std::string name = "j";  // appended to: GCC 12 warns falsely of "j" + a string
+  name += std::to_string(body);
+  return name;
+}
+
 // One body of the MJCF and, nested in it, the bodies its joints hold: its pose from its parent's
 // (the world's for none), the joint to its parent at its anchor (a free joint for a body without
-// one), its mass and full inertia tensor at its centre of mass and its leaf spheres as geoms.
+// one, none for the robot's fixed root), its mass and full inertia tensor at its centre of mass
+// (MuJoCo's from the geoms for a static body without mass) and its leaf spheres as geoms.
 void body_xml(std::ostringstream& xml, const BenchScene& bench,
               const std::vector<std::vector<std::size_t>>& children,
               const std::vector<const tools::JointSpec*>& parent_joint, std::size_t body,
@@ -33,15 +42,18 @@ void body_xml(std::ostringstream& xml, const BenchScene& bench,
   const Mat3& I = shape.inertia;
   xml << pad << "<body name=\"b" << body << "\" pos=\"" << p.x() << ' ' << p.y() << ' ' << p.z()
       << "\" quat=\"" << q.w() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z() << "\">\n";
-  if (joint == nullptr) {
+  const bool fixed = bench.robot && body == bench.robot->first_body;
+  if (joint == nullptr && !fixed) {
     xml << pad << "  <freejoint/>\n";
-  } else {
+  } else if (joint != nullptr) {
     const JointDesc& desc = joint->desc;
     const Vec3& at = desc.anchor_b;
     const Vec3& axis = desc.axis_b;
-    xml << pad << "  <joint pos=\"" << at.x() << ' ' << at.y() << ' ' << at.z() << '"';
-    if (desc.type == JointType::kHinge) {
-      xml << " type=\"hinge\" axis=\"" << axis.x() << ' ' << axis.y() << ' ' << axis.z() << '"';
+    xml << pad << "  <joint name=\"" << joint_name(body) << "\" pos=\"" << at.x() << ' ' << at.y()
+        << ' ' << at.z() << '"';
+    if (desc.type == JointType::kHinge || desc.type == JointType::kSlider) {
+      xml << " type=\"" << (desc.type == JointType::kHinge ? "hinge" : "slide") << "\" axis=\""
+          << axis.x() << ' ' << axis.y() << ' ' << axis.z() << '"';
       if (desc.limit.enabled) {
         xml << " limited=\"true\" range=\"" << desc.limit.lower << ' ' << desc.limit.upper << '"';
       }
@@ -49,13 +61,15 @@ void body_xml(std::ostringstream& xml, const BenchScene& bench,
       xml << " type=\"ball\"";
       if (desc.cone.enabled) xml << " limited=\"true\" range=\"0 " << desc.cone.angle << '"';
     } else {
-      throw Error("mujoco: the comparison builds hinges and ball joints only");
+      throw Error("mujoco: the comparison builds hinges, sliders and ball joints only");
     }
     xml << "/>\n";
   }
-  xml << pad << "  <inertial pos=\"0 0 0\" mass=\"" << shape.mass << "\" fullinertia=\"" << I(0, 0)
-      << ' ' << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 2)
-      << "\"/>\n";
+  if (shape.mass > 0.0f) {
+    xml << pad << "  <inertial pos=\"0 0 0\" mass=\"" << shape.mass << "\" fullinertia=\""
+        << I(0, 0) << ' ' << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' '
+        << I(1, 2) << "\"/>\n";
+  }
   for (const Sphere& leaf : shape.leaves) {
     xml << pad << "  <geom type=\"sphere\" size=\"" << leaf.radius << "\" pos=\"" << leaf.center.x()
         << ' ' << leaf.center.y() << ' ' << leaf.center.z() << "\"/>\n";
@@ -64,6 +78,34 @@ void body_xml(std::ostringstream& xml, const BenchScene& bench,
     body_xml(xml, bench, children, parent_joint, child, indent + 2);
   }
   xml << pad << "</body>\n";
+}
+
+// The robot's link pairs that do not collide: those its joints join (MuJoCo's parent filter
+// leaves out the root's children, the root being welded to the world) and the model's allowed
+// pairs; and a position servo on each of its joints: a general actuator with an
+// affine bias whose gains the engine sets once the model is loaded (MujocoEngine::set_gains), its
+// force bounded by the joint's effort.
+void robot_xml(std::ostringstream& xml, const BenchScene& bench) {
+  const BenchRobot& robot = *bench.robot;
+  xml << "  <contact>\n";
+  const auto exclude = [&](std::size_t a, std::size_t b) {
+    xml << "    <exclude body1=\"b" << a << "\" body2=\"b" << b << "\"/>\n";
+  };
+  for (std::size_t j = robot.first_joint; j < bench.joints.size(); ++j) {
+    exclude(*bench.joints[j].body_a, *bench.joints[j].body_b);
+  }
+  for (const auto& [a, b] : robot.apart) exclude(a, b);
+  xml << "  </contact>\n  <actuator>\n";
+  for (std::size_t j = 0; j < robot.model.joints.size(); ++j) {
+    const double effort = robot.model.joints[j].effort;
+    xml << "    <general joint=\"" << joint_name(*bench.joints[robot.first_joint + j].body_b)
+        << "\" biastype=\"affine\"";
+    if (std::isfinite(effort)) {
+      xml << " forcelimited=\"true\" forcerange=\"" << -effort << ' ' << effort << '"';
+    }
+    xml << "/>\n";
+  }
+  xml << "  </actuator>\n";
 }
 
 // The scene as MJCF: y up, the plane's normal +y, its bodies as kinematic trees, each joint's
@@ -107,7 +149,9 @@ std::string mjcf(const BenchScene& bench, std::size_t rows) {
     const tools::JointSpec* joint = parent_joint[body];
     if (joint == nullptr || !joint->body_a) body_xml(xml, bench, children, parent_joint, body, 4);
   }
-  xml << "  </worldbody>\n</mujoco>\n";
+  xml << "  </worldbody>\n";
+  if (bench.robot) robot_xml(xml, bench);
+  xml << "</mujoco>\n";
   return xml.str();
 }
 
@@ -130,6 +174,7 @@ class MujocoEngine final : public Engine {
     std::filesystem::remove(file);
     if (model_ == nullptr) throw std::runtime_error(std::string("MuJoCo: ") + error.data());
     data_ = mj_makeData(model_);
+    if (bench.robot) start_robot(bench);
     mj_forward(model_, data_);
     for (std::size_t b = 0; b < bench.start.size(); ++b) {
       std::string name = "b";  // as body_xml names it
@@ -144,7 +189,22 @@ class MujocoEngine final : public Engine {
   MujocoEngine(const MujocoEngine&) = delete;
   MujocoEngine& operator=(const MujocoEngine&) = delete;
 
-  void step() override { mj_step(model_, data_); }
+  void step() override {
+    if (robot_ != nullptr) {
+      ++steps_;
+      robot_->motion.targets(static_cast<double>(steps_) * model_->opt.timestep, targets_, speeds_);
+      for (std::size_t j = 0; j < targets_.size(); ++j) {
+        data_->ctrl[j] = targets_[j] + speed_share_[j] * speeds_[j];
+      }
+    }
+    mj_step(model_, data_);
+  }
+
+  [[nodiscard]] std::vector<double> robot_positions() const override {
+    std::vector<double> positions;
+    for (const int address : robot_qpos_) positions.push_back(data_->qpos[address]);
+    return positions;
+  }
 
   void read(std::vector<BodyState>& out) const override {
     // mj_step leaves the poses and velocities of the positions before its integration: they are
@@ -198,9 +258,45 @@ class MujocoEngine final : public Engine {
   }
 
  private:
+  // The robot at its motion's start, and its servos' gains: sphys's position law per unit of
+  // inertia as a PD's stiffness and damping. The law closes the share position_gain of the
+  // position error and velocity_gain of the speed error in a step of dt, the PD's
+  // kp = m position_gain / dt² and kv = m velocity_gain / dt, with m the joint's own entry of
+  // MuJoCo's mass matrix at the start. The actuator's force, kp ctrl − kp q − kv q̇, is then
+  // kp (q* − q) + kv (q̇* − q̇) for ctrl = q* + kv / kp q̇*.
+  void start_robot(const BenchScene& bench) {
+    robot_ = &*bench.robot;
+    const std::vector<double>& start = robot_->motion.waypoints.front();
+    std::vector<int> dofs;
+    for (std::size_t j = 0; j < start.size(); ++j) {
+      const std::size_t body = *bench.joints[robot_->first_joint + j].body_b;
+      const int joint = mj_name2id(model_, mjOBJ_JOINT, joint_name(body).c_str());
+      robot_qpos_.push_back(model_->jnt_qposadr[joint]);
+      dofs.push_back(model_->jnt_dofadr[joint]);
+      data_->qpos[robot_qpos_.back()] = start[j];
+    }
+    mj_forward(model_, data_);
+    const double dt = model_->opt.timestep;
+    for (std::size_t j = 0; j < start.size(); ++j) {
+      const mjtNum mass = data_->qM[model_->dof_Madr[dofs[j]]];
+      const double kp = mass * robot_->gains.position_gain / (dt * dt);
+      const double kv = mass * robot_->gains.velocity_gain / dt;
+      model_->actuator_gainprm[j * mjNGAIN] = kp;
+      model_->actuator_biasprm[j * mjNBIAS + 1] = -kp;
+      model_->actuator_biasprm[j * mjNBIAS + 2] = -kv;
+      speed_share_.push_back(kv / kp);
+    }
+  }
+
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
-  std::vector<int> body_ids_;  // per scene body: MuJoCo's, in the trees' order
+  std::vector<int> body_ids_;          // per scene body: MuJoCo's, in the trees' order
+  const BenchRobot* robot_ = nullptr;  // the scene's, if it has one
+  std::vector<int> robot_qpos_;        // per robot joint: its address in qpos
+  std::vector<double> speed_share_;    // per robot joint: kv / kp. unit: s
+  std::vector<double> targets_;        // per robot joint, unit: rad or m
+  std::vector<double> speeds_;         // per robot joint, unit: rad/s or m/s
+  std::int64_t steps_ = 0;             // stepped so far
 };
 
 }  // namespace

@@ -51,6 +51,9 @@ void write_results_csv(const std::filesystem::path& path, const RunDescription& 
                                             "peak_memory_mib",
                                             "largest_joint_gap_m",
                                             "joint_gap_at_end_m",
+                                            "largest_tracking_error_rad",
+                                            "mean_tracking_error_rad",
+                                            "largest_finger_error_m",
                                             "warnings"};
   const tools::Machine machine = tools::this_machine();
   std::vector<std::vector<CsvCell>> rows;
@@ -92,7 +95,10 @@ void write_results_csv(const std::filesystem::path& path, const RunDescription& 
           figure(static_cast<double>(worst.below)),
           number(worst.peak_memory_mib),
           scene.jointed ? figure(static_cast<double>(worst.largest_gap)) : kNone,
-          scene.jointed ? figure(static_cast<double>(worst.largest_gap_at_end)) : kNone};
+          scene.jointed ? figure(static_cast<double>(worst.largest_gap_at_end)) : kNone,
+          scene.robot ? figure(worst.largest_turn_error) : kNone,
+          scene.robot ? figure(worst.mean_turn_error) : kNone,
+          scene.robot ? figure(worst.largest_slide_error) : kNone};
       cells.insert(cells.end(), figures.begin(), figures.end());
       cells.emplace_back(worst.warnings);
       rows.push_back(std::move(cells));

@@ -17,7 +17,7 @@ struct RunResult {
   bool stopped = false;  // at the time limit, before the frames asked for: step_ms.size() ran
   double contacts_per_step = 0.0;    // mean over the frames run, as the engine counts them
   float deepest = 0.0f;              // engine-reported, over the run. unit: m
-  float deepest_last_second = 0.0f;  // over the last 60 frames run. unit: m
+  float deepest_last_second = 0.0f;  // over the last second's frames run. unit: m
   // At the end, counted afresh from the poses for every engine alike: the deepest overlap of two
   // bodies' leaf spheres, or of a leaf sphere with the plane. Exact for the engines colliding
   // those spheres; for a convex hull, an over-estimate (the spheres stick out of the mesh).
@@ -28,6 +28,12 @@ struct RunResult {
   // end; both 0 without joints. unit: m
   float largest_gap = 0.0f;
   float largest_gap_at_end = 0.0f;
+  // A robot's tracking: how far its joints are from their targets after each step (the targets
+  // the step was given), the worst over the turning joints and the frames, the mean over them,
+  // and the worst of the sliding joints; all 0 without a robot. unit: rad, rad, m
+  double largest_turn_error = 0.0;
+  double mean_turn_error = 0.0;
+  double largest_slide_error = 0.0;
   double kinetic_energy = 0.0;  // at the end, from sphys's mass properties. unit: J
   std::uint32_t moving = 0;     // at the end: |v| + |ω| r_max > 1 cm/s
   std::uint32_t below = 0;      // at the end: centre of mass below y = -0.5 m

@@ -19,8 +19,11 @@ class SphysEngine final : public Engine {
     // The deepest penetration the comparison prints for every engine.
     build.plausibility_figures = true;
     setup_ = tools::build_world(scene, build);
-    // The bodies the tools::Scene does not hold (limbs), from their shapes' trees.
-    for (std::size_t b = setup_.bodies.size(); b < bench.start.size(); ++b) {
+    // The bodies the tools::Scene does not hold (limbs), from their shapes' trees, and the joints
+    // between them; the robot makes its own.
+    const std::size_t shaped = bench.robot ? bench.robot->first_body : bench.start.size();
+    const std::size_t joined = bench.robot ? bench.robot->first_joint : bench.joints.size();
+    for (std::size_t b = setup_.bodies.size(); b < shaped; ++b) {
       const BenchShape& shape = bench.shape(b);
       BodyDesc desc;
       desc.tree = shape.tree;
@@ -31,16 +34,33 @@ class SphysEngine final : public Engine {
       desc.friction = bench.friction;
       setup_.bodies.push_back(setup_.world->add_body(desc));
     }
-    for (const tools::JointSpec& joint : bench.joints) {
+    for (std::size_t j = 0; j < joined; ++j) {
+      const tools::JointSpec& joint = bench.joints[j];
       JointDesc desc = joint.desc;
       desc.body_a = joint.body_a ? setup_.bodies[*joint.body_a] : BodyId{};
       desc.body_b = joint.body_b ? setup_.bodies[*joint.body_b] : BodyId{};
       setup_.world->add_joint(desc);
       ++joints_;
     }
+    if (bench.robot) add_robot(*bench.robot);
   }
 
-  void step() override { stats_ = setup_.world->step(dt_); }
+  void step() override {
+    if (robot_) {
+      ++steps_;
+      robot_->motion.targets(static_cast<double>(steps_) * double{dt_}, targets_, speeds_);
+      for (std::size_t j = 0; j < controls_.size(); ++j) {
+        controls_[j].target_position = targets_[j];
+        controls_[j].target_velocity = speeds_[j];
+      }
+      setup_.world->set_robot_controls(robot_id_, controls_);
+    }
+    stats_ = setup_.world->step(dt_);
+  }
+
+  [[nodiscard]] std::vector<double> robot_positions() const override {
+    return robot_ ? setup_.world->robot_joint_states(robot_id_).positions : std::vector<double>{};
+  }
 
   void read(std::vector<BodyState>& out) const override {
     out.clear();
@@ -58,10 +78,28 @@ class SphysEngine final : public Engine {
   }
 
  private:
+  // The robot at its motion's start, every joint under position control with the scene's gains.
+  void add_robot(const BenchRobot& robot) {
+    robot_ = &robot;
+    robot_id_ = setup_.world->add_robot(robot.model, robot.base);
+    setup_.world->set_robot_configuration(robot_id_, robot.motion.waypoints.front());
+    const std::span<const BodyId> bodies = setup_.world->robot_bodies(robot_id_);
+    setup_.bodies.insert(setup_.bodies.end(), bodies.begin(), bodies.end());
+    joints_ += static_cast<std::uint32_t>(setup_.world->robot_joints(robot_id_).size());
+    controls_.assign(robot.model.joints.size(), robot.gains);
+    for (RobotJointControl& control : controls_) control.mode = RobotControlMode::kPosition;
+  }
+
   float dt_;
   tools::SimulationSetup setup_;
   StepStats stats_;
-  std::uint32_t joints_ = 0;  // added to the world
+  std::uint32_t joints_ = 0;           // added to the world
+  const BenchRobot* robot_ = nullptr;  // the scene's, if it has one
+  RobotId robot_id_;
+  std::vector<RobotJointControl> controls_;  // per joint, set before each step
+  std::vector<double> targets_;              // per joint, unit: rad or m
+  std::vector<double> speeds_;               // per joint, unit: rad/s or m/s
+  std::int64_t steps_ = 0;                   // stepped so far
 };
 
 }  // namespace

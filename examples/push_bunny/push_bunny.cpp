@@ -25,6 +25,7 @@
 #include "sphys/tools/build_world.h"
 #include "sphys/tools/scene.h"
 #include "sphys/world_query.h"
+#include "support/quintic.h"
 
 namespace {
 
@@ -136,13 +137,6 @@ std::vector<double> push_start(const RobotArm& arm, sphys::examples::ArmChecker&
   throw sphys::Error("no reach beside the top bunny found from which a pan turn pushes it alone");
 }
 
-// A quintic from `from` to `to` over `duration`: position and speed at t. unit: s
-std::pair<double, double> quintic(double from, double to, double duration, double t) {
-  const double s = std::clamp(t / duration, 0.0, 1.0);
-  return {from + (to - from) * s * s * s * (10.0 - 15.0 * s + 6.0 * s * s),
-          (to - from) * 30.0 * s * s * (1.0 - s) * (1.0 - s) / duration};
-}
-
 // Plays a motion from `from` to `to` out under position control, its slowest joint at
 // kJointSpeed at the top; returns the largest tracking error of a turning joint. unit: rad
 double play(sphys::World& world, sphys::RobotId robot, const std::vector<double>& from,
@@ -150,8 +144,7 @@ double play(sphys::World& world, sphys::RobotId robot, const std::vector<double>
   double longest = 0.0;
   for (std::size_t j = 0; j < from.size(); ++j)
     longest = std::max(longest, std::abs(to[j] - from[j]));
-  // A quintic's top speed is 1.875 times its mean.
-  const double duration = std::max(0.2, 1.875 * longest / kJointSpeed);
+  const double duration = std::max(0.2, sphys::test::kQuinticPeakOverMean * longest / kJointSpeed);
   std::vector<sphys::RobotJointControl> controls(from.size());
   double worst = 0.0;
   const auto steps = static_cast<int>((duration + settle) / double{kControlStep});
@@ -160,7 +153,7 @@ double play(sphys::World& world, sphys::RobotId robot, const std::vector<double>
     for (std::size_t j = 0; j < from.size(); ++j) {
       controls[j].mode = sphys::RobotControlMode::kPosition;
       std::tie(controls[j].target_position, controls[j].target_velocity) =
-          quintic(from[j], to[j], duration, t);
+          sphys::test::quintic(from[j], to[j], duration, t);
     }
     world.set_robot_controls(robot, controls);
     world.step(kControlStep);

@@ -23,6 +23,7 @@
 #include "sphys/tools/scene_robots.h"
 #include "sphys/tools/spherize.h"
 #include "sphys/world.h"
+#include "support/quintic.h"
 #include "support/temp_file.h"
 #include "support/test_robot.h"
 #include "support/test_robot_scene.h"
@@ -194,14 +195,6 @@ TEST(RobotWorld, HoldsRandomConfigurationsUnderGravity) {
   EXPECT_LE(worst_effort_share, 1.0 + 1e-3);
 }
 
-// A quintic from `from` to `to` over `duration` seconds: position and speed at time t.
-std::pair<double, double> quintic(double from, double to, double duration, double t) {
-  const double s = std::clamp(t / duration, 0.0, 1.0);
-  const double shape = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
-  const double rate = 30.0 * s * s * (1.0 - s) * (1.0 - s) / duration;
-  return {from + (to - from) * shape, (to - from) * rate};
-}
-
 // Why position control is a motor and not the joint's spring (docs/robots.md): the arm held out
 // 0.9 rad from upright under gravity for 2 s, the motor stays on its target within the URDF's
 // effort, where a stiff, critically damped spring about the same target sags by the load over its
@@ -243,7 +236,7 @@ void step_on_quintic(World& world, RobotId robot, std::span<const double> from,
   std::vector<RobotJointControl> controls = hold(from);
   for (std::size_t j = 0; j < to.size(); ++j) {
     std::tie(controls[j].target_position, controls[j].target_velocity) =
-        quintic(from[j], to[j], duration, t);
+        test::quintic(from[j], to[j], duration, t);
   }
   world.set_robot_controls(robot, controls);
   world.step(kControlStep);
@@ -275,7 +268,7 @@ TEST(RobotWorld, TracksAQuinticTrajectory) {
       // 1° for a turning joint, 1 mm for a sliding one.
       const double unit = model.joints[j].type == RobotJointType::kPrismatic ? 1e-3 : kDegree;
       const double error =
-          std::abs(states.positions[j] - quintic(from[j], to[j], kDuration, t).first) / unit;
+          std::abs(states.positions[j] - test::quintic(from[j], to[j], kDuration, t).first) / unit;
       worst = std::max(worst, error);
     }
   }
@@ -469,8 +462,8 @@ TEST(RobotWorld, TheArmSweepsABunnyAsideAndRecovers) {
     const RobotJointStates states = world.robot_joint_states(robot);
     double error = 0.0;
     for (std::size_t j = 0; j < to.size(); ++j) {
-      error = std::max(error,
-                       std::abs(states.positions[j] - quintic(from[j], to[j], kDuration, t).first));
+      error = std::max(
+          error, std::abs(states.positions[j] - test::quintic(from[j], to[j], kDuration, t).first));
     }
     errors.push_back(error);
   }

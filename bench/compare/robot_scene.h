@@ -1,0 +1,24 @@
+#pragma once
+
+// The arm scene "arm:B" or "arm:B:L" (issue 66's comparison), described once for every engine: the
+// test robot (examples/robot_arm: a pan, a lift and an elbow joint and two sliding fingers,
+// covered by 60 certified spheres) bolted to the plane beside a pile of B small bunnies (12 cm,
+// depth-3 trees), stepped at 1 kHz for 10 s while its position control follows a motion that
+// reaches over the pile and sweeps its hand across the pile one way, with the shoulder lifted by L
+// (0.9 rad, brushing the pile's top, unless given; up to 1.1 rad, through its upper layer), then
+// higher back the other way. The arm and the pile stand on the plane as they would on a table.
+
+#include <string>
+
+#include "bench_scene.h"
+
+namespace sphys::compare {
+
+// True for a name of the arm scene ("arm:..."), well formed or not.
+[[nodiscard]] bool is_robot_scene(const std::string& name);
+
+// The scene the name describes. Throws sphys::Error naming the scene and its valid form for a
+// malformed name or a count out of range.
+[[nodiscard]] BenchScene make_robot_scene(const std::string& name);
+
+}  // namespace sphys::compare
