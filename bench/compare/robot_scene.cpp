@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <unistd.h>
 
@@ -34,12 +35,8 @@ constexpr double kFingerOpening = 0.015;  // each finger's position throughout. 
 constexpr double kShallowLift = 0.9;
 constexpr double kDeepestLift = 1.1;
 
-// The bunnies dropped in layers of 3 × 3 around the pile's axis, each turned about the vertical,
-// stepped in sphys until every one sleeps, then for kSlumpTime at 1 kHz in MuJoCo, whose softer
-// contacts and friction let a pile that rests in sphys slump at first (its top bunnies slide
-// off): the run starts them where both engines hold them at rest, so that the arm meets the same
-// pile in both.
-BenchScene settled_pile(const std::string& name, int bunnies) {
+// B bunnies dropped in layers of 3 × 3 around the pile's axis, each turned about the vertical.
+BenchScene dropped_pile(const std::string& name, int bunnies) {
   tools::Scene pile;
   pile.name = name;
   for (int i = 0; i < bunnies; ++i) {
@@ -52,29 +49,57 @@ BenchScene settled_pile(const std::string& name, int bunnies) {
     bunny.orientation = Quat(Eigen::AngleAxisf(0.7f * static_cast<float>(i), Vec3::UnitY()));
     pile.bodies.push_back(bunny);
   }
-  BenchScene bench = bunny_bench_scene(name, std::move(pile), kPileDepth);
+  return bunny_bench_scene(name, std::move(pile), kPileDepth);
+}
+
+// The scene's bunnies (its first bodies) start at these poses.
+void place_bunnies(BenchScene& bench, std::span<const Transform> poses) {
+  for (std::size_t b = 0; b < bench.scene.bodies.size(); ++b) {
+    bench.scene.bodies[b].position = poses[b].translation;
+    bench.scene.bodies[b].orientation = poses[b].rotation;
+    bench.start[b] = poses[b];
+  }
+}
+
+// The bunnies stepped in sphys (1/60 s steps) beside the robot held at its motion's start, until
+// every one sleeps.
+void settle_in_sphys(BenchScene& bench, const BenchRobot& robot) {
   tools::BuildWorldOptions build;
   build.cache_dir = tools::default_cache_dir();
   const tools::SimulationSetup setup = tools::build_world(bench.scene, build);
+  World& world = *setup.world;
+  const RobotId arm = world.add_robot(robot.model, robot.base);
+  const std::vector<double>& start = robot.motion.waypoints.front();
+  world.set_robot_configuration(arm, start);
+  std::vector<RobotJointControl> hold(start.size(), robot.gains);
+  for (std::size_t j = 0; j < hold.size(); ++j) {
+    hold[j].mode = RobotControlMode::kPosition;
+    hold[j].target_position = start[j];
+  }
+  world.set_robot_controls(arm, hold);
   for (int frame = 0; frame < kSettleFrames; ++frame) {
-    setup.world->step(static_cast<float>(bench.scene.time_step));
-    if (std::ranges::all_of(setup.bodies, [&](BodyId b) { return setup.world->asleep(b); })) break;
+    world.step(static_cast<float>(bench.scene.time_step));
+    if (std::ranges::all_of(setup.bodies, [&](BodyId b) { return world.asleep(b); })) break;
   }
-  for (std::size_t b = 0; b < setup.bodies.size(); ++b) {
-    bench.start[b] = setup.world->body(setup.bodies[b]).pose;
-  }
-  bench.scene.time_step = kControlStep;
-  bench.time_step = kControlStep;
-  const std::unique_ptr<Engine> mujoco = make_mujoco_engine(bench);
-  for (int step = 0; step < static_cast<int>(kSlumpTime / kControlStep); ++step) mujoco->step();
+  std::vector<Transform> poses;
+  for (const BodyId bunny : setup.bodies) poses.push_back(world.body(bunny).pose);
+  place_bunnies(bench, poses);
+}
+
+// The whole scene stepped for kSlumpTime in MuJoCo, the robot held at its motion's start: MuJoCo's
+// softer contacts and friction let a pile that rests in sphys slump at first (its top bunnies
+// slide off), and the run starts the bunnies where it left them, so that the arm meets the same
+// pile in both engines.
+void slump_in_mujoco(BenchScene& bench) {
+  BenchScene held = bench;
+  held.robot->motion = {{bench.robot->motion.waypoints.front()}, {0.0}};
+  const std::unique_ptr<Engine> mujoco = make_mujoco_engine(held);
+  for (int step = 0; step < static_cast<int>(kSlumpTime / held.time_step); ++step) mujoco->step();
   std::vector<BodyState> slumped;
   mujoco->read(slumped);
-  for (std::size_t b = 0; b < slumped.size(); ++b) {
-    bench.scene.bodies[b].position = slumped[b].pose.translation;
-    bench.scene.bodies[b].orientation = slumped[b].pose.rotation;
-    bench.start[b] = slumped[b].pose;
-  }
-  return bench;
+  std::vector<Transform> poses;
+  for (const BodyState& body : slumped) poses.push_back(body.pose);
+  place_bunnies(bench, poses);
 }
 
 // The test robot with its 60 spheres, standing at the origin, its fingers' few spheres meeting
@@ -169,16 +194,20 @@ RobotMotion sweeps(double lift) {
 }
 
 BenchScene arm_scene(const std::string& name, int bunnies, double lift) {
-  BenchScene bench = settled_pile(name, bunnies);
+  BenchScene bench = dropped_pile(name, bunnies);
   BenchRobot robot;
   robot.model = test_robot_model(robot.base);
   robot.motion = sweeps(lift);
   if (robot.motion.waypoints.front().size() != robot.model.joints.size()) {
     throw Error("arm scene: the motion's waypoints do not match the test robot's joints");
   }
+  settle_in_sphys(bench, robot);
+  bench.scene.time_step = kControlStep;
+  bench.time_step = kControlStep;
   add_robot_parts(bench, robot);
   bench.frames = static_cast<int>(robot.motion.arrivals.back() / kControlStep + 0.5);
   bench.robot = std::move(robot);
+  slump_in_mujoco(bench);
   return bench;
 }
 
