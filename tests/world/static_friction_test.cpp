@@ -88,28 +88,42 @@ TEST_P(StaticFrictionOnThreads, ABoxAHundredTimesHeavierDroppedOnALightOneStaysW
 INSTANTIATE_TEST_SUITE_P(OneAndTwo, StaticFrictionOnThreads, ::testing::Values(1u, 2u));
 
 // 3. A box pushed along the floor by a horizontal force through its centre. Below μ m g static
-// friction holds it; above, it slides with a = (F − μ m g) / m.
-float pushed_travel(float share_of_bound, float seconds, float* speed_gain) {
+// friction holds it; above, it slides with a = (F − μ m g) / m. And a row of boxes side by side,
+// 2 mm apart, pushed along the row through the first: the push passes from box to box, so once
+// the first has closed the gaps the row holds below n μ m g and slides above it as one,
+// a = (F − n μ m g) / (n m). Both figures are the last box's over the push's second half (by
+// then a row held under its bound has stopped, after the knock of closing its gaps).
+float pushed_travel(int boxes, float share_of_bound, float seconds, float* speed_gain) {
   const float mu = 0.5f;
   World world(on_plane(mu, 0.0f));
-  const BodyId box = world.add_body(cube(Vec3(0.0f, cube_half_height(), 0.0f), mu));
+  const float pitch = 2.0f * cube_half_height() + 0.002f;
+  std::vector<BodyId> row;
+  for (int k = 0; k < boxes; ++k) {
+    row.push_back(
+        world.add_body(cube(Vec3(pitch * static_cast<float>(k), cube_half_height(), 0.0f), mu)));
+  }
   run(world, 0.5f);  // settled on the plane
-  const float bound = mu * world.body(box).mass() * kGravity;
+  const BodyId first = row.front();
+  const BodyId last = row.back();
+  const float bound = mu * static_cast<float>(boxes) * world.body(first).mass() * kGravity;
   const Vec3 force(share_of_bound * bound, 0.0f, 0.0f);
-  const float start = world.body(box).pose.translation.x();
   const int frames = static_cast<int>(std::lround(seconds / kDt));
+  float start = 0.0f;
   float v0 = 0.0f;
   for (int frame = 0; frame < frames; ++frame) {
-    world.apply_force(box, force, world.body(box).pose.translation);
+    world.apply_force(first, force, world.body(first).pose.translation);
     EXPECT_FALSE(world.step(kDt).non_finite_body);
-    if (frame + 1 == frames / 2) v0 = world.body(box).linear_velocity.x();
+    if (frame + 1 == frames / 2) {
+      start = world.body(last).pose.translation.x();
+      v0 = world.body(last).linear_velocity.x();
+    }
   }
-  if (speed_gain != nullptr) *speed_gain = world.body(box).linear_velocity.x() - v0;
-  return world.body(box).pose.translation.x() - start;
+  if (speed_gain != nullptr) *speed_gain = world.body(last).linear_velocity.x() - v0;
+  return world.body(last).pose.translation.x() - start;
 }
 
 TEST(StaticFriction, ABoxPushedJustUnderMuMgDoesNotMove) {
-  EXPECT_LT(std::abs(pushed_travel(0.95f, 5.0f, nullptr)), 0.001f);
+  EXPECT_LT(std::abs(pushed_travel(1, 0.95f, 5.0f, nullptr)), 0.001f);
 }
 
 TEST(StaticFriction, ABoxPushedJustOverMuMgAcceleratesAtTheForceLessFrictionOverItsMass) {
@@ -117,8 +131,23 @@ TEST(StaticFriction, ABoxPushedJustOverMuMgAcceleratesAtTheForceLessFrictionOver
   const float share = 1.1f;
   const float seconds = 2.0f;
   float gain = 0.0f;
-  EXPECT_GT(pushed_travel(share, seconds, &gain), 0.0f);
+  EXPECT_GT(pushed_travel(1, share, seconds, &gain), 0.0f);
   // Over the second half of the push.
+  const float expected = (share - 1.0f) * mu * kGravity * (0.5f * seconds);
+  EXPECT_NEAR(gain, expected, 0.05f * expected);
+}
+
+TEST(StaticFriction, ARowOfThreeBoxesPushedJustUnderTheirBoundDoesNotMove) {
+  EXPECT_LT(std::abs(pushed_travel(3, 0.95f, 5.0f, nullptr)), 0.001f);
+}
+
+TEST(StaticFriction, ARowOfThreeBoxesPushedJustOverTheirBoundSlidesAsOne) {
+  const float mu = 0.5f;
+  const float share = 1.1f;
+  const float seconds = 2.0f;
+  float gain = 0.0f;
+  EXPECT_GT(pushed_travel(3, share, seconds, &gain), 0.0f);
+  // The last box, pushed by the others, gains what the whole row gains.
   const float expected = (share - 1.0f) * mu * kGravity * (0.5f * seconds);
   EXPECT_NEAR(gain, expected, 0.05f * expected);
 }
