@@ -9,19 +9,16 @@
 
 #include "sphys/body_id.h"
 #include "sphys/math.h"
+#include "sphys/slot_id.h"
 
 namespace sphys {
 
-// A joint of a world: its slot in the world's joints and the slot's generation, as BodyId: the
-// default id (generation 0) names no joint, and a removed joint's id never names a later one.
-struct JointId {
-  std::uint32_t index = 0;       // the joint's slot in the world's joints
-  std::uint32_t generation = 0;  // the slot's generation when the joint was added; 0: none
-  // The default id: no joint ever had it.
-  [[nodiscard]] bool is_null() const { return generation == 0; }
-  // The same slot and generation: the same joint.
-  friend bool operator==(const JointId&, const JointId&) = default;
-};
+// JointId's kind (SlotId's tag): declared only, never defined.
+struct JointTag;
+
+// A joint of a world: its slot in the world's joints and the slot's generation (SlotId).
+// JointId{} names no joint.
+using JointId = SlotId<JointTag>;
 
 // What a joint leaves free between its bodies.
 enum class JointType : std::uint8_t {

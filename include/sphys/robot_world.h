@@ -7,18 +7,16 @@
 #include <limits>
 #include <vector>
 
+#include "sphys/slot_id.h"
+
 namespace sphys {
 
-// A robot of a world: its slot and the slot's generation, as BodyId: the default id names no
-// robot, and a removed robot's id never names a later one.
-struct RobotId {
-  std::uint32_t index = 0;       // the robot's slot in the world's robots
-  std::uint32_t generation = 0;  // the slot's generation when the robot was added; 0: none
-  // The default id: no robot ever had it.
-  [[nodiscard]] bool is_null() const { return generation == 0; }
-  // The same slot and generation: the same robot.
-  friend bool operator==(const RobotId&, const RobotId&) = default;
-};
+// RobotId's kind (SlotId's tag): declared only, never defined.
+struct RobotTag;
+
+// A robot of a world: its slot in the world's robots and the slot's generation (SlotId).
+// RobotId{} names no robot.
+using RobotId = SlotId<RobotTag>;
 
 // How a robot's root link stands in the world.
 enum class RobotBase : std::uint8_t {

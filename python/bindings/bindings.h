@@ -7,6 +7,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <pybind11/numpy.h>
@@ -21,10 +22,31 @@
 #include "sphys/configuration_check.h"
 #include "sphys/error.h"
 #include "sphys/math.h"
+#include "sphys/slot_id.h"
 
 namespace sphys::python {
 
 namespace py = pybind11;
+
+// A world's id type (sphys/slot_id.h) as the Python class `name`, with the docs of the class and
+// of its index, generation and is_null: ids compare and hash by value (a dict key or a set
+// member) and print as "BodyId(index=3, generation=1)".
+template <class Tag>
+void bind_slot_id(py::module_& m, const char* name, const char* doc, const char* index_doc,
+                  const char* generation_doc, const char* is_null_doc) {
+  using Id = SlotId<Tag>;
+  py::class_<Id>(m, name, doc)
+      .def(py::init<>(), "The null id.")
+      .def_readonly("index", &Id::index, index_doc)
+      .def_readonly("generation", &Id::generation, generation_doc)
+      .def_property_readonly("is_null", &Id::is_null, is_null_doc)
+      .def("__eq__", [](const Id& a, const Id& b) { return a == b; })
+      .def("__hash__", [](const Id& id) { return (std::uint64_t{id.generation} << 32) | id.index; })
+      .def("__repr__", [type = std::string(name)](const Id& id) {
+        return type + "(index=" + std::to_string(id.index) +
+               ", generation=" + std::to_string(id.generation) + ")";
+      });
+}
 
 // A C-contiguous numpy array of the given shape, owning a fresh copy of `data`.
 template <typename T>

@@ -2,7 +2,6 @@
 // add_joint / remove_joint, setters and read-back. Vectors go in as any three numbers and come out
 // as numpy arrays; the world checks every field and raises sphys.Error naming it.
 
-#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -184,22 +183,12 @@ void bind_desc(py::module_& m) {
       "The hinge's, slider's or ball's twist axis on body a, not zero (normalised when added).");
   def_vec3<JointDesc, &JointDesc::axis_b>(desc, "axis_b", "As axis_a, on body b.");
 
-  py::class_<JointId>(m, "JointId",
-                      "A joint of a world: its slot and the slot's generation. JointId() names "
-                      "no joint.")
-      .def(py::init<>(), "The null id.")
-      .def_readonly("index", &JointId::index, "The joint's slot in its world's joints.")
-      .def_readonly("generation", &JointId::generation,
-                    "The slot's generation when the joint was added, from 1 (0: the null id).")
-      .def_property_readonly("is_null", &JointId::is_null,
-                             "True for JointId(), which names no joint.")
-      .def("__eq__", [](const JointId& a, const JointId& b) { return a == b; })
-      .def("__hash__",
-           [](const JointId& id) { return (std::uint64_t{id.generation} << 32) | id.index; })
-      .def("__repr__", [](const JointId& id) {
-        return "JointId(index=" + std::to_string(id.index) +
-               ", generation=" + std::to_string(id.generation) + ")";
-      });
+  bind_slot_id<JointTag>(
+      m, "JointId",
+      "A joint of a world: its slot and the slot's generation. JointId() names no joint.",
+      "The joint's slot in its world's joints.",
+      "The slot's generation when the joint was added, from 1 (0: the null id).",
+      "True for JointId(), which names no joint.");
 
   py::class_<JointState>(m, "JointState", "What a joint did in the last step that solved it.")
       .def_readonly("position", &JointState::position,

@@ -219,22 +219,13 @@ py::dict settings_dict(const WorldSettings& settings) {
 
 void bind_world(py::module_& m) {
   m.attr("GROUND_PLANE_BODY") = kGroundPlaneBody;
-  py::class_<BodyId>(m, "BodyId",
-                     "A body of a world: its slot and the slot's generation (from 1). "
-                     "BodyId() is the null id, which names no body: a world refuses it.")
-      .def(py::init<>(), "The null id.")
-      .def_readonly("index", &BodyId::index, "The body's slot in its world's body store.")
-      .def_readonly("generation", &BodyId::generation,
-                    "The slot's generation, from 1 (0: the null id); a removed body's slot "
-                    "takes the next one.")
-      .def_property_readonly("is_null", &BodyId::is_null, "True for BodyId(), which names no body.")
-      .def("__eq__", [](const BodyId& a, const BodyId& b) { return a == b; })
-      .def("__hash__",
-           [](const BodyId& id) { return (std::uint64_t{id.generation} << 32) | id.index; })
-      .def("__repr__", [](const BodyId& id) {
-        return "BodyId(index=" + std::to_string(id.index) +
-               ", generation=" + std::to_string(id.generation) + ")";
-      });
+  bind_slot_id<BodyTag>(m, "BodyId",
+                        "A body of a world: its slot and the slot's generation (from 1). "
+                        "BodyId() is the null id, which names no body: a world refuses it.",
+                        "The body's slot in its world's body store.",
+                        "The slot's generation, from 1 (0: the null id); a removed body's slot "
+                        "takes the next one.",
+                        "True for BodyId(), which names no body.");
 
   py::class_<StepStats> step_stats(
       m, "StepStats",

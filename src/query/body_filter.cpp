@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "core/id_errors.h"
 #include "sphys/error.h"
 
 namespace sphys::query_detail {
@@ -11,8 +12,7 @@ std::uint32_t checked_slot(const Snapshot& snapshot, BodyId body, std::string_vi
     throw Error(std::string(argument) + ": the null body id (BodyId{}) names no body");
   }
   if (body.index >= snapshot.ids.size() || snapshot.ids[body.index] != body) {
-    throw Error(std::string(argument) + ": no body with id " + std::to_string(body.index) + "." +
-                std::to_string(body.generation) +
+    throw Error(std::string(argument) + ": no body with id " + id_text(body) +
                 " in the world as the query last read it (removed, added since the query was "
                 "made or refreshed, or never added)");
   }

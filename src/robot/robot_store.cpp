@@ -6,29 +6,8 @@
 
 namespace sphys {
 
-RobotId RobotStore::add(SimulatedRobot robot) {
-  std::uint32_t slot = 0;
-  if (free_.empty()) {
-    slot = static_cast<std::uint32_t>(robots_.size());
-    robots_.emplace_back();
-    generation_.push_back(0);
-  } else {
-    slot = free_.back();
-    free_.pop_back();
-  }
-  robots_[slot] = std::move(robot);
-  robots_[slot].alive = true;
-  ++generation_[slot];  // from 1: the null id's generation 0 names no robot
-  return {slot, generation_[slot]};
-}
-
-void RobotStore::remove(std::uint32_t slot) {
-  robots_[slot] = SimulatedRobot{};
-  free_.push_back(slot);
-}
-
 bool RobotStore::holds(BodyId body) const {
-  return std::ranges::any_of(robots_, [&](const SimulatedRobot& robot) {
+  return std::ranges::any_of(all(), [&](const SimulatedRobot& robot) {
     return robot.alive && std::ranges::find(robot.bodies, body) != robot.bodies.end();
   });
 }
@@ -37,7 +16,7 @@ void RobotStore::before_step(WorldState& world, float dt) { control_robots(world
 
 void RobotStore::append_unpaired(
     std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) const {
-  for (const SimulatedRobot& robot : robots_) {
+  for (const SimulatedRobot& robot : all()) {
     if (!robot.alive) continue;
     for (const auto& [a, b] : robot.model.allowed_link_pairs) {
       const std::uint32_t body_a = robot.link_body[static_cast<std::size_t>(a)];

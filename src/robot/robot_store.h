@@ -1,13 +1,14 @@
 #pragma once
 
-// The world's robots (sphys/robot_world.h): a slot per robot with its generation (as the joint
-// store's), each holding its model, the bodies and joints it was made of, where each link lies
-// on its body, and its joints' controls.
+// The world's robots (sphys/robot_world.h): a slot per robot with its generation
+// (core/slot_store.h), each holding its model, the bodies and joints it was made of, where each
+// link lies on its body, and its joints' controls.
 
 #include <cstdint>
 #include <utility>
 #include <vector>
 
+#include "core/slot_store.h"
 #include "sphys/body_id.h"
 #include "sphys/joint.h"
 #include "sphys/robot_model.h"
@@ -36,30 +37,13 @@ struct SimulatedRobot {
   bool alive = false;
 };
 
-class RobotStore final : public RobotsInWorld {
+class RobotStore final : public RobotsInWorld, public SlotStore<RobotId, SimulatedRobot> {
  public:
-  // Takes a free slot for `robot`, alive from now on.
-  RobotId add(SimulatedRobot robot);
-  void remove(std::uint32_t slot);
-  // True for a robot in the world; false for a stale or unknown id, or the null one.
-  [[nodiscard]] bool alive(RobotId id) const {
-    return id.index < robots_.size() && generation_[id.index] == id.generation &&
-           robots_[id.index].alive;
-  }
-  [[nodiscard]] SimulatedRobot& at(std::uint32_t slot) { return robots_[slot]; }
-  [[nodiscard]] const SimulatedRobot& at(std::uint32_t slot) const { return robots_[slot]; }
-  // Every slot's robot, dead ones included (SimulatedRobot::alive).
-  [[nodiscard]] std::vector<SimulatedRobot>& all() { return robots_; }
   // The world's robots through its face (world/robots_in_world.h): control_robots, the live
   // robots' allowed_link_pairs as body pairs, and whether a live robot is made of the body.
   void before_step(WorldState& world, float dt) override;
   void append_unpaired(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const override;
   [[nodiscard]] bool holds(BodyId body) const override;
-
- private:
-  std::vector<SimulatedRobot> robots_;
-  std::vector<std::uint32_t> generation_;
-  std::vector<std::uint32_t> free_;
 };
 
 }  // namespace sphys

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "core/id_errors.h"
 #include "robot/robot_bodies.h"
 #include "robot/robot_control.h"
 #include "sphys/error.h"
@@ -25,14 +26,14 @@ const RobotStore* robots_in(const WorldState& world) {
   return static_cast<const RobotStore*>(world.robots.get());
 }
 
+// True for a robot in the world; false for a stale or unknown id, or the null one.
+bool robot_in(const WorldState& world, RobotId id) {
+  return robots_in(world) != nullptr && robots_in(world)->alive(id);
+}
+
 // The slot of a robot in the world, for a call that holds its turn.
 std::uint32_t checked_robot(const WorldState& world, RobotId id) {
-  if (id.is_null()) throw Error("the null robot id (RobotId{}) names no robot");
-  if (robots_in(world) == nullptr || !robots_in(world)->alive(id)) {
-    throw Error("no robot with id " + std::to_string(id.index) + "." +
-                std::to_string(id.generation) + " in the world (removed, or never added)");
-  }
-  return id.index;
+  return slot_named(id, robot_in(world, id), "robot", "RobotId");
 }
 
 Transform to_robot_transform(const Eigen::Isometry3d& pose) {
@@ -132,7 +133,7 @@ void World::remove_robot(RobotId id) {
 
 bool World::robot_alive(RobotId id) const {
   const WorldAccess::Shared turn(state_->access, "robot_alive");
-  return robots_in(*state_) != nullptr && robots_in(*state_)->alive(id);
+  return robot_in(*state_, id);
 }
 
 std::span<const BodyId> World::robot_bodies(RobotId id) const {

@@ -20,7 +20,7 @@ void solve_contacts(PassContext& pass) {
   const SolverSettings& solver = world.settings.solver;
   const SoftStepContext context(solver, world.settings.gravity, pass.pass_dt, solver.soft_substeps,
                                 world.parallel);
-  world.joint_solver.set_joints(world.joints.models());
+  world.joint_solver.set_joints(world.joints.all());
   const SoftStepStats solved = world.solver.solve(world.store, contacts, world.detector.memory(),
                                                   world.materials, context, &world.joint_solver);
   StepStats& stats = pass.stats;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/id_errors.h"
 #include "sphys/error.h"
 #include "world/pipeline.h"
 #include "world/world_state.h"
@@ -74,12 +75,7 @@ namespace {
 
 // The slot of a body in the world, for a call that holds its turn.
 std::uint32_t checked_slot(const WorldState& world, BodyId id) {
-  if (id.is_null()) throw Error("the null body id (BodyId{}) names no body");
-  if (!world.store.alive(id)) {
-    throw Error("no body with id " + std::to_string(id.index) + "." +
-                std::to_string(id.generation) + " in the world (removed, or never added)");
-  }
-  return id.index;
+  return slot_named(id, world.store.alive(id), "body", "BodyId");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "core/id_errors.h"
 #include "sphys/error.h"
 #include "sphys/world.h"
 #include "world/joint_checks.h"
@@ -11,17 +12,12 @@
 namespace sphys {
 namespace {
 
-std::string id_text(std::uint32_t index, std::uint32_t generation) {
-  return std::to_string(index) + "." + std::to_string(generation);
-}
-
 // A joint's body as a store slot, or kWorldSlot for the null id (the world).
 std::uint32_t joint_body(const WorldState& world, const std::string& who, std::string_view field,
                          BodyId id) {
   if (id.is_null()) return kWorldSlot;
   if (!world.store.alive(id)) {
-    throw Error(who + ": " + std::string(field) + ": no body with id " +
-                id_text(id.index, id.generation) + " in the world (removed, or never added)");
+    throw Error(who + ": " + std::string(field) + ": " + not_in_world("body", id));
   }
   return id.index;
 }
@@ -44,17 +40,11 @@ void place_frames(const WorldState& world, JointModel& joint) {
 
 // The slot of a joint in the world, for a call that holds its turn.
 std::uint32_t checked_joint(const WorldState& world, JointId id) {
-  if (id.is_null()) throw Error("the null joint id (JointId{}) names no joint");
-  if (!world.joints.alive(id)) {
-    throw Error("no joint with id " + id_text(id.index, id.generation) +
-                " in the world (removed, or never added)");
-  }
-  return id.index;
+  return slot_named(id, world.joints.alive(id), "joint", "JointId");
 }
 
 std::string joint_name(const WorldState& world, std::uint32_t slot) {
-  const JointId id = world.joints.id_of(slot);
-  return "joint " + id_text(id.index, id.generation) + " (" +
+  return "joint " + id_text(world.joints.id_of(slot)) + " (" +
          std::string(joint_type_name(world.joints.at(slot).desc.type)) + ")";
 }
 
