@@ -169,7 +169,7 @@ void bind_robot_world(py::module_& m) {
   auto world = py::reinterpret_borrow<py::class_<SharedWorld>>(m.attr("World"));
   world.def(
       "add_robot",
-      [](SharedWorld& w, const RobotModel& model, const py::object& base, bool fixed_base) {
+      [](SharedWorld& w, const FileRobotModel& model, const py::object& base, bool fixed_base) {
         Transform pose{Quat(model.base.linear().cast<float>()),
                        model.base.translation().cast<float>()};
         if (!base.is_none()) {
@@ -178,8 +178,14 @@ void bind_robot_world(py::module_& m) {
           pose.rotation = quat_from(parts.second, "base orientation");
         }
         const Turn::Held turn = take_turn(*w.turn);
-        return SimulatedRobotHandle{
-            w, w.world->add_robot(model, pose, fixed_base ? RobotBase::kFixed : RobotBase::kFree)};
+        const RobotId id =
+            w.world->add_robot(model, pose, fixed_base ? RobotBase::kFixed : RobotBase::kFree);
+        tools::SceneRobot placed = model.files;
+        placed.position = pose.translation;
+        placed.orientation = pose.rotation;
+        placed.fixed_base = fixed_base;
+        w.robots->added.emplace_back(id, std::move(placed));
+        return SimulatedRobotHandle{w, id};
       },
       py::arg("model"), py::arg("base") = py::none(), py::arg("fixed_base") = true,
       "Adds the robot (plausible mode): one body per moving link with the URDF's masses and the "
