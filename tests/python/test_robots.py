@@ -32,22 +32,14 @@ ARM_URDF = """<?xml version="1.0"?>
 </robot>
 """
 
-# cuRobo's YAML: one sphere on the base, five along the arm.
-ARM_SPHERES = """collision_spheres:
-  base:
-    - center: [0.0, 0.0, 0.0]
-      radius: 0.07
-  arm:
-""" + "".join(f"""    - center: [{x}, 0.0, 0.0]
-      radius: 0.08
-""" for x in (0.1, 0.3, 0.5, 0.7, 0.9))
+# One sphere on the base, five along the arm: ((x, y, z), radius) in each link's frame. unit: m
+ARM_SPHERES = {"base": [((0.0, 0.0, 0.0), 0.07)],
+               "arm": [((x, 0.0, 0.0), 0.08) for x in (0.1, 0.3, 0.5, 0.7, 0.9)]}
 
 
 @pytest.fixture
 def arm_model(tmp_path):
-    (tmp_path / "arm.urdf").write_text(ARM_URDF)
-    (tmp_path / "arm.yml").write_text(ARM_SPHERES)
-    return sphys.load_robot_model(tmp_path / "arm.urdf", tmp_path / "arm.yml")
+    return sphys.robot_model_from_text(ARM_URDF, ARM_SPHERES, tmp_path, "arm")
 
 
 def test_position_control_holds_the_arm_level_within_the_effort(arm_model):
