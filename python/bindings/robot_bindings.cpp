@@ -177,7 +177,8 @@ void bind_robot(py::module_& m) {
       py::arg("packages") = std::map<std::string, std::string>{},
       "A RobotModel from a URDF, the spheres `sphys spherize` wrote for it (any format) and, for "
       "self-collision, an SRDF's disable_collisions; packages: {name: directory} for "
-      "package:// meshes.");
+      "package:// meshes. The model keeps the files' absolute paths: a recording of a world "
+      "holding the robot (RecordingWriter) names them, for `sphys view` to draw its links.");
 
   auto query = py::reinterpret_borrow<py::class_<SharedQuery>>(m.attr("WorldQuery"));
   auto world = py::reinterpret_borrow<py::class_<SharedWorld>>(m.attr("World"));
