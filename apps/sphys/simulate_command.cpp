@@ -20,7 +20,6 @@
 #include "sphys/tools/csv_file.h"
 #include "sphys/tools/experiment.h"
 #include "sphys/tools/interrupt.h"
-#include "sphys/tools/model.h"
 #include "sphys/tools/recording.h"
 #include "sphys/tools/run_summary.h"
 #include "sphys/tools/scenarios.h"
@@ -85,35 +84,6 @@ std::vector<BodyId> recorded_bodies(const tools::SimulationSetup& setup,
   std::vector<BodyId> bodies = setup.bodies;
   bodies.insert(bodies.end(), robots.bodies.begin(), robots.bodies.end());
   return bodies;
-}
-
-std::vector<tools::BodyPose> poses(const World& world, const std::vector<BodyId>& bodies) {
-  std::vector<tools::BodyPose> result;
-  result.reserve(bodies.size());
-  for (const BodyId body : bodies) {
-    const Transform& pose = world.body(body).pose;
-    result.push_back({pose.translation, pose.rotation});
-  }
-  return result;
-}
-
-// The scene as a recording keeps it: file paths made absolute, so that a viewer replaying the
-// recording from anywhere finds the meshes and trees.
-std::string recorded_scene(tools::Scene scene) {
-  const auto absolute = [&](const fs::path& path) {
-    return fs::absolute(path.is_absolute() ? path : scene.base_directory / path);
-  };
-  for (tools::BodySpec& body : scene.bodies) {
-    if (body.mesh != tools::kBunnyName) body.mesh = absolute(body.mesh).string();
-    if (body.tree.sph_file) body.tree.sph_file = absolute(*body.tree.sph_file);
-  }
-  for (tools::SceneRobot& robot : scene.robots) {
-    robot.urdf = absolute(robot.urdf);
-    robot.spheres = absolute(robot.spheres);
-    if (robot.srdf) robot.srdf = absolute(*robot.srdf);
-    for (auto& [name, folder] : robot.packages) folder = absolute(folder);
-  }
-  return tools::scene_to_json(scene);
 }
 
 // The command line's settings over the scene's.
@@ -291,9 +261,9 @@ void run(const SimulateOptions& options) {
   const fs::path recording_path = out / "recording.sphysrec";
 
   tools::RecordingWriter recording(recording_path, static_cast<std::uint32_t>(recorded.size()),
-                                   scene.time_step, recorded_scene(scene),
+                                   scene.time_step, tools::recorded_scene_json(scene),
                                    tools::recorded_joints(scene, robots));
-  recording.add_frame(poses(*setup.world, recorded));
+  recording.add_frame(tools::recorded_poses(*setup.world, recorded));
   std::vector<std::vector<double>> rows;
   rows.reserve(static_cast<std::size_t>(scene.frames));
   tools::RunTotals totals;
@@ -321,7 +291,7 @@ void run(const SimulateOptions& options) {
                  "pairs left out)");
       }
       rows.push_back(frame_row(frame, frame * scene.time_step, stats));
-      recording.add_frame(poses(*setup.world, recorded));
+      recording.add_frame(tools::recorded_poses(*setup.world, recorded));
       bar.update(static_cast<double>(frame) / scene.frames);
     }
   }

@@ -23,6 +23,8 @@
 #include "sphys/error.h"
 #include "sphys/math.h"
 #include "sphys/slot_id.h"
+#include "sphys/robot_model.h"
+#include "sphys/tools/scene.h"
 
 namespace sphys::python {
 
@@ -159,11 +161,26 @@ class Turn {
 // 50 ms it takes the GIL back to let Ctrl-C through.
 [[nodiscard]] Turn::Held take_turn(Turn& turn);
 
-// The Python World: the world and its turn. `world` owns the world, or points into a Simulation
-// that the Python object keeps alive.
+// The Python RobotModel: the model and the files it was loaded from (absolute paths, as a scene
+// names a robot's), which a recording of a world holding the robot names so that a viewer loads
+// its links' meshes.
+struct FileRobotModel : RobotModel {
+  tools::SceneRobot files;  // the files alone: no pose, configuration or targets
+};
+
+// The robots of a Python world, in the order they were added (a Simulation's scene's first), each
+// with its files and base as a scene names a robot: what a recording of the world keeps of them.
+// Changed and read on the world's turn.
+struct WorldRobots {
+  std::vector<std::pair<RobotId, tools::SceneRobot>> added;
+};
+
+// The Python World: the world, its turn and its robots. `world` owns the world, or points into a
+// Simulation that the Python object keeps alive.
 struct SharedWorld {
   std::shared_ptr<World> world;
   std::shared_ptr<Turn> turn = std::make_shared<Turn>();
+  std::shared_ptr<WorldRobots> robots = std::make_shared<WorldRobots>();
 };
 
 // The Python WorldQuery: the query's snapshot of the world, replaced whole by refresh() (which

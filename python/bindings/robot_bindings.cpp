@@ -106,13 +106,13 @@ constexpr const char* kMotionsDoc =
 }  // namespace
 
 void bind_robot(py::module_& m) {
-  py::class_<RobotModel>(m, "RobotModel",
-                         "A robot as its checks need it: links, joints with limits, spheres, "
-                         "disabled link pairs and the base's pose (load_robot_model).")
+  py::class_<FileRobotModel>(m, "RobotModel",
+                             "A robot as its checks need it: links, joints with limits, spheres, "
+                             "disabled link pairs and the base's pose (load_robot_model).")
       .def_readonly("name", &RobotModel::name, "The robot's name in its URDF.")
       .def_property_readonly(
           "joints",
-          [](const RobotModel& model) {
+          [](const FileRobotModel& model) {
             std::vector<std::string> names;
             for (const auto& joint : model.joints) names.push_back(joint.name);
             return names;
@@ -120,7 +120,7 @@ void bind_robot(py::module_& m) {
           "The moving joints' names, in the order joint values are given.")
       .def_property_readonly(
           "limits",
-          [](const RobotModel& model) {
+          [](const FileRobotModel& model) {
             std::vector<std::array<double, 2>> limits;
             for (const auto& joint : model.joints) {
               limits.push_back({joint.lower, joint.upper});
@@ -131,18 +131,18 @@ void bind_robot(py::module_& m) {
           "turning joints, m for sliding ones")
       .def_property_readonly(
           "links",
-          [](const RobotModel& model) {
+          [](const FileRobotModel& model) {
             std::vector<std::string> names;
             for (const auto& link : model.links) names.push_back(link.name);
             return names;
           },
           "The links' names.")
       .def_property_readonly(
-          "spheres", [](const RobotModel& model) { return model.spheres.size(); },
+          "spheres", [](const FileRobotModel& model) { return model.spheres.size(); },
           "How many spheres the links have in all (a count).")
       .def(
           "set_base",
-          [](RobotModel& model, const py::object& position, const py::object& orientation) {
+          [](FileRobotModel& model, const py::object& position, const py::object& orientation) {
             const Vec3 p = vec3_from(position, "position");
             const Quat q = quat_from(orientation, "orientation");
             model.base = Eigen::Isometry3d::Identity();
@@ -156,24 +156,35 @@ void bind_robot(py::module_& m) {
       "load_robot_model",
       [](const py::object& urdf, const py::object& spheres, const py::object& srdf,
          const std::map<std::string, std::string>& packages) {
+        const std::filesystem::path urdf_path = spec_from(urdf, "urdf");
+        const std::filesystem::path spheres_path = spec_from(spheres, "spheres");
         std::vector<tools::RobotPackage> list;
         for (const auto& [name, directory] : packages) list.push_back({name, directory});
         std::optional<std::filesystem::path> srdf_path;
         if (!srdf.is_none()) srdf_path = spec_from(srdf, "srdf");
-        return tools::load_robot_model(spec_from(urdf, "urdf"), spec_from(spheres, "spheres"), list,
-                                       srdf_path);
+        FileRobotModel model{{tools::load_robot_model(urdf_path, spheres_path, list, srdf_path)},
+                             {}};
+        // Absolute, so that a recording naming them replays from any folder.
+        model.files.urdf = std::filesystem::absolute(urdf_path);
+        model.files.spheres = std::filesystem::absolute(spheres_path);
+        if (srdf_path) model.files.srdf = std::filesystem::absolute(*srdf_path);
+        for (const tools::RobotPackage& package : list) {
+          model.files.packages[package.name] = std::filesystem::absolute(package.directory);
+        }
+        return model;
       },
       py::arg("urdf"), py::arg("spheres"), py::arg("srdf") = py::none(),
       py::arg("packages") = std::map<std::string, std::string>{},
       "A RobotModel from a URDF, the spheres `sphys spherize` wrote for it (any format) and, for "
       "self-collision, an SRDF's disable_collisions; packages: {name: directory} for "
-      "package:// meshes.");
+      "package:// meshes. The model keeps the files' absolute paths: a recording of a world "
+      "holding the robot (RecordingWriter) names them, for `sphys view` to draw its links.");
 
   auto query = py::reinterpret_borrow<py::class_<SharedQuery>>(m.attr("WorldQuery"));
   auto world = py::reinterpret_borrow<py::class_<SharedWorld>>(m.attr("World"));
   query.def(
       "check_joint_values",
-      [](const SharedQuery& shared, const RobotModel& model, const py::object& values,
+      [](const SharedQuery& shared, const FileRobotModel& model, const py::object& values,
          bool self_collision, const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
         return check_joint_values(*shared.current(), model, values, self_collision, filter,
                                   tree_depth, threads);
@@ -183,7 +194,7 @@ void bind_robot(py::module_& m) {
       kJointValuesDoc);
   world.def(
       "check_joint_values",
-      [](const SharedWorld& w, const RobotModel& model, const py::object& values,
+      [](const SharedWorld& w, const FileRobotModel& model, const py::object& values,
          bool self_collision, const QueryFilter& filter, int tree_depth, std::uint32_t threads) {
         return check_joint_values(*SharedQuery(w).current(), model, values, self_collision, filter,
                                   tree_depth, threads);
@@ -193,7 +204,7 @@ void bind_robot(py::module_& m) {
       kJointValuesDoc);
   query.def(
       "check_motions",
-      [](const SharedQuery& shared, const RobotModel& model, const py::object& from,
+      [](const SharedQuery& shared, const FileRobotModel& model, const py::object& from,
          const py::object& to, double resolution, bool self_collision, const QueryFilter& filter,
          int tree_depth, std::uint32_t threads) {
         return check_motions(*shared.current(), model, from, to, resolution, self_collision, filter,
@@ -204,7 +215,7 @@ void bind_robot(py::module_& m) {
       py::arg("tree_depth") = 0, py::arg("threads") = 1, kMotionsDoc);
   world.def(
       "check_motions",
-      [](const SharedWorld& w, const RobotModel& model, const py::object& from,
+      [](const SharedWorld& w, const FileRobotModel& model, const py::object& from,
          const py::object& to, double resolution, bool self_collision, const QueryFilter& filter,
          int tree_depth, std::uint32_t threads) {
         return check_motions(*SharedQuery(w).current(), model, from, to, resolution, self_collision,

@@ -1,6 +1,7 @@
 // Robots simulated in a world (World.add_robot): a Robot handle whose joints are read and driven
 // as PyBullet users do it, numpy arrays in the model's joint order in and out.
 
+#include <initializer_list>
 #include <limits>
 #include <span>
 #include <string>
@@ -34,19 +35,27 @@ std::vector<double> per_joint(const py::handle& value, const char* what, std::si
   return {array.data(), array.data() + joints};
 }
 
-// The robot's controls, each joint's set by `control(joint, c)`, on the world's turn.
-template <class Control>
-void set_controls(SimulatedRobotHandle& robot, const Control& control) {
+// A control's argument: its name in messages, its value (a number, or one per joint in the
+// model's order) and the field of every joint's RobotJointControl it sets.
+struct ControlArgument {
+  const char* name;
+  const py::object& value;
+  double RobotJointControl::*field;
+};
+
+// Puts every joint of the robot under `mode` with the arguments' values (the other fields at their
+// defaults), on the world's turn; sphys.Error naming an argument that is not one value per joint.
+void set_controls(SimulatedRobotHandle& robot, RobotControlMode mode,
+                  std::initializer_list<ControlArgument> arguments) {
   const Turn::Held turn = take_turn(*robot.world.turn);
   World& world = *robot.world.world;
   std::vector<RobotJointControl> controls(world.robot_joints(robot.id).size());
-  for (std::size_t j = 0; j < controls.size(); ++j) control(j, controls[j]);
+  for (RobotJointControl& control : controls) control.mode = mode;
+  for (const ControlArgument& argument : arguments) {
+    const std::vector<double> values = per_joint(argument.value, argument.name, controls.size());
+    for (std::size_t j = 0; j < controls.size(); ++j) controls[j].*argument.field = values[j];
+  }
   world.set_robot_controls(robot.id, controls);
-}
-
-std::size_t joint_count(const SimulatedRobotHandle& robot) {
-  const Turn::Held turn = take_turn(*robot.world.turn);
-  return robot.world.world->robot_joints(robot.id).size();
 }
 
 // A figure of robot_joint_states as a (J,) float64 array.
@@ -89,20 +98,12 @@ void bind_robot_world(py::module_& m) {
           "set_joint_targets",
           [](SimulatedRobotHandle& robot, const py::object& positions, const py::object& kp,
              const py::object& kd, const py::object& velocities, const py::object& max_efforts) {
-            const std::size_t n = joint_count(robot);
-            const std::vector<double> q = per_joint(positions, "positions", n);
-            const std::vector<double> gains = per_joint(kp, "kp", n);
-            const std::vector<double> dampings = per_joint(kd, "kd", n);
-            const std::vector<double> speeds = per_joint(velocities, "velocities", n);
-            const std::vector<double> efforts = per_joint(max_efforts, "max_efforts", n);
-            set_controls(robot, [&](std::size_t j, RobotJointControl& c) {
-              c.mode = RobotControlMode::kPosition;
-              c.target_position = q[j];
-              c.position_gain = gains[j];
-              c.velocity_gain = dampings[j];
-              c.target_velocity = speeds[j];
-              c.max_effort = efforts[j];
-            });
+            set_controls(robot, RobotControlMode::kPosition,
+                         {{"positions", positions, &RobotJointControl::target_position},
+                          {"kp", kp, &RobotJointControl::position_gain},
+                          {"kd", kd, &RobotJointControl::velocity_gain},
+                          {"velocities", velocities, &RobotJointControl::target_velocity},
+                          {"max_efforts", max_efforts, &RobotJointControl::max_effort}});
           },
           py::arg("positions"), py::arg("kp") = RobotJointControl{}.position_gain,
           py::arg("kd") = RobotJointControl{}.velocity_gain, py::arg("velocities") = 0.0,
@@ -114,14 +115,9 @@ void bind_robot_world(py::module_& m) {
           "set_joint_velocities",
           [](SimulatedRobotHandle& robot, const py::object& velocities,
              const py::object& max_efforts) {
-            const std::size_t n = joint_count(robot);
-            const std::vector<double> speeds = per_joint(velocities, "velocities", n);
-            const std::vector<double> efforts = per_joint(max_efforts, "max_efforts", n);
-            set_controls(robot, [&](std::size_t j, RobotJointControl& c) {
-              c.mode = RobotControlMode::kVelocity;
-              c.target_velocity = speeds[j];
-              c.max_effort = efforts[j];
-            });
+            set_controls(robot, RobotControlMode::kVelocity,
+                         {{"velocities", velocities, &RobotJointControl::target_velocity},
+                          {"max_efforts", max_efforts, &RobotJointControl::max_effort}});
           },
           py::arg("velocities"), py::arg("max_efforts") = std::numeric_limits<double>::infinity(),
           "Velocity control of every joint: the motor drives to the speed (rad/s or m/s) with at "
@@ -129,11 +125,8 @@ void bind_robot_world(py::module_& m) {
       .def(
           "apply_torques",
           [](SimulatedRobotHandle& robot, const py::object& torques) {
-            const std::vector<double> values = per_joint(torques, "torques", joint_count(robot));
-            set_controls(robot, [&](std::size_t j, RobotJointControl& c) {
-              c.mode = RobotControlMode::kTorque;
-              c.torque = values[j];
-            });
+            set_controls(robot, RobotControlMode::kTorque,
+                         {{"torques", torques, &RobotJointControl::torque}});
           },
           py::arg("torques"),
           "Torque control of every joint: the torque (N·m, or N for a sliding joint) between "
@@ -176,7 +169,7 @@ void bind_robot_world(py::module_& m) {
   auto world = py::reinterpret_borrow<py::class_<SharedWorld>>(m.attr("World"));
   world.def(
       "add_robot",
-      [](SharedWorld& w, const RobotModel& model, const py::object& base, bool fixed_base) {
+      [](SharedWorld& w, const FileRobotModel& model, const py::object& base, bool fixed_base) {
         Transform pose{Quat(model.base.linear().cast<float>()),
                        model.base.translation().cast<float>()};
         if (!base.is_none()) {
@@ -185,8 +178,14 @@ void bind_robot_world(py::module_& m) {
           pose.rotation = quat_from(parts.second, "base orientation");
         }
         const Turn::Held turn = take_turn(*w.turn);
-        return SimulatedRobotHandle{
-            w, w.world->add_robot(model, pose, fixed_base ? RobotBase::kFixed : RobotBase::kFree)};
+        const RobotId id =
+            w.world->add_robot(model, pose, fixed_base ? RobotBase::kFixed : RobotBase::kFree);
+        tools::SceneRobot placed = model.files;
+        placed.position = pose.translation;
+        placed.orientation = pose.rotation;
+        placed.fixed_base = fixed_base;
+        w.robots->added.emplace_back(id, std::move(placed));
+        return SimulatedRobotHandle{w, id};
       },
       py::arg("model"), py::arg("base") = py::none(), py::arg("fixed_base") = true,
       "Adds the robot (plausible mode): one body per moving link with the URDF's masses and the "

@@ -16,6 +16,7 @@
 #include "sphys/tools/scene_file.h"
 #include "sphys/tools/scene_robots.h"
 #include "sphys/tools/tree_cache.h"
+#include "sphys/world.h"
 
 namespace sphys::python {
 namespace {
@@ -29,8 +30,10 @@ struct Simulation {
   tools::SimulationSetup setup;
   tools::RunTotals totals;
   int frame = 0;
-  // The turn of every call on the simulation and on its world (bindings.h).
+  // The turn of every call on the simulation and on its world, and the world's robots: the
+  // scene's, then those World.add_robot adds (bindings.h).
   std::shared_ptr<Turn> turn = std::make_shared<Turn>();
+  std::shared_ptr<WorldRobots> robots = std::make_shared<WorldRobots>();
 };
 
 // What Simulation() accepts as its scene: a Scene, a dict in the scene-file format, a preset's
@@ -61,6 +64,13 @@ py::array_t<float> scene_poses(const Simulation& sim) {
     for (int k = 0; k < 4; ++k) out(i, 3 + k) = pose.rotation.coeffs()[k];
   }
   return array;
+}
+
+// The simulation's world as Python's World holds one, not owning it: whoever holds it keeps the
+// simulation alive.
+SharedWorld simulation_world(const Simulation& sim) {
+  return SharedWorld{std::shared_ptr<World>(std::shared_ptr<World>(), sim.setup.world.get()),
+                     sim.turn, sim.robots};
 }
 
 // Steps `frames` frames in the caller's turn, without the GIL.
@@ -105,6 +115,107 @@ py::array_t<float> pose_member_view(const py::object& self, bool orientations, p
       orientations ? first.orientation.coeffs().data() : first.position.data(), self);
   py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return array;
+}
+
+// What a recording of a world (RecordingWriter(path, simulation or world)) reads every frame:
+// the bodies in order, and the robots some of them belong to, which must stay the world's.
+struct RecordedWorld {
+  SharedWorld world;
+  std::vector<BodyId> bodies;
+  std::vector<RobotId> robots;  // in the order the world added them
+};
+
+// The Python RecordingWriter: the file, and what its frames are read from when it records a
+// world rather than poses it is handed.
+struct PythonRecordingWriter {
+  std::unique_ptr<tools::RecordingWriter> file;
+  std::optional<RecordedWorld> source;
+};
+
+// The world's robots still in it, in the order it added them (on the world's turn).
+std::vector<RobotId> live_robots(const SharedWorld& world) {
+  std::vector<RobotId> robots;
+  for (const auto& [id, files] : world.robots->added) {
+    if (world.world->robot_alive(id)) robots.push_back(id);
+  }
+  return robots;
+}
+
+// A writer recording `world` as `sphys simulate` records a scene's: `bodies` (the scene's, in
+// scene order) with the scene's joints, then every robot's bodies and joints, the robots in the
+// order the world added them; the scene it embeds names the robots in that order (their files
+// and bases), so that a viewer adds them as the recording keeps them.
+std::unique_ptr<PythonRecordingWriter> world_writer(const std::filesystem::path& path,
+                                                    const SharedWorld& world, tools::Scene scene,
+                                                    std::vector<BodyId> bodies, double time_step) {
+  const Turn::Held turn = take_turn(*world.turn);
+  RecordedWorld source{world, std::move(bodies), {}};
+  std::vector<tools::RecordedJoint> joints = tools::recorded_joints(scene);
+  scene.robots.clear();
+  for (const auto& [id, files] : world.robots->added) {
+    if (!world.world->robot_alive(id)) continue;
+    source.robots.push_back(id);
+    tools::append_recorded_robot(*world.world, id, source.bodies, joints);
+    scene.robots.push_back(files);
+  }
+  auto writer = std::make_unique<PythonRecordingWriter>();
+  writer->file = std::make_unique<tools::RecordingWriter>(
+      path, static_cast<std::uint32_t>(source.bodies.size()), time_step,
+      tools::recorded_scene_json(scene), joints);
+  writer->source = std::move(source);
+  return writer;
+}
+
+// The scene a recording of a World embeds: no bodies of its own (a World's bodies are not a
+// scene's), its settings and ground plane, and its time step between frames.
+tools::Scene bare_world_scene(const SharedWorld& world, double time_step) {
+  tools::Scene scene;
+  scene.name = "world";
+  const Turn::Held turn = take_turn(*world.turn);
+  const WorldSettings& settings = world.world->settings();
+  tools::set_world_settings(scene, settings);
+  const std::optional<float> plane = settings.collision.ground_plane_height;
+  scene.ground.kind = plane ? tools::GroundSpec::Kind::kPlane : tools::GroundSpec::Kind::kNone;
+  scene.ground.height = plane.value_or(0.0F);
+  scene.time_step = time_step;
+  // A scene's frame count is a run's length, which a world stepped by hand has not: the least a
+  // scene allows (the recording's own count is Recording.frame_count).
+  scene.frames = 1;
+  return scene;
+}
+
+// One frame of the recorded world, read on its turn.
+void add_world_frame(PythonRecordingWriter& writer) {
+  const RecordedWorld& source = *writer.source;
+  std::vector<tools::BodyPose> poses;
+  {
+    const Turn::Held turn = take_turn(*source.world.turn);
+    const std::vector<RobotId> robots = live_robots(source.world);
+    if (robots != source.robots) {
+      throw Error("the world's robots changed since the recording began (" +
+                  std::to_string(source.robots.size()) + " then, " + std::to_string(robots.size()) +
+                  " now): a recording keeps the bodies it began with; start another one");
+    }
+    poses = tools::recorded_poses(*source.world.world, source.bodies);
+  }
+  writer.file->add_frame(poses);
+}
+
+// One frame of poses handed over: (B, 7) rows of position then (x, y, z, w).
+void add_given_frame(PythonRecordingWriter& writer, const py::handle& value) {
+  using Floats = py::array_t<float, py::array::c_style | py::array::forcecast>;
+  const Floats poses = Floats::ensure(value);
+  if (!poses || poses.ndim() != 2 || poses.shape(1) != 7) {
+    throw Error("poses must be an array of shape (B, 7)");
+  }
+  std::vector<tools::BodyPose> frame(static_cast<std::size_t>(poses.shape(0)));
+  const auto p = poses.unchecked<2>();
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const auto row = static_cast<py::ssize_t>(i);
+    frame[i].position = Vec3(p(row, 0), p(row, 1), p(row, 2));
+    frame[i].orientation = Quat(p(row, 6), p(row, 3), p(row, 4), p(row, 5));
+  }
+  writer.file->add_frame(frame);
 }
 
 }  // namespace
@@ -194,7 +305,12 @@ void bind_scene(py::module_& m) {
              if (cache) options.cache_dir = tools::default_cache_dir();
              py::gil_scoped_release unlocked;
              sim->setup = tools::build_world(sim->scene, options);
-             tools::add_scene_robots(sim->scene, *sim->setup.world);  // as `sphys simulate`
+             // As `sphys simulate` adds them.
+             const tools::SceneRobots robots =
+                 tools::add_scene_robots(sim->scene, *sim->setup.world);
+             for (std::size_t k = 0; k < robots.robots.size(); ++k) {
+               sim->robots->added.emplace_back(robots.robots[k], sim->scene.robots[k]);
+             }
              return sim;
            }),
            py::arg("scene"), py::kw_only(), py::arg("depth") = std::nullopt, py::arg("threads") = 1,
@@ -205,14 +321,8 @@ void bind_scene(py::module_& m) {
       .def_property_readonly(
           "world",
           // A getter made with keep_alive itself: a property's own extras ignore it.
-          py::cpp_function(
-              [](Simulation& sim) {
-                // Not owning: the returned object keeps the simulation alive instead.
-                return SharedWorld{
-                    std::shared_ptr<World>(std::shared_ptr<World>(), sim.setup.world.get()),
-                    sim.turn};
-              },
-              py::keep_alive<0, 1>()),
+          py::cpp_function([](const Simulation& sim) { return simulation_world(sim); },
+                           py::keep_alive<0, 1>()),
           "The simulation's world; its calls take turns with the simulation's.")
       .def_property_readonly(
           "scene", [](const Simulation& sim) { return sim.scene; },
@@ -318,42 +428,74 @@ void bind_scene(py::module_& m) {
       py::arg("path"), py::call_guard<py::gil_scoped_release>(),
       "Reads and checks a .sphysrec file.");
 
-  py::class_<tools::RecordingWriter>(
+  py::class_<PythonRecordingWriter>(
       m, "RecordingWriter",
       "Writes a .sphysrec frame by frame; the file appears only at finish() (use it as a "
-      "context manager: an exception leaves no file).")
+      "context manager: an exception leaves no file). Given a Simulation or a World it records "
+      "the world's bodies and joints with its robots, as `sphys simulate` does, so that `sphys "
+      "view` replays them; given a body count, the poses add_frame is handed.")
       .def(py::init([](const std::filesystem::path& path, std::uint32_t bodies, double time_step,
                        const std::string& metadata) {
-             return std::make_unique<tools::RecordingWriter>(path, bodies, time_step, metadata);
+             auto writer = std::make_unique<PythonRecordingWriter>();
+             writer->file =
+                 std::make_unique<tools::RecordingWriter>(path, bodies, time_step, metadata);
+             return writer;
            }),
            py::arg("path"), py::arg("bodies"), py::arg("time_step"), py::arg("metadata") = "",
-           "time_step between frames (s); metadata: the scene as JSON (Scene.to_json()) for the "
-           "viewer.")
+           "`bodies` poses a frame, handed to add_frame; time_step between frames (s); metadata: "
+           "the scene as JSON (Scene.to_json()) for the viewer.")
+      .def(py::init([](const std::filesystem::path& path, const Simulation& sim,
+                       std::optional<double> time_step) {
+             return world_writer(path, simulation_world(sim), sim.scene, sim.setup.bodies,
+                                 time_step.value_or(sim.scene.time_step));
+           }),
+           py::arg("path"), py::arg("simulation"), py::arg("time_step") = py::none(),
+           py::keep_alive<1, 3>(),
+           "Records the simulation as `sphys simulate` does, frame by frame at add_frame(): the "
+           "scene's bodies in scene order, then every robot's bodies (the scene's robots, then "
+           "those World.add_robot added, each its root link's body first, then the link of each "
+           "joint), with the scene's joints, then the robots'; the scene embedded names the "
+           "robots, so that `sphys view` draws their links. time_step: between frames (s), the "
+           "scene's by default. Bodies added with World.add_body are not recorded.")
+      .def(py::init([](const std::filesystem::path& path, const SharedWorld& world,
+                       double time_step) {
+             return world_writer(path, world, bare_world_scene(world, time_step), {}, time_step);
+           }),
+           py::arg("path"), py::arg("world"), py::arg("time_step"), py::keep_alive<1, 3>(),
+           "Records the world's robots (World.add_robot), as the Simulation form does, in a "
+           "scene of no bodies with the world's settings and ground plane: bodies added with "
+           "World.add_body are not recorded, as a recording names each body's shape by its "
+           "scene. time_step: between frames (s).")
       .def(
           "add_frame",
-          [](tools::RecordingWriter& writer,
-             const py::array_t<float, py::array::c_style | py::array::forcecast>& poses) {
-            if (poses.ndim() != 2 || poses.shape(1) != 7)
-              throw Error("poses must be an array of shape (B, 7)");
-            std::vector<tools::BodyPose> frame(static_cast<std::size_t>(poses.shape(0)));
-            const auto p = poses.unchecked<2>();
-            for (std::size_t i = 0; i < frame.size(); ++i) {
-              const auto row = static_cast<py::ssize_t>(i);
-              frame[i].position = Vec3(p(row, 0), p(row, 1), p(row, 2));
-              frame[i].orientation = Quat(p(row, 6), p(row, 3), p(row, 4), p(row, 5));
+          [](PythonRecordingWriter& writer, const py::object& poses) {
+            if (poses.is_none() && !writer.source) {
+              throw Error("add_frame needs the poses of this writer's bodies, (B, 7)");
             }
-            writer.add_frame(frame);
+            if (!poses.is_none() && writer.source) {
+              throw Error("this writer records its world's poses: call add_frame() without poses");
+            }
+            if (writer.source) {
+              add_world_frame(writer);
+            } else {
+              add_given_frame(writer, poses);
+            }
           },
-          py::arg("poses"), "One frame: (B, 7) poses as Simulation.poses() gives them.")
-      .def("finish", &tools::RecordingWriter::finish,
-           "Moves the file into place. Once only: nothing can follow.")
+          py::arg("poses") = py::none(),
+          "One frame: of a writer of a Simulation or a World, the world as it is now (no "
+          "poses); else the (B, 7) poses given, as Simulation.poses() gives them. sphys.Error, "
+          "writing nothing, for poses of another shape, a value that is not finite, or a world "
+          "whose robots changed since the recording began.")
+      .def(
+          "finish", [](PythonRecordingWriter& writer) { writer.file->finish(); },
+          "Moves the file into place. Once only: nothing can follow.")
       .def(
           "__enter__",
-          [](tools::RecordingWriter& writer) -> tools::RecordingWriter& { return writer; },
+          [](PythonRecordingWriter& writer) -> PythonRecordingWriter& { return writer; },
           py::return_value_policy::reference)
-      .def("__exit__", [](tools::RecordingWriter& writer, const py::object& type, const py::object&,
+      .def("__exit__", [](PythonRecordingWriter& writer, const py::object& type, const py::object&,
                           const py::object&) {
-        if (type.is_none() && !writer.finished()) writer.finish();
+        if (type.is_none() && !writer.file->finished()) writer.file->finish();
         return false;
       });
 }

@@ -14,7 +14,9 @@ Everything the command line does, by task (docs/python.md):
 * queries: World.query() (a WorldQuery: cast_ray, cast_ray_all, cast_rays, overlap_sphere /
   aabb / box / body, distance, check_configurations), World.check_configurations, QueryFilter
 * scenes: load_scene("stacks:4x50" or a file), Scene.from_dict, Simulation(scene).step / run /
-  summary; read_recording, RecordingWriter
+  summary; read_recording, RecordingWriter (poses, or a Simulation or World with its robots)
+* robots: load_robot_model, robot_model_from_text; World.add_robot (a Robot driven by position,
+  velocity or torque control)
 * the experiment: run_experiment_row, paper_table, paper_statistics, experiment_statistics,
   sphys.experiment.table (a pandas DataFrame when pandas is installed)
 * sweeps on Dask: sphys.sweep.sweep (and `python3 -m sphys.sweep`)
@@ -28,3 +30,4 @@ Bad input raises sphys.Error (a ValueError) with the command line's message.
 from ._sphys import *  # noqa: F401,F403  (the native module's whole API)
 from ._sphys import Error  # noqa: F401  (named, for readers and linters)
 from ._sphys import __version__  # noqa: F401  (include/sphys/version.h; `*` skips it)
+from .robot_files import robot_model_from_text  # noqa: F401

@@ -244,24 +244,15 @@ SWING_URDF = """<?xml version="1.0"?>
 </robot>
 """
 
-# cuRobo's YAML: one sphere of 0.1 m at the arm's tip, one at the base.
-SWING_SPHERES = """collision_spheres:
-  base:
-    - center: [0.0, 0.0, 0.0]
-      radius: 0.05
-  arm:
-    - center: [1.0, 0.0, 0.0]
-      radius: 0.1
-"""
+# One sphere of 0.1 m at the arm's tip, one at the base: ((x, y, z), radius). unit: m
+SWING_SPHERES = {"base": [((0.0, 0.0, 0.0), 0.05)], "arm": [((1.0, 0.0, 0.0), 0.1)]}
 
 
 @pytest.fixture
 def swing(tmp_path, sphere_tree):
     """The arm's model, and a world with a ball of 0.1 m at (0, 0, -1): the tip meets it when the
     arm has turned about y by asin(0.98) to pi - asin(0.98)."""
-    (tmp_path / "swing.urdf").write_text(SWING_URDF)
-    (tmp_path / "swing.yml").write_text(SWING_SPHERES)
-    model = sphys.load_robot_model(tmp_path / "swing.urdf", tmp_path / "swing.yml")
+    model = sphys.robot_model_from_text(SWING_URDF, SWING_SPHERES, tmp_path, "swing")
     world = sphys.World(gravity=(0, 0, 0))
     world.add_body(sphere_tree(0.1), position=(0, 0, -1), static=True)
     return model, world

@@ -13,8 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "sphys/body_id.h"
 #include "sphys/joint.h"
 #include "sphys/math.h"
+
+namespace sphys {
+class World;
+}  // namespace sphys
 
 namespace sphys::tools {
 
@@ -39,6 +44,10 @@ struct RecordedJoint {
   // The same joint: every field equal.
   friend bool operator==(const RecordedJoint&, const RecordedJoint&) = default;
 };
+
+// The bodies' poses in `world` now, in the order given: one frame of a recording of them.
+[[nodiscard]] std::vector<BodyPose> recorded_poses(const World& world,
+                                                   std::span<const BodyId> bodies);
 
 // Streams frames to disk as they come, so that a recording never has to fit in memory. The file
 // appears at `path` only when finish() succeeds; until then the frames go to a temporary file next

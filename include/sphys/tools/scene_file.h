@@ -35,6 +35,11 @@ namespace sphys::tools {
 // as its path alone, so its build settings are not kept.
 [[nodiscard]] std::string scene_to_json(const Scene& scene);
 
+// The scene as a recording embeds it: scene_to_json with every file path (meshes, .sph files,
+// robots' files and package folders) made absolute, so that a viewer replaying the recording from
+// any folder finds them.
+[[nodiscard]] std::string recorded_scene_json(Scene scene);
+
 // The scene's joints as a recording keeps them (RecordingWriter), in the scene's order.
 [[nodiscard]] std::vector<RecordedJoint> recorded_joints(const Scene& scene);
 

@@ -33,6 +33,12 @@ struct SceneRobots {
 // that are not one value per joint within its limits.
 SceneRobots add_scene_robots(const Scene& scene, World& world);
 
+// Appends the robot's bodies (World::robot_bodies) to `bodies` and its joints, as a recording
+// keeps them, to `joints`, their bodies indices into `bodies`: what a recording of the world keeps
+// of a robot after the bodies already listed, as add_scene_robots keeps the scene's robots.
+void append_recorded_robot(const World& world, RobotId robot, std::vector<BodyId>& bodies,
+                           std::vector<RecordedJoint>& joints);
+
 // Whether a recording of `body_count` bodies keeps the robots' bodies after the scene's, as
 // `sphys simulate` records them; false for one that keeps the scene's alone, as recordings made
 // before robots were recorded do. Throws sphys::Error for any other count.

@@ -11,11 +11,14 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "atomic_file.h"
 #include "input_file.h"
 #include "sphys/error.h"
+#include "sphys/world.h"
 
 namespace sphys::tools {
 namespace {
@@ -310,6 +313,16 @@ RecordingWriter::RecordingWriter(const fs::path& path, std::uint32_t body_count,
 }
 
 RecordingWriter::~RecordingWriter() = default;
+
+std::vector<BodyPose> recorded_poses(const World& world, std::span<const BodyId> bodies) {
+  std::vector<BodyPose> poses;
+  poses.reserve(bodies.size());
+  for (const BodyId body : bodies) {
+    const Transform& pose = world.body(body).pose;
+    poses.push_back({pose.translation, pose.rotation});
+  }
+  return poses;
+}
 
 void RecordingWriter::add_frame(std::span<const BodyPose> poses) {
   const fs::path& path = impl_->file.path();

@@ -2,6 +2,7 @@
 // of docs/scenes.md, so that the reader gets back the same scene bit for bit.
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -9,6 +10,7 @@
 #include "io/scene_schema.h"
 #include "io/setting_json.h"
 #include "sphys/settings_table.h"
+#include "sphys/tools/model.h"
 #include "sphys/tools/scene_file.h"
 
 namespace sphys::tools {
@@ -147,6 +149,23 @@ std::string scene_to_json(const Scene& scene) {
   for (const SceneRobot& robot : scene.robots) robots.push_back(robot_json(robot));
   out["robots"] = std::move(robots);
   return out.dump(2) + "\n";
+}
+
+std::string recorded_scene_json(Scene scene) {
+  const auto absolute = [&](const std::filesystem::path& path) {
+    return std::filesystem::absolute(path.is_absolute() ? path : scene.base_directory / path);
+  };
+  for (BodySpec& body : scene.bodies) {
+    if (body.mesh != kBunnyName) body.mesh = absolute(body.mesh).string();
+    if (body.tree.sph_file) body.tree.sph_file = absolute(*body.tree.sph_file);
+  }
+  for (SceneRobot& robot : scene.robots) {
+    robot.urdf = absolute(robot.urdf);
+    robot.spheres = absolute(robot.spheres);
+    if (robot.srdf) robot.srdf = absolute(*robot.srdf);
+    for (auto& [name, folder] : robot.packages) folder = absolute(folder);
+  }
+  return scene_to_json(scene);
 }
 
 std::vector<RecordedJoint> recorded_joints(const Scene& scene) {

@@ -68,25 +68,25 @@ void add_shapes(const Robot& robot, const World& world, RobotId id, std::vector<
   }
 }
 
-// The robot's joints as a recording keeps them, their bodies counted from the robot's first in
-// `all_bodies`.
-void add_joints(const World& world, RobotId id, std::span<const BodyId> all_bodies,
-                std::vector<RecordedJoint>& out) {
+}  // namespace
+
+void append_recorded_robot(const World& world, RobotId robot, std::vector<BodyId>& bodies,
+                           std::vector<RecordedJoint>& joints) {
+  const std::span<const BodyId> own = world.robot_bodies(robot);
+  bodies.insert(bodies.end(), own.begin(), own.end());
   const auto index = [&](BodyId body) -> std::optional<std::uint32_t> {
     if (body == BodyId{}) return std::nullopt;
-    return static_cast<std::uint32_t>(std::ranges::find(all_bodies, body) - all_bodies.begin());
+    return static_cast<std::uint32_t>(std::ranges::find(bodies, body) - bodies.begin());
   };
-  for (const JointId joint : world.robot_joints(id)) {
+  for (const JointId joint : world.robot_joints(robot)) {
     const JointDesc desc = world.joint(joint);
-    out.push_back({.type = desc.type,
-                   .body_a = index(desc.body_a),
-                   .body_b = index(desc.body_b),
-                   .anchor_a = desc.anchor_a,
-                   .anchor_b = desc.anchor_b});
+    joints.push_back({.type = desc.type,
+                      .body_a = index(desc.body_a),
+                      .body_b = index(desc.body_b),
+                      .anchor_a = desc.anchor_a,
+                      .anchor_b = desc.anchor_b});
   }
 }
-
-}  // namespace
 
 SceneRobots add_scene_robots(const Scene& scene, World& world) {
   SceneRobots added;
@@ -122,10 +122,8 @@ SceneRobots add_scene_robots(const Scene& scene, World& world) {
         world.set_robot_controls(id, controls);
       }
       added.robots.push_back(id);
-      const std::span<const BodyId> bodies = world.robot_bodies(id);
-      added.bodies.insert(added.bodies.end(), bodies.begin(), bodies.end());
+      append_recorded_robot(world, id, added.bodies, added.joints);
       add_shapes(loaded.robot, world, id, added.shapes);
-      add_joints(world, id, added.bodies, added.joints);
     } catch (const Error& error) {
       throw Error(where + error.what());
     }
