@@ -22,8 +22,8 @@
 #include "sphys/configuration_check.h"
 #include "sphys/error.h"
 #include "sphys/math.h"
-#include "sphys/slot_id.h"
 #include "sphys/robot_model.h"
+#include "sphys/slot_id.h"
 #include "sphys/tools/scene.h"
 
 namespace sphys::python {
