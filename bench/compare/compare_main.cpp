@@ -90,7 +90,7 @@ std::vector<std::function<BenchScene()>> scene_makers(const Options& options) {
     } else if (is_jointed_scene(name)) {
       makers.emplace_back([=] { return make_jointed_scene(name); });
     } else {
-      throw Error("--jointed: '" + name + "' is not ragdolls:R, chains:CxL or arm:B");
+      throw Error("--jointed: '" + name + "' is not ragdolls:R, chains:CxL, arm:B or arm-drag:M");
     }
   }
   return makers;
@@ -252,10 +252,12 @@ int main(int argc, char** argv) {
   app.add_option("--depths", options.depths, "Sphere-tree depths")
       ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--jointed", options.jointed,
-                 "Jointed scenes after the layouts: ragdolls:R (R ragdolls of 11 limbs), "
-                 "chains:CxL (C chains of L links swinging into bunnies), arm:B (the test robot "
-                 "sweeping through a pile of B bunnies for 10 s at 1 kHz, whatever --frames)")
+  app.add_option(
+         "--jointed", options.jointed,
+         "Jointed scenes after the layouts: ragdolls:R (R ragdolls of 11 limbs), "
+         "chains:CxL (C chains of L links swinging into bunnies), arm:B (the test robot "
+         "sweeping through a pile of B bunnies for 10 s at 1 kHz, whatever --frames; arm:B:L "
+         "with the shoulder lifted by L rad; arm-drag:M: through one bunny of M kg)")
       ->delimiter(',');
   app.add_option("--engines", options.engines, "Engines, in the order they run")
       ->delimiter(',')

@@ -34,6 +34,12 @@ constexpr double kFingerOpening = 0.015;  // each finger's position throughout. 
 // ploughs through the pile's upper layer. unit: rad
 constexpr double kShallowLift = 0.9;
 constexpr double kDeepestLift = 1.1;
+// arm-drag:M: the lone bunny, its distance from the arm's base (under the hand's path with the
+// shoulder lifted by kDragLift) and its heaviest.
+constexpr double kLoneBunnySize = 0.15;      // its longest side. unit: m
+constexpr float kLoneBunnyDistance = 0.45f;  // unit: m
+constexpr double kDragLift = 1.0;            // unit: rad
+constexpr double kMaxLoneBunnyMass = 100.0;  // unit: kg
 
 // B bunnies dropped in layers of 3 × 3 around the pile's axis, each turned about the vertical.
 BenchScene dropped_pile(const std::string& name, int bunnies) {
@@ -193,8 +199,23 @@ RobotMotion sweeps(double lift) {
   return motion;
 }
 
-BenchScene arm_scene(const std::string& name, int bunnies, double lift) {
-  BenchScene bench = dropped_pile(name, bunnies);
+// One 15 cm bunny of `mass` (unit: kg) lying on the plane across the hand's path at the deepest
+// sweep (the pan at 0), as the pile's bunnies are made.
+BenchScene lone_bunny(const std::string& name, double mass) {
+  tools::Scene scene;
+  scene.name = name;
+  tools::BodySpec bunny;
+  bunny.size = kLoneBunnySize;
+  bunny.tree.depth = kPileDepth;
+  bunny.mass = mass;
+  bunny.position = Vec3(kLoneBunnyDistance, 0.1f, 0.0f);
+  scene.bodies.push_back(bunny);
+  return bunny_bench_scene(name, std::move(scene), kPileDepth);
+}
+
+// The test robot beside `bench`'s bunnies, which settle by it, sweeping with the shoulder lifted
+// by `lift` (unit: rad).
+BenchScene arm_scene(BenchScene bench, double lift) {
   BenchRobot robot;
   robot.model = test_robot_model(robot.base);
   robot.motion = sweeps(lift);
@@ -229,9 +250,21 @@ void RobotMotion::targets(double t, std::vector<double>& positions,
   }
 }
 
-bool is_robot_scene(const std::string& name) { return name.starts_with("arm:"); }
+bool is_robot_scene(const std::string& name) {
+  return name.starts_with("arm:") || name.starts_with("arm-drag:");
+}
 
 BenchScene make_robot_scene(const std::string& name) {
+  if (name.starts_with("arm-drag:")) {
+    std::istringstream mass_text(name.substr(9));
+    double mass = 0.0;
+    if (!(mass_text >> mass) || !(mass > 0.0) || mass > kMaxLoneBunnyMass ||
+        mass_text.peek() != std::char_traits<char>::eof()) {
+      throw Error("arm scene '" + name + "': the form is arm-drag:M, M the bunny's mass in kg, " +
+                  formatted("above 0 and at most %g", kMaxLoneBunnyMass));
+    }
+    return arm_scene(lone_bunny(name, mass), kDragLift);
+  }
   std::istringstream in(name.substr(std::min<std::size_t>(name.size(), 4)));
   int bunnies = 0;
   double lift = kShallowLift;
@@ -245,7 +278,7 @@ BenchScene make_robot_scene(const std::string& name) {
                 std::to_string(kMaxBunnies) + ", L the sweep's shoulder lift from " +
                 formatted("%.2f to %.2f rad", kShallowLift, kDeepestLift));
   }
-  return arm_scene(name, bunnies, lift);
+  return arm_scene(dropped_pile(name, bunnies), lift);
 }
 
 }  // namespace sphys::compare
