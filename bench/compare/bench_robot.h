@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "sphys/robot_model.h"
@@ -22,6 +23,28 @@ struct RobotMotion {
   // The joints' target positions and speeds at time t (unit: s); the last waypoint after the
   // last arrival.
   void targets(double t, std::vector<double>& positions, std::vector<double>& speeds) const;
+};
+
+// The motion's targets step after step, for the step that ends at each: what the engines drive to
+// and what the tracking compares with.
+class MotionSteps {
+ public:
+  MotionSteps(const RobotMotion& motion, double time_step)  // unit: s
+      : motion_(&motion), time_step_(time_step) {}
+  // On to the next step's targets.
+  void next() {
+    ++steps_;
+    motion_->targets(static_cast<double>(steps_) * time_step_, positions_, speeds_);
+  }
+  [[nodiscard]] const std::vector<double>& positions() const { return positions_; }  // rad or m
+  [[nodiscard]] const std::vector<double>& speeds() const { return speeds_; }        // rad/s or m/s
+
+ private:
+  const RobotMotion* motion_;
+  double time_step_;
+  std::int64_t steps_ = 0;  // taken so far
+  std::vector<double> positions_;
+  std::vector<double> speeds_;
 };
 
 struct BenchRobot {

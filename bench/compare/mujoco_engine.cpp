@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <mujoco/mujoco.h>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -191,10 +192,9 @@ class MujocoEngine final : public Engine {
 
   void step() override {
     if (robot_ != nullptr) {
-      ++steps_;
-      robot_->motion.targets(static_cast<double>(steps_) * model_->opt.timestep, targets_, speeds_);
-      for (std::size_t j = 0; j < targets_.size(); ++j) {
-        data_->ctrl[j] = targets_[j] + speed_share_[j] * speeds_[j];
+      targets_->next();
+      for (std::size_t j = 0; j < speed_share_.size(); ++j) {
+        data_->ctrl[j] = targets_->positions()[j] + speed_share_[j] * targets_->speeds()[j];
       }
     }
     mj_step(model_, data_);
@@ -266,6 +266,7 @@ class MujocoEngine final : public Engine {
   // kp (q* − q) + kv (q̇* − q̇) for ctrl = q* + kv / kp q̇*.
   void start_robot(const BenchScene& bench) {
     robot_ = &*bench.robot;
+    targets_.emplace(robot_->motion, model_->opt.timestep);
     const std::vector<double>& start = robot_->motion.waypoints.front();
     std::vector<int> dofs;
     for (std::size_t j = 0; j < start.size(); ++j) {
@@ -290,13 +291,11 @@ class MujocoEngine final : public Engine {
 
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
-  std::vector<int> body_ids_;          // per scene body: MuJoCo's, in the trees' order
-  const BenchRobot* robot_ = nullptr;  // the scene's, if it has one
-  std::vector<int> robot_qpos_;        // per robot joint: its address in qpos
-  std::vector<double> speed_share_;    // per robot joint: kv / kp. unit: s
-  std::vector<double> targets_;        // per robot joint, unit: rad or m
-  std::vector<double> speeds_;         // per robot joint, unit: rad/s or m/s
-  std::int64_t steps_ = 0;             // stepped so far
+  std::vector<int> body_ids_;           // per scene body: MuJoCo's, in the trees' order
+  const BenchRobot* robot_ = nullptr;   // the scene's, if it has one
+  std::vector<int> robot_qpos_;         // per robot joint: its address in qpos
+  std::vector<double> speed_share_;     // per robot joint: kv / kp. unit: s
+  std::optional<MotionSteps> targets_;  // the robot's, step by step
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "peak_memory.h"
 
@@ -93,14 +94,10 @@ float largest_gap(const BenchScene& scene, const std::vector<BodyState>& bodies)
   return largest;
 }
 
-// Adds how far the robot's joints are after the step that ended at time t (unit: s) from the
-// targets that step was given to `result`'s largest errors, and their turning joints' errors to
-// `turn_errors` (unit: rad).
-void add_tracking(const BenchRobot& robot, const std::vector<double>& positions, double t,
-                  RunResult& result, double& turn_errors) {
-  std::vector<double> targets;
-  std::vector<double> speeds;
-  robot.motion.targets(t, targets, speeds);
+// Adds how far the robot's joints are after a step from the targets that step was given to
+// `result`'s largest errors, and their turning joints' errors to `turn_errors` (unit: rad).
+void add_tracking(const BenchRobot& robot, const std::vector<double>& positions,
+                  const std::vector<double>& targets, RunResult& result, double& turn_errors) {
   for (std::size_t j = 0; j < positions.size(); ++j) {
     const double error = std::abs(positions[j] - targets[j]);
     if (robot.model.joints[j].type == RobotJointType::kPrismatic) {
@@ -125,7 +122,9 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
   // The deepest penetration of the last second's frames run, oldest overwritten first.
   std::vector<float> last_second(
       static_cast<std::size_t>(std::max(1.0, std::round(1.0 / scene.time_step))), 0.0f);
-  double turn_errors = 0.0;  // summed over the turning joints and the frames. unit: rad
+  double turn_errors = 0.0;             // summed over the turning joints and the frames. unit: rad
+  std::optional<MotionSteps> expected;  // the robot's targets, step by step
+  if (scene.robot) expected.emplace(scene.robot->motion, scene.time_step);
   std::vector<BodyState> bodies;
   for (int frame = 0; frame < frames; ++frame) {
     const auto start = std::chrono::steady_clock::now();
@@ -137,8 +136,9 @@ RunResult run_engine(const std::string& name, const BenchScene& scene, int frame
     const float deepest = engine->deepest_penetration();
     result.deepest = std::max(result.deepest, deepest);
     last_second[static_cast<std::size_t>(frame) % last_second.size()] = deepest;
-    if (scene.robot) {
-      add_tracking(*scene.robot, engine->robot_positions(), (frame + 1) * scene.time_step, result,
+    if (expected) {
+      expected->next();
+      add_tracking(*scene.robot, engine->robot_positions(), expected->positions(), result,
                    turn_errors);
     }
     if (!scene.joints.empty()) {  // read outside the step's time

@@ -1,3 +1,5 @@
+#include <optional>
+
 #include "engine.h"
 #include "sphys/tools/build_world.h"
 #include "sphys/tools/tree_cache.h"
@@ -46,12 +48,11 @@ class SphysEngine final : public Engine {
   }
 
   void step() override {
-    if (robot_) {
-      ++steps_;
-      robot_->motion.targets(static_cast<double>(steps_) * double{dt_}, targets_, speeds_);
+    if (targets_) {
+      targets_->next();
       for (std::size_t j = 0; j < controls_.size(); ++j) {
-        controls_[j].target_position = targets_[j];
-        controls_[j].target_velocity = speeds_[j];
+        controls_[j].target_position = targets_->positions()[j];
+        controls_[j].target_velocity = targets_->speeds()[j];
       }
       setup_.world->set_robot_controls(robot_id_, controls_);
     }
@@ -59,7 +60,7 @@ class SphysEngine final : public Engine {
   }
 
   [[nodiscard]] std::vector<double> robot_positions() const override {
-    return robot_ ? setup_.world->robot_joint_states(robot_id_).positions : std::vector<double>{};
+    return targets_ ? setup_.world->robot_joint_states(robot_id_).positions : std::vector<double>{};
   }
 
   void read(std::vector<BodyState>& out) const override {
@@ -80,7 +81,7 @@ class SphysEngine final : public Engine {
  private:
   // The robot at its motion's start, every joint under position control with the scene's gains.
   void add_robot(const BenchRobot& robot) {
-    robot_ = &robot;
+    targets_.emplace(robot.motion, double{dt_});
     robot_id_ = setup_.world->add_robot(robot.model, robot.base);
     setup_.world->set_robot_configuration(robot_id_, robot.motion.waypoints.front());
     const std::span<const BodyId> bodies = setup_.world->robot_bodies(robot_id_);
@@ -93,13 +94,10 @@ class SphysEngine final : public Engine {
   float dt_;
   tools::SimulationSetup setup_;
   StepStats stats_;
-  std::uint32_t joints_ = 0;           // added to the world
-  const BenchRobot* robot_ = nullptr;  // the scene's, if it has one
+  std::uint32_t joints_ = 0;  // added to the world
   RobotId robot_id_;
   std::vector<RobotJointControl> controls_;  // per joint, set before each step
-  std::vector<double> targets_;              // per joint, unit: rad or m
-  std::vector<double> speeds_;               // per joint, unit: rad/s or m/s
-  std::int64_t steps_ = 0;                   // stepped so far
+  std::optional<MotionSteps> targets_;       // the robot's, step by step; none without one
 };
 
 }  // namespace
